@@ -1,0 +1,3 @@
+//! Brains: the neural-network controllers that genomes encode.
+
+pub mod genome;

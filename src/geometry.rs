@@ -1,0 +1,240 @@
+//! Geometry of the report's §6: contact between circles and segments, segment intersection,
+//! and ray casts, as pure, total functions.
+//!
+//! A miss is `false` or `None`, never an error, and every function accepts degenerate input
+//! (zero-radius circles, zero-length segments, parallel and collinear segments). Whiskers,
+//! smell occlusion, motion and the eye all call these functions rather than repeating the math.
+//!
+//! Frame (SPEC-NOTES, §2–3): x grows to the right, y grows downwards; contact is inclusive
+//! (touching counts).
+
+use serde::{Deserialize, Serialize};
+
+/// A point or direction in the plane, in LU. glam's `DVec2` is plain scalar f64 arithmetic,
+/// so it gives the same bits on every CPU.
+pub type Vec2 = glam::DVec2;
+
+/// A line segment between two points (a wall, a whisker, a path). Zero length is legal.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Segment {
+    /// First end point.
+    pub a: Vec2,
+    /// Second end point.
+    pub b: Vec2,
+}
+
+impl Segment {
+    /// The segment from `a` to `b`.
+    pub const fn new(a: Vec2, b: Vec2) -> Self {
+        Segment { a, b }
+    }
+
+    /// Length in LU.
+    pub fn length(&self) -> f64 {
+        (self.b - self.a).length()
+    }
+
+    /// Axis-aligned bounding box as (min corner, max corner).
+    pub fn bounds(&self) -> (Vec2, Vec2) {
+        (self.a.min(self.b), self.a.max(self.b))
+    }
+}
+
+/// eq. 1: two circles are in contact when the distance between their centres is at most the
+/// sum of their radii. Compared on squares, which is the same test without a square root.
+#[inline]
+pub fn circles_touch(c0: Vec2, r0: f64, c1: Vec2, r1: f64) -> bool {
+    let r = r0 + r1;
+    c0.distance_squared(c1) <= r * r
+}
+
+/// The point of `seg` closest to `p`.
+#[inline]
+pub fn closest_point_on_segment(p: Vec2, seg: &Segment) -> Vec2 {
+    let ab = seg.b - seg.a;
+    let len2 = ab.length_squared();
+    if len2 == 0.0 {
+        return seg.a;
+    }
+    let t = ((p - seg.a).dot(ab) / len2).clamp(0.0, 1.0);
+    seg.a + ab * t
+}
+
+/// Squared exact distance from `p` to the segment (not to its infinite line; see SPEC-NOTES
+/// on eq. 4).
+#[inline]
+pub fn point_segment_distance_squared(p: Vec2, seg: &Segment) -> f64 {
+    p.distance_squared(closest_point_on_segment(p, seg))
+}
+
+/// §6.2: a circle of radius `r` at `c` is in contact with `seg` when the smallest distance
+/// from `c` to the segment is at most `r`. The bounding-box test of eq. 2–3 rejects far
+/// segments cheaply; the exact point-to-segment distance then replaces eq. 4, which measured
+/// the distance to the infinite line and so reported false contacts past a segment's ends.
+#[inline]
+pub fn circle_touches_segment(c: Vec2, r: f64, seg: &Segment) -> bool {
+    let (lo, hi) = seg.bounds();
+    // eq. 2 and eq. 3.
+    if c.x < lo.x - r || c.x > hi.x + r || c.y < lo.y - r || c.y > hi.y + r {
+        return false;
+    }
+    point_segment_distance_squared(c, seg) <= r * r
+}
+
+/// Twice the signed area of the triangle (a, b, c): positive, negative or zero as c lies on
+/// one side of the line a→b, the other, or on it.
+#[inline]
+fn orientation(a: Vec2, b: Vec2, c: Vec2) -> f64 {
+    (b - a).perp_dot(c - a)
+}
+
+/// Given that `p` is collinear with segment (a, b), does it lie within the segment's box?
+#[inline]
+fn within_box(a: Vec2, b: Vec2, p: Vec2) -> bool {
+    p.x >= a.x.min(b.x) && p.x <= a.x.max(b.x) && p.y >= a.y.min(b.y) && p.y <= a.y.max(b.y)
+}
+
+/// §6.3: do the two segments share at least one point? End points touching and collinear
+/// overlap count. The bounding-box rejection of eq. 5–8 comes first; the slope form of
+/// eq. 9–24 is replaced by orientation tests (SPEC-NOTES), which answer the same question
+/// without special cases for vertical, parallel or identical lines.
+pub fn segments_intersect(s0: &Segment, s1: &Segment) -> bool {
+    let (lo0, hi0) = s0.bounds();
+    let (lo1, hi1) = s1.bounds();
+    // eq. 5–8: trivial rejection.
+    if hi0.x < lo1.x || hi1.x < lo0.x || hi0.y < lo1.y || hi1.y < lo0.y {
+        return false;
+    }
+    let (p, q, r, s) = (s0.a, s0.b, s1.a, s1.b);
+    let o1 = orientation(p, q, r);
+    let o2 = orientation(p, q, s);
+    let o3 = orientation(r, s, p);
+    let o4 = orientation(r, s, q);
+    // Proper crossing: each segment's ends lie strictly on opposite sides of the other.
+    if ((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0))
+        && ((o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0))
+    {
+        return true;
+    }
+    // Touching and collinear cases: an end point lies on the other segment.
+    (o1 == 0.0 && within_box(p, q, r))
+        || (o2 == 0.0 && within_box(p, q, s))
+        || (o3 == 0.0 && within_box(r, s, p))
+        || (o4 == 0.0 && within_box(r, s, q))
+}
+
+/// Ray cast against a segment: the smallest `t >= 0` such that `origin + t * dir` lies on
+/// `seg`, or `None`. `dir` need not be a unit vector; `t` is measured in multiples of it.
+/// A ray running along a collinear segment hits it at the nearer end (or at t = 0 when it
+/// starts on it). A zero `dir` hits only when the origin lies on the segment.
+pub fn ray_segment(origin: Vec2, dir: Vec2, seg: &Segment) -> Option<f64> {
+    let e = seg.b - seg.a;
+    let denom = dir.perp_dot(e);
+    let w = seg.a - origin;
+    if denom != 0.0 {
+        // origin + t dir = a + u e  =>  t = (w × e) / (dir × e), u = (w × dir) / (dir × e)
+        let t = w.perp_dot(e) / denom;
+        let u = w.perp_dot(dir) / denom;
+        if t >= 0.0 && (0.0..=1.0).contains(&u) {
+            return Some(t);
+        }
+        return None;
+    }
+    // Parallel, or a degenerate ray or segment.
+    let dd = dir.length_squared();
+    if dd == 0.0 {
+        return (point_segment_distance_squared(origin, seg) == 0.0).then_some(0.0);
+    }
+    // A hit only if the segment lies on the ray's line.
+    if w.perp_dot(dir) != 0.0 {
+        return None;
+    }
+    // Collinear: parameters of both ends along the ray.
+    let ta = (seg.a - origin).dot(dir) / dd;
+    let tb = (seg.b - origin).dot(dir) / dd;
+    let (lo, hi) = if ta <= tb { (ta, tb) } else { (tb, ta) };
+    if hi < 0.0 {
+        None
+    } else {
+        Some(lo.max(0.0))
+    }
+}
+
+/// Ray cast against a circle: the smallest `t >= 0` such that `origin + t * dir` lies on or
+/// in the circle, or `None`. An origin inside the circle hits at t = 0.
+pub fn ray_circle(origin: Vec2, dir: Vec2, centre: Vec2, radius: f64) -> Option<f64> {
+    let m = origin - centre;
+    let c = m.length_squared() - radius * radius;
+    if c <= 0.0 {
+        return Some(0.0);
+    }
+    let a = dir.length_squared();
+    if a == 0.0 {
+        return None;
+    }
+    let b = m.dot(dir);
+    if b > 0.0 {
+        // Outside and pointing away.
+        return None;
+    }
+    let disc = b * b - a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    Some((-b - disc.sqrt()) / a)
+}
+
+/// Does the segment touch the circle (share at least one point with the disc)?
+#[inline]
+pub fn segment_touches_circle(seg: &Segment, centre: Vec2, radius: f64) -> bool {
+    circle_touches_segment(centre, radius, seg)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn v(x: f64, y: f64) -> Vec2 {
+        Vec2::new(x, y)
+    }
+    fn seg(ax: f64, ay: f64, bx: f64, by: f64) -> Segment {
+        Segment::new(v(ax, ay), v(bx, by))
+    }
+
+    #[test]
+    fn eq1_touching_counts() {
+        assert!(circles_touch(v(0.0, 0.0), 3.0, v(6.0, 0.0), 3.0));
+        assert!(!circles_touch(v(0.0, 0.0), 3.0, v(6.000001, 0.0), 3.0));
+        assert!(circles_touch(v(1.0, 1.0), 0.0, v(1.0, 1.0), 0.0));
+    }
+
+    #[test]
+    fn eq4_false_contact_past_segment_end_is_fixed() {
+        // On the infinite line of the segment, 2 LU past its end, radius 1: eq. 4 would say
+        // contact (distance to the line is 0); the exact distance is 2 > 1.
+        let s = seg(0.0, 0.0, 10.0, 0.0);
+        assert!(!circle_touches_segment(v(12.0, 0.5), 1.0, &s));
+        // Within the box of eq. 2–3 but past the end diagonally.
+        assert!(!circle_touches_segment(v(10.9, 0.9), 1.0, &s));
+        assert!(circle_touches_segment(v(10.6, 0.6), 1.0, &s));
+        assert!(circle_touches_segment(v(5.0, 1.0), 1.0, &s)); // tangent
+    }
+
+    #[test]
+    fn ray_hits() {
+        let s = seg(5.0, -1.0, 5.0, 1.0);
+        assert_eq!(ray_segment(v(0.0, 0.0), v(1.0, 0.0), &s), Some(5.0));
+        assert_eq!(ray_segment(v(0.0, 0.0), v(-1.0, 0.0), &s), None);
+        let c = seg(2.0, 0.0, 4.0, 0.0);
+        assert_eq!(ray_segment(v(0.0, 0.0), v(2.0, 0.0), &c), Some(1.0));
+        assert_eq!(ray_segment(v(3.0, 0.0), v(1.0, 0.0), &c), Some(0.0));
+        assert_eq!(
+            ray_circle(v(0.0, 0.0), v(1.0, 0.0), v(10.0, 0.0), 2.0),
+            Some(8.0)
+        );
+        assert_eq!(
+            ray_circle(v(0.0, 0.0), v(1.0, 0.0), v(10.0, 3.0), 2.0),
+            None
+        );
+    }
+}
