@@ -28,3 +28,4 @@ pub mod brain;
 pub mod geometry;
 pub mod seed;
 pub mod sim;
+pub mod validate;
