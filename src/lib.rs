@@ -25,6 +25,7 @@
 //! Experiment, Run.
 
 pub mod brain;
+pub mod evo;
 pub mod geometry;
 pub mod seed;
 pub mod sim;

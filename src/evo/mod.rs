@@ -1,0 +1,10 @@
+//! Evolution: the generational genetic algorithm that evolves brain genomes. This part holds
+//! the `[evolution]` table, the random generation 0, selection, variation (crossover and
+//! mutation) and fitness statistics; every random draw comes from a stream passed in, in a
+//! documented order, so a run reproduces bit for bit from its seed.
+
+pub mod spec;
+pub mod stats;
+
+pub use spec::{CrossoverSpec, EvolutionSpec, MutationSpec, SelectionSpec, SelfAdaptation};
+pub use stats::FitnessStats;

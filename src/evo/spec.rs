@@ -1,0 +1,582 @@
+//! The `[evolution]` table: the generational genetic algorithm's settings (population,
+//! elitism, selection, crossover, mutation, initialisation) and their validation.
+//!
+//! ```toml
+//! [evolution]
+//! population = 64
+//! generations = 50
+//! elitism = 2
+//! init_range = 1.0
+//!
+//! [evolution.selection]
+//! kind = "tournament"        # or "truncation", "rank"
+//! tournament_size = 3        # only with kind = "tournament"
+//!
+//! [evolution.crossover]
+//! kind = "uniform"           # or "none", "one_point", "arithmetic"
+//! probability = 0.5          # not with kind = "none"
+//!
+//! [evolution.mutation]
+//! probability = 0.1
+//! sigma = 0.1
+//! self_adaptive = false      # tau and min_sigma only with self_adaptive = true
+//! ```
+//!
+//! Every key has a default. A key that only matters for a setting the table did not choose
+//! (`rank_pressure` with `kind = "tournament"`, `probability` with crossover `kind = "none"`,
+//! `tau` with `self_adaptive = false`) is an error rather than silently ignored, so that a
+//! forgotten `kind` line can never make a run use other settings than the file shows.
+//! Written back (e.g. to a run folder), each sub-table shows its kind and exactly the values
+//! that kind uses, defaults included.
+
+use crate::validate::{count_within, non_negative, within, InvalidValue, Valid};
+use serde::{Deserialize, Serialize};
+
+/// The largest population accepted: two generations of genomes are held in memory at once,
+/// and selection keeps per-individual buffers.
+pub const MAX_POPULATION: usize = 1_000_000;
+
+/// The largest number of generations accepted (far beyond any run that can finish).
+pub const MAX_GENERATIONS: u64 = 1_000_000_000;
+
+/// The largest initialisation range and mutation standard deviation accepted. Network
+/// parameters this large already saturate every unit; the limit keeps every draw, and every
+/// self-adapted step size, finite.
+pub const MAX_MAGNITUDE: f64 = 1.0e6;
+
+/// `[evolution]`: the generational genetic algorithm.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct EvolutionSpec {
+    /// Individuals per generation (default: 64; 2 to 1 000 000).
+    pub population: usize,
+    /// How many generations a run evaluates, counting the random initial population as the
+    /// first (default: 50; at most 10^9).
+    pub generations: u64,
+    /// How many of the best parents are copied unchanged into the next generation, best
+    /// first (default: 2; at most the population).
+    pub elitism: usize,
+    /// Initial parameters are drawn uniformly from [−init_range, init_range) (default: 1;
+    /// 0 to 10^6).
+    pub init_range: f64,
+    /// How parents are chosen (`[evolution.selection]`; default: tournament of 3).
+    pub selection: SelectionSpec,
+    /// How two parents are recombined (`[evolution.crossover]`; default: uniform with
+    /// probability 0.5).
+    pub crossover: CrossoverSpec,
+    /// How offspring are mutated (`[evolution.mutation]`; default: each gene with
+    /// probability 0.1 gets Gaussian noise of standard deviation 0.1).
+    pub mutation: MutationSpec,
+}
+
+impl Default for EvolutionSpec {
+    fn default() -> Self {
+        EvolutionSpec {
+            population: 64,
+            generations: 50,
+            elitism: 2,
+            init_range: 1.0,
+            selection: SelectionSpec::default(),
+            crossover: CrossoverSpec::default(),
+            mutation: MutationSpec::default(),
+        }
+    }
+}
+
+impl EvolutionSpec {
+    /// Checks every value; keys start with `evolution.`.
+    pub fn validate(&self) -> Valid {
+        count_within(
+            "evolution.population",
+            self.population as u64,
+            2,
+            MAX_POPULATION as u64,
+            "limit: memory for two generations of genomes",
+        )?;
+        count_within(
+            "evolution.generations",
+            self.generations,
+            1,
+            MAX_GENERATIONS,
+            "limit",
+        )?;
+        if self.elitism > self.population {
+            return Err(InvalidValue::new(
+                "evolution.elitism",
+                format!(
+                    "elitism {} is larger than the population {}",
+                    self.elitism, self.population
+                ),
+            ));
+        }
+        magnitude("evolution.init_range", self.init_range)?;
+        self.selection.validate(self.population)?;
+        self.crossover.validate()?;
+        self.mutation.validate()
+    }
+}
+
+/// A finite value in [0, MAX_MAGNITUDE].
+fn magnitude(key: &str, value: f64) -> Valid {
+    non_negative(key, value)?;
+    if value > MAX_MAGNITUDE {
+        return Err(InvalidValue::new(
+            key,
+            format!("must be at most {MAX_MAGNITUDE} (limit), got {value}"),
+        ));
+    }
+    Ok(())
+}
+
+/// A probability: finite and in [0, 1].
+fn probability(key: &str, value: f64) -> Valid {
+    within(key, value, 0.0, 1.0)
+}
+
+/// `[evolution.selection]`: how each parent of an offspring is chosen from the evaluated
+/// generation. Higher fitness is better; equal fitness is broken in favour of the lower index.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "RawSelection", into = "RawSelection")]
+pub enum SelectionSpec {
+    /// `kind = "tournament"`: the best of `tournament_size` distinct individuals drawn
+    /// uniformly (without replacement, so a tournament of the whole population always picks
+    /// the best and a tournament of 1 is uniform).
+    Tournament {
+        /// `tournament_size`: individuals per tournament (default: 3; 1 to the population).
+        size: usize,
+    },
+    /// `kind = "truncation"`: uniform among the best ⌈truncation_fraction · n⌉ (at least 1).
+    Truncation {
+        /// `truncation_fraction`: the share of the population that may become a parent
+        /// (default: 0.2; greater than 0, at most 1).
+        fraction: f64,
+    },
+    /// `kind = "rank"`: Baker's linear ranking. The individual of rank r (0 = worst,
+    /// n − 1 = best) is picked with probability ((2 − s) + 2(s − 1) r / (n − 1)) / n.
+    Rank {
+        /// `rank_pressure` s: expected number of picks of the best individual per n picks
+        /// (default: 1.7; 1 = uniform, 2 = the worst is never picked).
+        pressure: f64,
+    },
+}
+
+/// Default tournament size.
+pub const DEFAULT_TOURNAMENT_SIZE: usize = 3;
+/// Default truncation fraction.
+pub const DEFAULT_TRUNCATION_FRACTION: f64 = 0.2;
+/// Default linear-ranking pressure.
+pub const DEFAULT_RANK_PRESSURE: f64 = 1.7;
+
+impl Default for SelectionSpec {
+    fn default() -> Self {
+        SelectionSpec::Tournament {
+            size: DEFAULT_TOURNAMENT_SIZE,
+        }
+    }
+}
+
+impl SelectionSpec {
+    /// Checks the table against the population size; keys start with `evolution.selection.`.
+    pub fn validate(&self, population: usize) -> Valid {
+        match *self {
+            SelectionSpec::Tournament { size } => count_within(
+                "evolution.selection.tournament_size",
+                size as u64,
+                1,
+                population as u64,
+                "the population",
+            ),
+            SelectionSpec::Truncation { fraction } => {
+                let key = "evolution.selection.truncation_fraction";
+                within(key, fraction, 0.0, 1.0)?;
+                if fraction == 0.0 {
+                    return Err(InvalidValue::new(key, "must be greater than 0, got 0"));
+                }
+                Ok(())
+            }
+            SelectionSpec::Rank { pressure } => {
+                within("evolution.selection.rank_pressure", pressure, 1.0, 2.0)
+            }
+        }
+    }
+}
+
+/// The kinds of selection, as spelt in TOML.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum SelectionKind {
+    #[default]
+    Tournament,
+    Truncation,
+    Rank,
+}
+
+/// `[evolution.selection]` as written: every key optional, checked against `kind`.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+struct RawSelection {
+    kind: SelectionKind,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    tournament_size: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    truncation_fraction: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rank_pressure: Option<f64>,
+}
+
+/// The error for a key that the chosen kind does not use.
+fn unused_key(key: &str, used_by: &str, chosen: &str) -> String {
+    format!("`{key}` is only used with {used_by}, but this table has {chosen}; remove it")
+}
+
+impl TryFrom<RawSelection> for SelectionSpec {
+    type Error = String;
+
+    fn try_from(raw: RawSelection) -> Result<Self, String> {
+        let (name, spec) = match raw.kind {
+            SelectionKind::Tournament => (
+                "tournament",
+                SelectionSpec::Tournament {
+                    size: raw.tournament_size.unwrap_or(DEFAULT_TOURNAMENT_SIZE),
+                },
+            ),
+            SelectionKind::Truncation => (
+                "truncation",
+                SelectionSpec::Truncation {
+                    fraction: raw
+                        .truncation_fraction
+                        .unwrap_or(DEFAULT_TRUNCATION_FRACTION),
+                },
+            ),
+            SelectionKind::Rank => (
+                "rank",
+                SelectionSpec::Rank {
+                    pressure: raw.rank_pressure.unwrap_or(DEFAULT_RANK_PRESSURE),
+                },
+            ),
+        };
+        let chosen = format!("kind = \"{name}\"");
+        let foreign = [
+            (
+                raw.tournament_size.is_some() && raw.kind != SelectionKind::Tournament,
+                "tournament_size",
+                "kind = \"tournament\"",
+            ),
+            (
+                raw.truncation_fraction.is_some() && raw.kind != SelectionKind::Truncation,
+                "truncation_fraction",
+                "kind = \"truncation\"",
+            ),
+            (
+                raw.rank_pressure.is_some() && raw.kind != SelectionKind::Rank,
+                "rank_pressure",
+                "kind = \"rank\"",
+            ),
+        ];
+        for (present, key, used_by) in foreign {
+            if present {
+                return Err(unused_key(
+                    &format!("evolution.selection.{key}"),
+                    used_by,
+                    &chosen,
+                ));
+            }
+        }
+        Ok(spec)
+    }
+}
+
+impl From<SelectionSpec> for RawSelection {
+    fn from(spec: SelectionSpec) -> Self {
+        match spec {
+            SelectionSpec::Tournament { size } => RawSelection {
+                kind: SelectionKind::Tournament,
+                tournament_size: Some(size),
+                ..RawSelection::default()
+            },
+            SelectionSpec::Truncation { fraction } => RawSelection {
+                kind: SelectionKind::Truncation,
+                truncation_fraction: Some(fraction),
+                ..RawSelection::default()
+            },
+            SelectionSpec::Rank { pressure } => RawSelection {
+                kind: SelectionKind::Rank,
+                rank_pressure: Some(pressure),
+                ..RawSelection::default()
+            },
+        }
+    }
+}
+
+/// `[evolution.crossover]`: how the two parents of an offspring are recombined. With
+/// probability `probability` an offspring is their recombination, otherwise a copy of the
+/// first parent; mutation follows either way.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "RawCrossover", into = "RawCrossover")]
+pub enum CrossoverSpec {
+    /// `kind = "none"`: offspring are mutated copies of one selected parent (no second parent
+    /// is selected; `probability` must not be given).
+    None,
+    /// `kind = "uniform"`: each gene comes from either parent with probability 1/2.
+    Uniform {
+        /// `probability`: chance that an offspring is recombined (default: 0.5; 0 to 1).
+        probability: f64,
+    },
+    /// `kind = "one_point"`: genes before a cut point drawn uniformly from 1..n come from the
+    /// first parent, the rest from the second (n = number of genes; with n < 2 there is no
+    /// cut and the offspring copies the first parent).
+    OnePoint {
+        /// `probability`: chance that an offspring is recombined (default: 0.5; 0 to 1).
+        probability: f64,
+    },
+    /// `kind = "arithmetic"`: whole arithmetic recombination, child = a·x + (1 − a)·y for
+    /// parents x and y with one a drawn uniformly from [0, 1) per offspring.
+    Arithmetic {
+        /// `probability`: chance that an offspring is recombined (default: 0.5; 0 to 1).
+        probability: f64,
+    },
+}
+
+/// Default crossover probability.
+pub const DEFAULT_CROSSOVER_PROBABILITY: f64 = 0.5;
+
+impl Default for CrossoverSpec {
+    fn default() -> Self {
+        CrossoverSpec::Uniform {
+            probability: DEFAULT_CROSSOVER_PROBABILITY,
+        }
+    }
+}
+
+impl CrossoverSpec {
+    /// The chance that an offspring is recombined (0 for `none`).
+    pub fn probability(&self) -> f64 {
+        match *self {
+            CrossoverSpec::None => 0.0,
+            CrossoverSpec::Uniform { probability }
+            | CrossoverSpec::OnePoint { probability }
+            | CrossoverSpec::Arithmetic { probability } => probability,
+        }
+    }
+
+    /// Checks the table; keys start with `evolution.crossover.`.
+    pub fn validate(&self) -> Valid {
+        match self {
+            CrossoverSpec::None => Ok(()),
+            _ => probability("evolution.crossover.probability", self.probability()),
+        }
+    }
+}
+
+/// The kinds of crossover, as spelt in TOML.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum CrossoverKind {
+    None,
+    #[default]
+    Uniform,
+    OnePoint,
+    Arithmetic,
+}
+
+/// `[evolution.crossover]` as written.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+struct RawCrossover {
+    kind: CrossoverKind,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    probability: Option<f64>,
+}
+
+impl TryFrom<RawCrossover> for CrossoverSpec {
+    type Error = String;
+
+    fn try_from(raw: RawCrossover) -> Result<Self, String> {
+        let probability = raw.probability.unwrap_or(DEFAULT_CROSSOVER_PROBABILITY);
+        Ok(match raw.kind {
+            CrossoverKind::None => {
+                if raw.probability.is_some() {
+                    return Err(unused_key(
+                        "evolution.crossover.probability",
+                        "a crossover kind other than \"none\"",
+                        "kind = \"none\"",
+                    ));
+                }
+                CrossoverSpec::None
+            }
+            CrossoverKind::Uniform => CrossoverSpec::Uniform { probability },
+            CrossoverKind::OnePoint => CrossoverSpec::OnePoint { probability },
+            CrossoverKind::Arithmetic => CrossoverSpec::Arithmetic { probability },
+        })
+    }
+}
+
+impl From<CrossoverSpec> for RawCrossover {
+    fn from(spec: CrossoverSpec) -> Self {
+        let kind = match spec {
+            CrossoverSpec::None => CrossoverKind::None,
+            CrossoverSpec::Uniform { .. } => CrossoverKind::Uniform,
+            CrossoverSpec::OnePoint { .. } => CrossoverKind::OnePoint,
+            CrossoverSpec::Arithmetic { .. } => CrossoverKind::Arithmetic,
+        };
+        RawCrossover {
+            kind,
+            probability: match spec {
+                CrossoverSpec::None => None,
+                _ => Some(spec.probability()),
+            },
+        }
+    }
+}
+
+/// `[evolution.mutation]`: per-gene Gaussian mutation, with an optional self-adaptive step
+/// size that each genome carries and that evolves with it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "RawMutation", into = "RawMutation")]
+pub struct MutationSpec {
+    /// `probability`: chance that each gene of an offspring is mutated (default: 0.1; 0 to 1).
+    pub probability: f64,
+    /// `sigma`: standard deviation of the Gaussian added to a mutated gene, in parameter
+    /// units; with self-adaptation, the initial population's step size (default: 0.1;
+    /// 0 to 10^6).
+    pub sigma: f64,
+    /// `self_adaptive = true`: each genome carries its own step size, mutated log-normally
+    /// before its genes (default: off, written `self_adaptive = false`).
+    pub self_adaptive: Option<SelfAdaptation>,
+}
+
+/// Settings of self-adaptive mutation (Schwefel's log-normal rule): before its genes, an
+/// offspring's step size σ becomes σ' = σ · exp(τ · N(0, 1)), kept within
+/// [min_sigma, 10^6], and its mutated genes get N(0, σ'²).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SelfAdaptation {
+    /// `tau`: learning rate τ of the step size, dimensionless (default: 1/√n for n genes;
+    /// at least 0).
+    pub tau: Option<f64>,
+    /// `min_sigma`: the smallest step size, in parameter units, so that a step size cannot
+    /// collapse to 0 (default: 10^-6; 0 to `sigma`).
+    pub min_sigma: f64,
+}
+
+/// Default per-gene mutation probability.
+pub const DEFAULT_MUTATION_PROBABILITY: f64 = 0.1;
+/// Default mutation standard deviation.
+pub const DEFAULT_SIGMA: f64 = 0.1;
+/// Default floor of a self-adaptive step size.
+pub const DEFAULT_MIN_SIGMA: f64 = 1.0e-6;
+
+impl Default for MutationSpec {
+    fn default() -> Self {
+        MutationSpec {
+            probability: DEFAULT_MUTATION_PROBABILITY,
+            sigma: DEFAULT_SIGMA,
+            self_adaptive: None,
+        }
+    }
+}
+
+impl Default for SelfAdaptation {
+    fn default() -> Self {
+        SelfAdaptation {
+            tau: None,
+            min_sigma: DEFAULT_MIN_SIGMA,
+        }
+    }
+}
+
+impl SelfAdaptation {
+    /// The learning rate for genomes of `genes` parameters: `tau`, or 1/√n by default
+    /// (n taken as at least 1).
+    pub fn tau_for(&self, genes: usize) -> f64 {
+        self.tau
+            .unwrap_or_else(|| 1.0 / (genes.max(1) as f64).sqrt())
+    }
+}
+
+impl MutationSpec {
+    /// Checks the table; keys start with `evolution.mutation.`.
+    pub fn validate(&self) -> Valid {
+        probability("evolution.mutation.probability", self.probability)?;
+        magnitude("evolution.mutation.sigma", self.sigma)?;
+        if let Some(adaptation) = &self.self_adaptive {
+            if let Some(tau) = adaptation.tau {
+                non_negative("evolution.mutation.tau", tau)?;
+            }
+            let key = "evolution.mutation.min_sigma";
+            non_negative(key, adaptation.min_sigma)?;
+            if adaptation.min_sigma > self.sigma {
+                return Err(InvalidValue::new(
+                    key,
+                    format!(
+                        "must be at most sigma ({}), the initial step size, got {}",
+                        self.sigma, adaptation.min_sigma
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// `[evolution.mutation]` as written.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+struct RawMutation {
+    probability: f64,
+    sigma: f64,
+    self_adaptive: bool,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    tau: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    min_sigma: Option<f64>,
+}
+
+impl Default for RawMutation {
+    fn default() -> Self {
+        MutationSpec::default().into()
+    }
+}
+
+impl TryFrom<RawMutation> for MutationSpec {
+    type Error = String;
+
+    fn try_from(raw: RawMutation) -> Result<Self, String> {
+        let self_adaptive = if raw.self_adaptive {
+            Some(SelfAdaptation {
+                tau: raw.tau,
+                min_sigma: raw.min_sigma.unwrap_or(DEFAULT_MIN_SIGMA),
+            })
+        } else {
+            for (present, key) in [
+                (raw.tau.is_some(), "tau"),
+                (raw.min_sigma.is_some(), "min_sigma"),
+            ] {
+                if present {
+                    return Err(unused_key(
+                        &format!("evolution.mutation.{key}"),
+                        "self_adaptive = true",
+                        "self_adaptive = false",
+                    ));
+                }
+            }
+            None
+        };
+        Ok(MutationSpec {
+            probability: raw.probability,
+            sigma: raw.sigma,
+            self_adaptive,
+        })
+    }
+}
+
+impl From<MutationSpec> for RawMutation {
+    fn from(spec: MutationSpec) -> Self {
+        RawMutation {
+            probability: spec.probability,
+            sigma: spec.sigma,
+            self_adaptive: spec.self_adaptive.is_some(),
+            tau: spec.self_adaptive.and_then(|a| a.tau),
+            min_sigma: spec.self_adaptive.map(|a| a.min_sigma),
+        }
+    }
+}
