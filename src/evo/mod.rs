@@ -3,8 +3,13 @@
 //! mutation) and fitness statistics; every random draw comes from a stream passed in, in a
 //! documented order, so a run reproduces bit for bit from its seed.
 
+pub mod init;
+pub mod select;
 pub mod spec;
 pub mod stats;
+pub mod vary;
 
+pub use init::initial_population;
 pub use spec::{CrossoverSpec, EvolutionSpec, MutationSpec, SelectionSpec, SelfAdaptation};
 pub use stats::FitnessStats;
+pub use vary::next_generation;

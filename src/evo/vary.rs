@@ -1,0 +1,174 @@
+//! Variation: crossover and mutation, and [`next_generation`], which makes generation g + 1
+//! from evaluated generation g (elitism, selection, crossover, mutation).
+//!
+//! # Draw order (part of the reproducibility contract)
+//!
+//! [`next_generation`] copies the `elitism` best parents first (no draws), then makes each
+//! offspring in turn, drawing from the one variation stream in this order:
+//!
+//! 1. Parent x: one pick of the selection method (see [`crate::evo::select`]).
+//! 2. Unless crossover is `none`: parent y, a second pick; then one `chance(probability)`
+//!    (one `unit()`) deciding whether to recombine. If not, the offspring copies x.
+//! 3. Recombination, when chosen:
+//!    - uniform: one `chance(0.5)` per gene, in gene order; true takes y's gene;
+//!    - one-point: one `below(n − 1)`, cut = 1 + that, genes `0..cut` from x, the rest from
+//!      y (with fewer than 2 genes: no draw, the offspring copies x);
+//!    - arithmetic: one `unit()` a; each gene is a·x + (1 − a)·y, kept within [min, max] of
+//!      the two parents' genes so rounding cannot step outside.
+//!
+//!    With self-adaptation the recombined step size is the geometric mean √σx · √σy
+//!    (a parent without one counts as having `sigma`); no draw.
+//! 4. Mutation: with self-adaptation first one `gaussian()` g0 and σ' = σ · exp(τ g0)
+//!    kept within [min_sigma, 10^6]; then for each gene in order one `chance(probability)`
+//!    and, when it is true, one `gaussian()` g with gene += σ' · g (σ' = `sigma` without
+//!    self-adaptation). The chance is drawn for every gene, so the stream's use does not
+//!    depend on the probability.
+//!
+//! `chance` and `unit` consume one 64-bit output, `gaussian` two, and `below` one or
+//! (rarely, on rejection) more.
+
+use crate::brain::genome::Genome;
+use crate::evo::select::Selector;
+use crate::evo::spec::{CrossoverSpec, EvolutionSpec, MutationSpec, MAX_MAGNITUDE};
+use crate::seed::{below, chance, gaussian, unit, Rng};
+
+/// Makes the next generation: exactly `spec.population` genomes, the `spec.elitism` best
+/// parents first (best first, ties broken by lower index; copied unchanged, step size
+/// included), then offspring made as the module documentation says.
+///
+/// `fitness[i]` is the fitness of `parents[i]`; higher is better and every value should be
+/// finite (a NaN ranks with −∞). If there are fewer parents than `spec.elitism`, all of them
+/// are elites. Offspring carry a step size exactly when mutation is self-adaptive.
+///
+/// # Panics
+/// If `parents` and `fitness` differ in length, if there are no parents while offspring are
+/// needed, or if the parents' genomes differ in length (all are decoded by one topology).
+pub fn next_generation(
+    spec: &EvolutionSpec,
+    parents: &[Genome],
+    fitness: &[f64],
+    rng: &mut Rng,
+) -> Vec<Genome> {
+    assert_eq!(
+        parents.len(),
+        fitness.len(),
+        "one fitness value per parent is needed"
+    );
+    if let Some(first) = parents.first() {
+        assert!(
+            parents
+                .iter()
+                .all(|p| p.parameters.len() == first.parameters.len()),
+            "all parents must have the same number of parameters"
+        );
+    }
+    let mut next = Vec::with_capacity(spec.population);
+    if spec.population == 0 {
+        return next;
+    }
+    let mut selector = Selector::new(&spec.selection, fitness);
+    let elites = spec.elitism.min(parents.len()).min(spec.population);
+    next.extend(
+        selector.ranking()[..elites]
+            .iter()
+            .map(|&i| parents[i].clone()),
+    );
+    while next.len() < spec.population {
+        let x = &parents[selector.pick(rng)];
+        let mut child = match spec.crossover {
+            CrossoverSpec::None => x.clone(),
+            crossover => {
+                let y = &parents[selector.pick(rng)];
+                if chance(rng, crossover.probability()) {
+                    let mut child = recombine(&crossover, x, y, rng);
+                    if spec.mutation.self_adaptive.is_some() {
+                        let sx = x.step_size.unwrap_or(spec.mutation.sigma);
+                        let sy = y.step_size.unwrap_or(spec.mutation.sigma);
+                        child.step_size = Some(sx.sqrt() * sy.sqrt());
+                    }
+                    child
+                } else {
+                    x.clone()
+                }
+            }
+        };
+        mutate(&mut child, &spec.mutation, rng);
+        next.push(child);
+    }
+    next
+}
+
+/// Recombines `x` and `y` by `crossover` (always: the crossover probability is the caller's
+/// decision), drawing as step 3 of the module documentation says. The offspring keeps
+/// `x`'s step size; [`next_generation`] replaces it by the geometric mean when
+/// self-adaptive. `CrossoverSpec::None` copies `x` without a draw.
+///
+/// # Panics
+/// If the parents differ in length.
+pub fn recombine(crossover: &CrossoverSpec, x: &Genome, y: &Genome, rng: &mut Rng) -> Genome {
+    assert_eq!(
+        x.parameters.len(),
+        y.parameters.len(),
+        "crossover parents must have the same number of parameters"
+    );
+    let n = x.parameters.len();
+    let parameters = match crossover {
+        CrossoverSpec::None => x.parameters.clone(),
+        CrossoverSpec::Uniform { .. } => x
+            .parameters
+            .iter()
+            .zip(&y.parameters)
+            .map(|(&a, &b)| if chance(rng, 0.5) { b } else { a })
+            .collect(),
+        CrossoverSpec::OnePoint { .. } => {
+            if n < 2 {
+                x.parameters.clone()
+            } else {
+                let cut = 1 + below(rng, n as u64 - 1) as usize;
+                let mut p = Vec::with_capacity(n);
+                p.extend_from_slice(&x.parameters[..cut]);
+                p.extend_from_slice(&y.parameters[cut..]);
+                p
+            }
+        }
+        CrossoverSpec::Arithmetic { .. } => {
+            let a = unit(rng);
+            x.parameters
+                .iter()
+                .zip(&y.parameters)
+                .map(|(&p, &q)| (a * p + (1.0 - a) * q).max(p.min(q)).min(p.max(q)))
+                .collect()
+        }
+    };
+    Genome {
+        parameters,
+        step_size: x.step_size,
+    }
+}
+
+/// Mutates `genome` in place as step 4 of the module documentation says. Without
+/// self-adaptation the genome's step size is cleared; with it, a genome without a step size
+/// starts from `mutation.sigma`.
+pub fn mutate(genome: &mut Genome, mutation: &MutationSpec, rng: &mut Rng) {
+    let sigma = match &mutation.self_adaptive {
+        Some(adaptation) => {
+            let tau = adaptation.tau_for(genome.parameters.len());
+            let old = genome.step_size.unwrap_or(mutation.sigma);
+            // The floor is applied last so that it wins over the ceiling.
+            let new = (old * libm::exp(tau * gaussian(rng)))
+                .min(MAX_MAGNITUDE)
+                .max(adaptation.min_sigma);
+            genome.step_size = Some(new);
+            new
+        }
+        None => {
+            genome.step_size = None;
+            mutation.sigma
+        }
+    };
+    for gene in &mut genome.parameters {
+        if chance(rng, mutation.probability) {
+            *gene += sigma * gaussian(rng);
+        }
+    }
+}
