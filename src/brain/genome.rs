@@ -1,6 +1,7 @@
 //! The genome: a flat vector of real parameters that a brain topology decodes into a network,
 //! plus the optional self-adaptive mutation step size the genetic algorithm carries with it.
 
+use super::{Brain, BrainError, Topology};
 use serde::{Deserialize, Serialize};
 
 /// One individual's heritable material.
@@ -21,6 +22,16 @@ impl Genome {
             parameters,
             step_size: None,
         }
+    }
+
+    /// The genome of `brain`: its parameters, bit for bit, and no step size.
+    pub fn from_brain(brain: &Brain) -> Self {
+        Genome::new(brain.parameters())
+    }
+
+    /// Decodes the parameters into a brain of `topology` (see [`Brain::new`]).
+    pub fn decode(&self, topology: &Topology) -> Result<Brain, BrainError> {
+        Brain::new(topology, &self.parameters)
     }
 
     /// True when every parameter (and the step size, if any) is finite.

@@ -1,3 +1,183 @@
-//! Brains: the neural-network controllers that genomes encode.
+//! Brains: the neural-network controllers that genomes encode (MLP, Elman recurrent network,
+//! CTRNN), the `[brain]` table that chooses one, and the controller that drives a creature.
+//!
+//! A [`Topology`] (the [`BrainSpec`] plus the numbers of inputs and outputs) fixes how many
+//! parameters a genome carries and what each means (see [`Topology`] for the layout).
+//! [`Brain::new`] decodes a parameter vector; [`Brain::parameters`] gives it back bit for bit.
+//! Every finite parameter vector of the right length is a valid brain, whose outputs are
+//! always in [-1, 1].
+//!
+//! [`Brain::activate`] runs once per creature per tick, millions of times per second: it
+//! allocates nothing (each brain keeps its scratch buffers), weights are stored row-major per
+//! receiving unit so that each unit is one [`activation::dot`] over contiguous slices, and all
+//! transcendental functions come from `libm`, so a brain gives the same bits on every platform.
 
+pub mod activation;
+pub mod controller;
+pub mod ctrnn;
 pub mod genome;
+pub mod mlp;
+pub mod recurrent;
+pub mod spec;
+
+pub use activation::Activation;
+pub use controller::{output_count, BrainController};
+pub use ctrnn::Ctrnn;
+pub use genome::Genome;
+pub use mlp::Mlp;
+pub use recurrent::Elman;
+pub use spec::{BrainKind, BrainSpec, Topology};
+
+use crate::validate::InvalidValue;
+use spec::Architecture;
+use thiserror::Error;
+
+/// Why a parameter vector could not become a brain.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum BrainError {
+    /// The topology itself is invalid (see [`Topology::validate`]); the message is the
+    /// invalid value's, which names the `brain.*` key.
+    #[error(transparent)]
+    Topology(#[from] InvalidValue),
+    /// The parameter vector does not have the topology's length.
+    #[error("wrong number of brain parameters: the topology needs {expected}, got {got}")]
+    ParameterCount {
+        /// The topology's parameter count.
+        expected: usize,
+        /// The length of the vector given.
+        got: usize,
+    },
+    /// A parameter is NaN or infinite.
+    #[error("brain parameter {index} (`{name}`) is not finite: {value}")]
+    NonFinite {
+        /// Its index in the vector.
+        index: usize,
+        /// Its name (see [`Topology::parameter_names`]).
+        name: String,
+        /// The value.
+        value: f64,
+    },
+    /// A controller was given a brain with the wrong number of outputs.
+    #[error(
+        "the brain has {got} outputs but the controller needs {expected} \
+         (left, right{})", if *expected == 3 { ", eat" } else { "" }
+    )]
+    OutputCount {
+        /// [`output_count`] for the controller's eat setting.
+        expected: usize,
+        /// The brain's number of outputs.
+        got: usize,
+    },
+}
+
+/// A network decoded from a parameter vector, with its own state and scratch buffers.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Brain {
+    /// Feed-forward multilayer perceptron.
+    Mlp(Mlp),
+    /// Elman recurrent network.
+    Recurrent(Elman),
+    /// Continuous-time recurrent neural network.
+    Ctrnn(Ctrnn),
+}
+
+impl Brain {
+    /// Decodes `parameters` (in the order [`Topology`] documents) into a brain with a reset
+    /// state. Errors when the topology is invalid, when the vector's length is not
+    /// [`Topology::parameter_count`], or when a parameter is NaN or infinite.
+    pub fn new(topology: &Topology, parameters: &[f64]) -> Result<Brain, BrainError> {
+        topology.validate()?;
+        let expected = topology.parameter_count();
+        if parameters.len() != expected {
+            return Err(BrainError::ParameterCount {
+                expected,
+                got: parameters.len(),
+            });
+        }
+        if let Some(index) = parameters.iter().position(|p| !p.is_finite()) {
+            let name = topology.parameter_names().swap_remove(index);
+            return Err(BrainError::NonFinite {
+                index,
+                name,
+                value: parameters[index],
+            });
+        }
+        let (n, m) = (topology.inputs, topology.outputs);
+        Ok(match topology.spec.architecture() {
+            Architecture::Mlp { hidden, activation } => {
+                Brain::Mlp(Mlp::new(n, &hidden, m, activation, parameters))
+            }
+            Architecture::Recurrent { hidden, activation } => {
+                Brain::Recurrent(Elman::new(n, hidden, m, activation, parameters))
+            }
+            Architecture::Ctrnn(settings) => Brain::Ctrnn(Ctrnn::new(n, m, &settings, parameters)),
+        })
+    }
+
+    /// The parameter vector, bit for bit as given to [`Brain::new`].
+    pub fn parameters(&self) -> Vec<f64> {
+        self.parameter_slice().to_vec()
+    }
+
+    /// The parameter vector, borrowed.
+    pub fn parameter_slice(&self) -> &[f64] {
+        match self {
+            Brain::Mlp(b) => b.parameters(),
+            Brain::Recurrent(b) => b.parameters(),
+            Brain::Ctrnn(b) => b.parameters(),
+        }
+    }
+
+    /// Which kind of network this is.
+    pub fn kind(&self) -> BrainKind {
+        match self {
+            Brain::Mlp(_) => BrainKind::Mlp,
+            Brain::Recurrent(_) => BrainKind::Recurrent,
+            Brain::Ctrnn(_) => BrainKind::Ctrnn,
+        }
+    }
+
+    /// Number of inputs [`Brain::activate`] expects.
+    pub fn inputs(&self) -> usize {
+        match self {
+            Brain::Mlp(b) => b.inputs(),
+            Brain::Recurrent(b) => b.inputs(),
+            Brain::Ctrnn(b) => b.inputs(),
+        }
+    }
+
+    /// Number of outputs [`Brain::activate`] writes.
+    pub fn outputs(&self) -> usize {
+        match self {
+            Brain::Mlp(b) => b.outputs(),
+            Brain::Recurrent(b) => b.outputs(),
+            Brain::Ctrnn(b) => b.outputs(),
+        }
+    }
+
+    /// Clears the recurrent state (Elman context units and CTRNN states to 0), as at the start
+    /// of a trial. An MLP has no state.
+    pub fn reset(&mut self) {
+        match self {
+            Brain::Mlp(_) => {}
+            Brain::Recurrent(b) => b.reset(),
+            Brain::Ctrnn(b) => b.reset(),
+        }
+    }
+
+    /// One tick: reads `inputs`, writes `outputs`, each output in [-1, 1]. Allocates nothing.
+    ///
+    /// # Panics
+    /// When `inputs.len()` or `outputs.len()` is not the brain's number of inputs or outputs
+    /// (a programming error: both are fixed when the topology is built).
+    #[inline]
+    pub fn activate(&mut self, inputs: &[f64], outputs: &mut [f64]) {
+        assert_eq!(inputs.len(), self.inputs(), "brain input count");
+        assert_eq!(outputs.len(), self.outputs(), "brain output count");
+        match self {
+            Brain::Mlp(b) => b.activate(inputs, outputs),
+            Brain::Recurrent(b) => b.activate(inputs, outputs),
+            Brain::Ctrnn(b) => b.activate(inputs, outputs),
+        }
+    }
+}
