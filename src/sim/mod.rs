@@ -3,3 +3,4 @@
 //! and every random draw comes from the generator a world is given.
 
 pub mod controller;
+pub mod motion;
