@@ -40,6 +40,22 @@ impl Segment {
     }
 }
 
+/// A circle (a body, a food item, a trigger region) in LU. Radius 0 is legal (a point).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Circle {
+    /// Centre.
+    pub centre: Vec2,
+    /// Radius in LU (>= 0).
+    pub radius: f64,
+}
+
+impl Circle {
+    /// The circle of `radius` around `centre`.
+    pub const fn new(centre: Vec2, radius: f64) -> Self {
+        Circle { centre, radius }
+    }
+}
+
 /// eq. 1: two circles are in contact when the distance between their centres is at most the
 /// sum of their radii. Compared on squares, which is the same test without a square root.
 #[inline]

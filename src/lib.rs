@@ -27,6 +27,7 @@
 pub mod brain;
 pub mod evo;
 pub mod geometry;
+pub mod record;
 pub mod seed;
 pub mod sim;
 pub mod validate;

@@ -1,5 +1,28 @@
 //! The BERRY III world (report §3–§9): walls, food, smells, creatures, sensors, motion and the
 //! tick loop. Pure and deterministic: it knows nothing of networks, genomes, files or threads,
 //! and every random draw comes from the generator a world is given.
+//!
+//! - [`spec`]: the `[world]` and `[creature]` tables and their validation.
+//! - [`world`]: the running world and the tick loop of §9.
+//! - [`wall`], [`food`], [`smell`]: the things in the world.
+//! - [`sensors`]: whiskers, smell sensors, food detectors, observation layout.
+//! - [`motion`]: the body's movement (§8).
+//! - [`metabolism`]: the metabolic vector m.
+//! - [`placement`]: building a trial world from a seed.
+//! - [`scripted`]: controllers without a brain, for tests and demos.
 
 pub mod controller;
+pub mod food;
+pub mod metabolism;
+pub mod motion;
+pub mod placement;
+pub mod scripted;
+pub mod sensors;
+pub mod smell;
+pub mod spec;
+pub mod wall;
+pub mod world;
+
+pub use placement::PlacementError;
+pub use spec::{CreatureSpec, Eating, WorldSpec};
+pub use world::{Creature, World};

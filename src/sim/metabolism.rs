@@ -1,0 +1,41 @@
+//! The metabolic state m = ⟨fA, fB, fC, fD⟩ (§5.3): what eating adds and what time and
+//! movement take away.
+
+/// How m decays: per tick and per LU travelled, per food type.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Decay {
+    /// Subtracted every tick.
+    pub per_tick: [f64; 4],
+    /// Subtracted per LU travelled this tick.
+    pub per_lu: [f64; 4],
+}
+
+impl Decay {
+    /// One tick of metabolism, in the order of SPEC-NOTES: first what was eaten this tick is
+    /// added, then the decay for the tick and for the `travelled` LU is subtracted. m never
+    /// drops below 0 (§5.3 speaks of amounts of consumed substance).
+    #[inline]
+    pub fn apply(&self, m: &mut [f64; 4], received: &[f64; 4], travelled: f64) {
+        for t in 0..4 {
+            let next = m[t] + received[t] - (self.per_tick[t] + self.per_lu[t] * travelled);
+            m[t] = next.max(0.0);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn eat_then_decay_never_below_zero() {
+        let decay = Decay {
+            per_tick: [0.5, 0.0, 1.0, 0.0],
+            per_lu: [0.25, 0.0, 0.0, 2.0],
+        };
+        let mut m = [1.0, 2.0, 0.25, 1.0];
+        decay.apply(&mut m, &[1.0, 0.0, 0.0, 0.0], 2.0);
+        // A: 1 + 1 - (0.5 + 0.25 * 2) = 1; B unchanged; C: 0.25 - 1 < 0 -> 0; D: 1 - 4 -> 0.
+        assert_eq!(m, [1.0, 2.0, 0.0, 0.0]);
+    }
+}

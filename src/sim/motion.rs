@@ -1,0 +1,361 @@
+//! Motion of a creature's body (report §8): differential drive (eq. 28–36) and admissible paths (§8.2).
+//!
+//! # One move
+//!
+//! 1. The motor signals L and R (rotations per tick) are clamped to `±max_rpt`; a NaN signal
+//!    (a broken controller) counts as 0 so that the world state stays finite.
+//! 2. [`drive`] turns them into wheel distances d_L, d_R (eq. 28–29), the turning angle φ
+//!    (eq. 33) and the chord M from the start to the end of the circular arc (eq. 30).
+//! 3. The heading is turned by φ/2 (eq. 32): the chord's direction. The planned end point is
+//!    `start + M · chord direction` (eq. 31). M < 0 moves backwards.
+//! 4. If the path start → end is admissible (§8.2, [`admissible`]) the body ends there and the
+//!    heading is turned by another φ/2. Otherwise a fixed number of halvings (eq. 37) finds the
+//!    last admissible point along the chord; the body ends there, having travelled d_I (eq. 38),
+//!    and the *starting* heading is turned by φ' = d_I φ / |M| (eq. 34–35; `slippery_walls`:
+//!    φ' = φ). Every rotation is followed by re-normalisation (eq. 36).
+//! 5. Spinning in place (M = 0) needs no path test: a circular body occupies the same place.
+//!
+//! # M near d_L = d_R
+//!
+//! eq. 30 divides by d_L − d_R. It is rewritten as M = (d_L + d_R)/2 · sinc(φ/2), with
+//! sinc(x) = sin(x)/x, which is the same expression (since φ/2 = (d_L − d_R)/(2w)) without the
+//! division. sinc is evaluated as `1 − x²/6` for |x| < 1e-4, where the dropped term x⁴/120 is
+//! below 1e-18 (under half an ulp of 1), so M is continuous and exactly (d_L + d_R)/2 = d_L for
+//! a straight move.
+//!
+//! # Starting inside a blocker
+//!
+//! Placement, teleports and doors closing on a creature can leave a body overlapping a blocker
+//! at the start of a move. §8.2 alone would then reject every nearby end point and freeze the
+//! creature. Instead each blocker is judged relative to the start:
+//!
+//! - A blocker the body does not touch at the start blocks as in §8.2.
+//! - A blocking circle touched at the start blocks an end point that is closer to its centre
+//!   than the start was (the body may move away or keep its distance, never go deeper).
+//! - A wall touched at the start blocks an end point that is closer to the wall than the start
+//!   was, and any path that touches the wall unless the start centre lies exactly on it (the
+//!   centre may never pass to the wall's other side).
+//!
+//! A creature that starts clear of everything is judged by plain §8.2, so it always ends clear.
+
+use crate::geometry::{
+    circle_touches_segment, circles_touch, point_segment_distance_squared, segments_intersect,
+    Circle, Segment, Vec2,
+};
+
+/// Where a body is and which way it faces.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pose {
+    /// Centre of the body in LU.
+    pub position: Vec2,
+    /// Facing direction, unit length. Screen frame: (1, 0) faces right, (0, 1) faces down.
+    pub heading: Vec2,
+}
+
+/// The mechanical constants of a body's motion.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MotionParams {
+    /// Wheel diameter w in LU (report default: 2). It is also the report's axle length (eq. 33).
+    pub wheel: f64,
+    /// Largest motor signal magnitude in rotations per tick; L and R are clamped to ±max_rpt.
+    pub max_rpt: f64,
+    /// Number of halvings of the binary search of §8.2 (default: 20).
+    pub search_steps: u32,
+    /// §8.1 "slippery walls": a blocked move still turns by the full φ.
+    pub slippery_walls: bool,
+}
+
+impl Default for MotionParams {
+    /// The report's defaults: w = 2, at most 1 RPT, 20 halvings, sticky walls.
+    fn default() -> Self {
+        MotionParams {
+            wheel: 2.0,
+            max_rpt: 1.0,
+            search_steps: 20,
+            slippery_walls: false,
+        }
+    }
+}
+
+/// What can block a moving body. The caller leaves the mover's own body out of `circles`.
+#[derive(Debug, Clone, Copy)]
+pub struct Blockers<'a> {
+    /// Walls and closed doors.
+    pub segments: &'a [Segment],
+    /// Other bodies: creatures, predators, irrelevant creatures.
+    pub circles: &'a [Circle],
+}
+
+impl Blockers<'_> {
+    /// Nothing blocks.
+    pub const NONE: Blockers<'static> = Blockers {
+        segments: &[],
+        circles: &[],
+    };
+}
+
+/// The result of [`plan_move`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MoveOutcome {
+    /// Where the body ends and which way it faces.
+    pub pose: Pose,
+    /// d_I: distance actually travelled in LU (>= 0; eq. 38).
+    pub travelled: f64,
+    /// The planned path was not admissible and the move was cut short (or cancelled).
+    pub blocked: bool,
+    /// The cut was caused by a wall: a blocking segment rejected the tightest inadmissible
+    /// candidate of the search.
+    pub blocked_by_wall: bool,
+}
+
+/// Rotates `v` by `angle` radians with the standard rotation matrix (eq. 32, 35). In the screen
+/// frame (y down) a positive angle turns clockwise on screen, towards the creature's right.
+#[inline]
+pub fn rotate(v: Vec2, angle: f64) -> Vec2 {
+    rotate_sc(v, libm::sin(angle), libm::cos(angle))
+}
+
+/// Rotation by an angle given by its sine and cosine.
+#[inline]
+fn rotate_sc(v: Vec2, sin: f64, cos: f64) -> Vec2 {
+    Vec2::new(v.x * cos - v.y * sin, v.x * sin + v.y * cos)
+}
+
+/// eq. 36: scale to unit length. The zero vector stays zero (no NaN).
+#[inline]
+fn normalise(v: Vec2) -> Vec2 {
+    let len = v.length();
+    if len > 0.0 {
+        v / len
+    } else {
+        v
+    }
+}
+
+/// sin(x)/x, continuous through 0 (see the module docs).
+#[inline]
+fn sinc(x: f64) -> f64 {
+    if x.abs() < 1e-4 {
+        1.0 - x * x / 6.0
+    } else {
+        libm::sin(x) / x
+    }
+}
+
+/// The wheel distances, turning angle and chord of one tick's motor signals (§8.1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Drive {
+    /// eq. 28: distance travelled by the left wheel, d_L = 2πwL (LU).
+    pub d_left: f64,
+    /// eq. 29: distance travelled by the right wheel, d_R = 2πwR (LU).
+    pub d_right: f64,
+    /// eq. 33: turning angle φ = (d_L − d_R)/w (radians; positive turns right).
+    pub phi: f64,
+    /// eq. 30: the signed chord M from start to end position (LU; negative = backwards).
+    pub chord: f64,
+}
+
+/// eq. 28–30 and 33 for wheel diameter `wheel` and motor signals (already clamped) in RPT.
+/// A wheel of diameter 0 does not move or turn.
+pub fn drive(wheel: f64, left_rpt: f64, right_rpt: f64) -> Drive {
+    let d_left = std::f64::consts::TAU * wheel * left_rpt;
+    let d_right = std::f64::consts::TAU * wheel * right_rpt;
+    if wheel == 0.0 {
+        return Drive {
+            d_left,
+            d_right,
+            phi: 0.0,
+            chord: 0.0,
+        };
+    }
+    let phi = (d_left - d_right) / wheel;
+    // eq. 30 with the division folded into sinc: w·sin(δ/2w)/δ = sinc(φ/2)/2.
+    let chord = 0.5 * (d_left + d_right) * sinc(0.5 * phi);
+    Drive {
+        d_left,
+        d_right,
+        phi,
+        chord,
+    }
+}
+
+/// Clamp a motor signal to ±max; NaN counts as 0.
+#[inline]
+fn clamp_rpt(x: f64, max: f64) -> f64 {
+    if x.is_nan() {
+        0.0
+    } else {
+        let m = max.abs();
+        x.min(m).max(-m)
+    }
+}
+
+/// Why a path is not admissible (or that it is).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Verdict {
+    Free,
+    Wall,
+    Body,
+}
+
+/// Does `wall` block the path p0 → p1 of a body of radius `r`? (See the module docs for the
+/// rule when the body touches the wall at p0.)
+#[inline]
+fn wall_blocks(
+    p0: Vec2,
+    p1: Vec2,
+    path: &Segment,
+    path_box: (Vec2, Vec2),
+    r: f64,
+    wall: &Segment,
+) -> bool {
+    let (lo, hi) = wall.bounds();
+    let (plo, phh) = path_box;
+    // The same box rejections segments_intersect (eq. 5–8) and circle_touches_segment
+    // (eq. 2–3) start with, combined: most walls are far away.
+    let path_misses = phh.x < lo.x || hi.x < plo.x || phh.y < lo.y || hi.y < plo.y;
+    let end_misses = p1.x < lo.x - r || p1.x > hi.x + r || p1.y < lo.y - r || p1.y > hi.y + r;
+    if path_misses && end_misses {
+        return false;
+    }
+    let crosses = segments_intersect(path, wall);
+    if !crosses && !circle_touches_segment(p1, r, wall) {
+        return false;
+    }
+    if !circle_touches_segment(p0, r, wall) {
+        return true;
+    }
+    // Already touching at the start: no deeper, and never through.
+    let d0 = point_segment_distance_squared(p0, wall);
+    let d1 = point_segment_distance_squared(p1, wall);
+    d1 < d0 || (crosses && d0 > 0.0)
+}
+
+/// Does `body` block a body of radius `r` moving p0 → p1?
+#[inline]
+fn circle_blocks(p0: Vec2, p1: Vec2, r: f64, body: &Circle) -> bool {
+    if !circles_touch(p1, r, body.centre, body.radius) {
+        return false;
+    }
+    if !circles_touch(p0, r, body.centre, body.radius) {
+        return true;
+    }
+    // Already touching at the start: may not come closer.
+    p1.distance_squared(body.centre) < p0.distance_squared(body.centre)
+}
+
+/// §8.2 with walls tested first, so a path blocked by both reports a wall.
+fn verdict(p0: Vec2, p1: Vec2, radius: f64, blockers: &Blockers) -> Verdict {
+    let path = Segment::new(p0, p1);
+    let path_box = path.bounds();
+    if blockers
+        .segments
+        .iter()
+        .any(|w| wall_blocks(p0, p1, &path, path_box, radius, w))
+    {
+        return Verdict::Wall;
+    }
+    if blockers
+        .circles
+        .iter()
+        .any(|c| circle_blocks(p0, p1, radius, c))
+    {
+        return Verdict::Body;
+    }
+    Verdict::Free
+}
+
+/// §8.2: may a body of `radius` move along the straight path `p0 → p1`? Yes when the segment
+/// p0 → p1 touches no blocking segment and the body placed at p1 touches no blocking segment
+/// or circle (contact inclusive). Blockers the body already touches at `p0` follow the
+/// no-deeper rule of the module docs; for a body that starts clear this is exactly §8.2.
+pub fn admissible(p0: Vec2, p1: Vec2, radius: f64, blockers: &Blockers) -> bool {
+    verdict(p0, p1, radius, blockers) == Verdict::Free
+}
+
+/// One tick of motion (§8.1–8.2) for a body of `radius` at `pose` with motor signals
+/// `left_rpt`, `right_rpt` (clamped here to ±`params.max_rpt`). Pure: the caller applies the
+/// outcome. Does not allocate.
+pub fn plan_move(
+    pose: Pose,
+    left_rpt: f64,
+    right_rpt: f64,
+    radius: f64,
+    params: &MotionParams,
+    blockers: &Blockers,
+) -> MoveOutcome {
+    let stay = MoveOutcome {
+        pose,
+        travelled: 0.0,
+        blocked: false,
+        blocked_by_wall: false,
+    };
+    let left = clamp_rpt(left_rpt, params.max_rpt);
+    let right = clamp_rpt(right_rpt, params.max_rpt);
+    let d = drive(params.wheel, left, right);
+    if !d.phi.is_finite() || !d.chord.is_finite() {
+        // Only a non-finite wheel gets here; keep the world finite.
+        return stay;
+    }
+    // eq. 32 twice, with the half angle's sine and cosine computed once.
+    let half = 0.5 * d.phi;
+    let (s, c) = (libm::sin(half), libm::cos(half));
+    let chord_dir = normalise(rotate_sc(pose.heading, s, c));
+    let free_heading = normalise(rotate_sc(chord_dir, s, c));
+    let start = pose.position;
+    if d.chord == 0.0 {
+        // Spinning in place (or standing still): the body covers the same disc.
+        return MoveOutcome {
+            pose: Pose {
+                position: start,
+                heading: free_heading,
+            },
+            ..stay
+        };
+    }
+    // eq. 31.
+    let target = start + chord_dir * d.chord;
+    let mut cause = verdict(start, target, radius, blockers);
+    if cause == Verdict::Free {
+        return MoveOutcome {
+            pose: Pose {
+                position: target,
+                heading: free_heading,
+            },
+            travelled: d.chord.abs(),
+            ..stay
+        };
+    }
+    // Binary search (eq. 37), always testing the path from the start, so the end point is one
+    // that was itself tested admissible (or the start).
+    let mut lo = start;
+    let mut hi = target;
+    for _ in 0..params.search_steps {
+        let mid = (lo + hi) * 0.5;
+        match verdict(start, mid, radius, blockers) {
+            Verdict::Free => lo = mid,
+            v => {
+                hi = mid;
+                cause = v;
+            }
+        }
+    }
+    // eq. 38.
+    let travelled = start.distance(lo);
+    let heading = if params.slippery_walls {
+        free_heading
+    } else {
+        // eq. 34 with |M| (d_I is a distance), then eq. 35–36.
+        let fraction = (travelled / d.chord.abs()).min(1.0);
+        normalise(rotate(pose.heading, fraction * d.phi))
+    };
+    MoveOutcome {
+        pose: Pose {
+            position: lo,
+            heading,
+        },
+        travelled,
+        blocked: true,
+        blocked_by_wall: cause == Verdict::Wall,
+    }
+}

@@ -1,0 +1,227 @@
+//! A creature's senses (§5.2, §7.1–7.3): whiskers, the two smell sensors at the whisker tips,
+//! the four food detectors and the shock sensor, and how they are written into the
+//! controller's observation vector.
+
+use crate::geometry::{circles_touch, segment_touches_circle, segments_intersect, Segment, Vec2};
+use crate::sim::controller::{ObservationLayout, SensorGroup};
+use crate::sim::food::{Aversive, Food};
+use crate::sim::smell::{accumulate, saturate, Smell};
+use crate::sim::world::Creature;
+
+/// The body geometry the senses need, precomputed from the creature spec once per world.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Body {
+    /// Body radius d/2 in LU.
+    pub radius: f64,
+    /// Whisker length s in LU.
+    pub whisker_length: f64,
+    /// cos φ and sin φ of the whisker angle, so that no sine is computed per tick.
+    pub whisker_cos: f64,
+    /// See `whisker_cos`.
+    pub whisker_sin: f64,
+    /// The smell every creature's body gives off.
+    pub smell: Smell,
+}
+
+impl Body {
+    /// The left and right whisker tips of a body at `position` heading `heading` (unit).
+    /// Left is the heading rotated by −φ, right by +φ, with the rotation of eq. 32 (positive =
+    /// clockwise on screen, y down), the same convention as `motion::rotate`.
+    #[inline]
+    pub fn whisker_tips(&self, position: Vec2, heading: Vec2) -> [Vec2; 2] {
+        let (c, s) = (self.whisker_cos, self.whisker_sin);
+        let left = Vec2::new(heading.x * c + heading.y * s, heading.y * c - heading.x * s);
+        let right = Vec2::new(heading.x * c - heading.y * s, heading.x * s + heading.y * c);
+        [
+            position + left * self.whisker_length,
+            position + right * self.whisker_length,
+        ]
+    }
+}
+
+/// Everything around a creature that its senses read: the world as left by the objects that
+/// moved before it this tick.
+pub struct Surroundings<'a> {
+    /// Segments of every wall (what whiskers feel).
+    pub walls: &'a [Segment],
+    /// Segments of opaque walls (what hides smells).
+    pub opaque: &'a [Segment],
+    /// Food objects.
+    pub food: &'a [Food],
+    /// Aversive objects.
+    pub aversives: &'a [Aversive],
+    /// Every creature, the sensing one included (skipped by index).
+    pub creatures: &'a [Creature],
+    /// The constant c of eq. 25.
+    pub smell_c: f64,
+}
+
+/// What one creature senses in one tick (before the shock sensor, which it carries over from
+/// its previous tick).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Senses {
+    /// Left and right whisker touching something.
+    pub whiskers: [bool; 2],
+    /// Left and right smell sensors, 8 receptors each, in [0, 1].
+    pub smell: [[f64; 8]; 2],
+    /// Food detectors A–D.
+    pub food: [bool; 4],
+}
+
+impl Surroundings<'_> {
+    /// §7.3: does a whisker from `from` to `tip` touch a wall, or a circle of radius > 0 other
+    /// than creature `me`'s own body? Point objects (radius 0) are not felt (SPEC-NOTES).
+    pub fn whisker_touches(&self, me: usize, body: &Body, from: Vec2, tip: Vec2) -> bool {
+        let whisker = Segment::new(from, tip);
+        self.walls.iter().any(|w| segments_intersect(&whisker, w))
+            || self.creatures.iter().enumerate().any(|(j, c)| {
+                j != me && c.alive && segment_touches_circle(&whisker, c.pose.position, body.radius)
+            })
+            || self
+                .aversives
+                .iter()
+                .any(|a| a.radius > 0.0 && segment_touches_circle(&whisker, a.position, a.radius))
+            || self
+                .food
+                .iter()
+                .any(|f| f.radius > 0.0 && segment_touches_circle(&whisker, f.position, f.radius))
+    }
+
+    /// §7.1: one smell sensor at `receptor`: receptor k = min(1, Σ I(d) o_k) over the smelly
+    /// things it can see: food, aversive objects and every other living creature.
+    pub fn smell_at(&self, me: usize, body: &Body, receptor: Vec2) -> [f64; 8] {
+        let mut acc = [0.0; 8];
+        let (c, opaque) = (self.smell_c, self.opaque);
+        for f in self.food {
+            accumulate(
+                &mut acc,
+                receptor,
+                f.position,
+                &f.smell,
+                f.smell_scale(),
+                c,
+                opaque,
+            );
+        }
+        for a in self.aversives {
+            accumulate(&mut acc, receptor, a.position, &a.smell, 1.0, c, opaque);
+        }
+        if !body.smell.silent {
+            for (j, other) in self.creatures.iter().enumerate() {
+                if j != me && other.alive {
+                    accumulate(
+                        &mut acc,
+                        receptor,
+                        other.pose.position,
+                        &body.smell,
+                        1.0,
+                        c,
+                        opaque,
+                    );
+                }
+            }
+        }
+        saturate(&mut acc);
+        acc
+    }
+
+    /// §5.2: food detector X reads 1 while the body (radius `radius` at `position`) is in
+    /// contact (eq. 1) with a food object holding substance X > 0.
+    pub fn food_detectors(&self, position: Vec2, radius: f64) -> [bool; 4] {
+        let mut detected = [false; 4];
+        for f in self.food {
+            if circles_touch(position, radius, f.position, f.radius) {
+                for (t, d) in detected.iter_mut().enumerate() {
+                    *d |= f.holds(t);
+                }
+            }
+        }
+        detected
+    }
+
+    /// Everything creature `me` senses now. Smell is computed only when `smell` is true
+    /// (the controller receives it, or a trace wants it), and not at all while a whisker
+    /// touches under `inhibit_smell_on_whisker` (§7.3).
+    pub fn sense(&self, me: usize, body: &Body, smell: bool, inhibit_smell: bool) -> Senses {
+        let pose = self.creatures[me].pose;
+        let tips = body.whisker_tips(pose.position, pose.heading);
+        let whiskers = [
+            self.whisker_touches(me, body, pose.position, tips[0]),
+            self.whisker_touches(me, body, pose.position, tips[1]),
+        ];
+        let inhibited = inhibit_smell && (whiskers[0] || whiskers[1]);
+        let smell = if smell && !inhibited {
+            [
+                self.smell_at(me, body, tips[0]),
+                self.smell_at(me, body, tips[1]),
+            ]
+        } else {
+            [[0.0; 8]; 2]
+        };
+        Senses {
+            whiskers,
+            smell,
+            food: self.food_detectors(pose.position, body.radius),
+        }
+    }
+}
+
+/// Where each sensor group starts in the observation vector (`None` = switched off),
+/// resolved once so that the per-tick write is a handful of indexed stores.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Offsets {
+    smell: Option<usize>,
+    whiskers: Option<usize>,
+    food: Option<usize>,
+    shock: Option<usize>,
+    metabolism: Option<usize>,
+    bias: Option<usize>,
+}
+
+impl Offsets {
+    /// The offsets of `layout`.
+    pub fn new(layout: &ObservationLayout) -> Offsets {
+        let at = |g| layout.range(g).map(|r| r.start);
+        Offsets {
+            smell: at(SensorGroup::Smell),
+            whiskers: at(SensorGroup::Whiskers),
+            food: at(SensorGroup::Food),
+            shock: at(SensorGroup::Shock),
+            metabolism: at(SensorGroup::Metabolism),
+            bias: at(SensorGroup::Bias),
+        }
+    }
+
+    /// Does the controller receive smell?
+    pub fn has_smell(&self) -> bool {
+        self.smell.is_some()
+    }
+
+    /// Writes one observation: the groups switched on, in the layout's order. `shock` is the
+    /// shock sensor, `metabolism` the raw vector m.
+    pub fn write(&self, out: &mut [f64], senses: &Senses, shock: bool, metabolism: &[f64; 4]) {
+        let bit = |b: bool| if b { 1.0 } else { 0.0 };
+        if let Some(o) = self.smell {
+            out[o..o + 8].copy_from_slice(&senses.smell[0]);
+            out[o + 8..o + 16].copy_from_slice(&senses.smell[1]);
+        }
+        if let Some(o) = self.whiskers {
+            out[o] = bit(senses.whiskers[0]);
+            out[o + 1] = bit(senses.whiskers[1]);
+        }
+        if let Some(o) = self.food {
+            for t in 0..4 {
+                out[o + t] = bit(senses.food[t]);
+            }
+        }
+        if let Some(o) = self.shock {
+            out[o] = bit(shock);
+        }
+        if let Some(o) = self.metabolism {
+            out[o..o + 4].copy_from_slice(metabolism);
+        }
+        if let Some(o) = self.bias {
+            out[o] = 1.0;
+        }
+    }
+}

@@ -1,0 +1,591 @@
+//! The `[world]` and `[creature]` configuration tables: raw serde structs with strict parsing
+//! (`deny_unknown_fields`), documented defaults, and validation that names the full key path
+//! of the first bad value.
+//!
+//! Units: lengths in LU, time in ticks, motor speeds in rotations per tick (RPT). **Angles in
+//! the configuration are in degrees** (easier to read and write); the simulator converts them
+//! to radians. Frame (SPEC-NOTES): x grows to the right, y grows downwards, the arena is
+//! `[0, width] x [0, height]`, and a positive angle turns clockwise on screen (towards the
+//! creature's right), so heading 0° points along +x and 90° along +y (down the screen).
+
+use crate::sim::controller::{InputsSpec, ObservationLayout};
+use crate::validate::{
+    all_finite, all_non_negative, count_within, finite, non_negative, positive, within,
+    InvalidValue, Valid,
+};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// Most objects a world may hold (explicit plus placed): beyond this a trial world costs more
+/// memory and set-up time than any BERRY experiment needs, and a typo in a count is likelier.
+pub const MAX_OBJECTS: u64 = 100_000;
+/// Most walls a world may hold (explicit plus boundary).
+pub const MAX_WALLS: u64 = 100_000;
+/// Longest arena side in LU: far beyond the report's 300 LU, small enough that positions keep
+/// sub-micro-LU precision in f64.
+pub const MAX_ARENA_SIDE: f64 = 1.0e6;
+/// Finest placement grid pitch in LU.
+pub const MIN_GRID_PITCH: f64 = 1.0e-6;
+/// Most halvings of the §8.2 binary search: after 64 the midpoint no longer changes in f64.
+pub const MAX_SEARCH_STEPS: u64 = 64;
+
+/// A point `[x, y]` in LU.
+pub type Point = [f64; 2];
+/// An axis-aligned rectangle `[x0, y0, x1, y1]` in LU with `x0 <= x1` and `y0 <= y1`.
+pub type Region = [f64; 4];
+
+/// The `[world]` table: the arena, its walls, the kinds of objects, where objects go and where
+/// creatures start. The default is the report's empty 300 x 300 LU arena bounded by four walls.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WorldSpec {
+    /// Arena size `[width, height]` in LU; the arena is `[0, width] x [0, height]`
+    /// (default: `[300, 300]`, §3).
+    pub arena: [f64; 2],
+    /// Add the four walls along the arena's edges (default: true, §3). Boundary walls are
+    /// opaque, grey and 10 LU high.
+    pub boundary_walls: bool,
+    /// §8.1 "slippery walls": a creature stopped by an obstacle still turns its full angle
+    /// φ' = φ instead of the fraction that fits its shortened path (default: false).
+    pub slippery_walls: bool,
+    /// The shock sensor also reads 1 after a tick in which a wall stopped the creature's move
+    /// (§5.2; default: false).
+    pub wall_shock: bool,
+    /// The constant c of the smell diffusion eq. 25, I(d) = i / (1 + c d²), in 1/LU²
+    /// (default: 0.01).
+    pub smell_c: f64,
+    /// Number of halvings in the §8.2 binary search for the collision point (default: 20).
+    pub search_steps: u32,
+    /// Interior walls (`[[world.walls]]`), after the boundary walls.
+    pub walls: Vec<WallSpec>,
+    /// Object templates by name (`[world.kinds.<name>]`), used by `objects` and `place`.
+    pub kinds: BTreeMap<String, KindSpec>,
+    /// Objects at fixed positions (`[[world.objects]]`), placed first, in this order.
+    pub objects: Vec<ObjectSpec>,
+    /// Random placement rules (`[[world.place]]`), applied after `objects`, in this order.
+    pub place: Vec<PlaceSpec>,
+    /// Where and how the creatures start (`[world.start]`).
+    pub start: StartSpec,
+}
+
+impl Default for WorldSpec {
+    fn default() -> Self {
+        WorldSpec {
+            arena: [300.0, 300.0],
+            boundary_walls: true,
+            slippery_walls: false,
+            wall_shock: false,
+            smell_c: 0.01,
+            search_steps: 20,
+            walls: Vec::new(),
+            kinds: BTreeMap::new(),
+            objects: Vec::new(),
+            place: Vec::new(),
+            start: StartSpec::default(),
+        }
+    }
+}
+
+/// One wall (`[[world.walls]]`, §4.1): a segment that blocks movement and is felt by whiskers;
+/// an opaque wall also stops smells.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WallSpec {
+    /// First end point `[x, y]` in LU (required; inside the arena).
+    pub from: Point,
+    /// Second end point `[x, y]` in LU (required; inside the arena, not equal to `from`).
+    pub to: Point,
+    /// Stops smells passing through it (default: true). Every wall blocks movement and is
+    /// felt by whiskers, opaque or not.
+    #[serde(default = "default_true")]
+    pub opaque: bool,
+    /// Colour `[r, g, b]`, each in [0, 1], for the eye and for pictures (default: grey 0.5).
+    #[serde(default = "default_wall_colour")]
+    pub colour: [f64; 3],
+    /// Height in LU, for the eye (default: 10, §4.1).
+    #[serde(default = "default_wall_height")]
+    pub height: f64,
+}
+
+fn default_true() -> bool {
+    true
+}
+
+/// Grey, the colour of boundary walls and of walls that give none.
+pub const DEFAULT_WALL_COLOUR: [f64; 3] = [0.5, 0.5, 0.5];
+/// The report's typical wall height (§4.1).
+pub const DEFAULT_WALL_HEIGHT: f64 = 10.0;
+
+fn default_wall_colour() -> [f64; 3] {
+    DEFAULT_WALL_COLOUR
+}
+
+fn default_wall_height() -> f64 {
+    DEFAULT_WALL_HEIGHT
+}
+
+/// A kind of object (`[world.kinds.<name>]`), chosen by `class = "food"` or
+/// `class = "aversive"`. Each class accepts only its own keys.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "class", rename_all = "snake_case")]
+pub enum KindSpec {
+    /// Food (§4.3): substance a creature can eat.
+    Food(FoodKind),
+    /// An aversive object (§4.4): shocks a creature touching it.
+    Aversive(AversiveKind),
+}
+
+impl KindSpec {
+    /// Radius in LU.
+    pub fn radius(&self) -> f64 {
+        match self {
+            KindSpec::Food(f) => f.radius,
+            KindSpec::Aversive(a) => a.radius,
+        }
+    }
+}
+
+/// A food kind (§4.3, §5.2–5.3). Substance vectors are ⟨A, B, C, D⟩.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct FoodKind {
+    /// Radius in LU; 0 is a point (default: 0, "typically the radius is 0").
+    pub radius: f64,
+    /// Substance amounts ⟨A, B, C, D⟩ a new object holds (default: `[1, 0, 0, 0]`).
+    pub substance: [f64; 4],
+    /// Most substance the object can hold: regeneration stops there, and `smell_follows_amount`
+    /// divides by its total (default: absent = equal to `substance`). Must be >= `substance`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub capacity: Option<[f64; 4]>,
+    /// Bite b: substance moved to the creature per eating tick, per type; the creature gets
+    /// min(bite, what is left) (default: `[1, 1, 1, 1]`).
+    pub bite: [f64; 4],
+    /// Regeneration r: substance added per tick, per type, up to `capacity` (default: zeros).
+    pub regen: [f64; 4],
+    /// Eating removes the substance from the object (default: true). When false the object
+    /// keeps its amount and feeds without end.
+    pub depletes: bool,
+    /// The smell intensity scales with total amount / total capacity (default: false).
+    pub smell_follows_amount: bool,
+    /// Odour o = ⟨o1..o8⟩, usually in [0, 1] (default: zeros, no smell).
+    pub odour: [f64; 8],
+    /// Smell intensity i at the centre (eq. 25; default: 0).
+    pub intensity: f64,
+    /// Smell range θ of eq. 26 in LU: the smell is zero at distance >= θ (default: absent =
+    /// eq. 25, unlimited range).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub range: Option<f64>,
+}
+
+impl Default for FoodKind {
+    fn default() -> Self {
+        FoodKind {
+            radius: 0.0,
+            substance: [1.0, 0.0, 0.0, 0.0],
+            capacity: None,
+            bite: [1.0; 4],
+            regen: [0.0; 4],
+            depletes: true,
+            smell_follows_amount: false,
+            odour: [0.0; 8],
+            intensity: 0.0,
+            range: None,
+        }
+    }
+}
+
+impl FoodKind {
+    /// The capacity, with the documented default (equal to the initial substance).
+    pub fn capacity(&self) -> [f64; 4] {
+        self.capacity.unwrap_or(self.substance)
+    }
+}
+
+/// An aversive kind (§4.4): a circle or point that shocks creatures touching it, and smells.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct AversiveKind {
+    /// Radius in LU; 0 is a point (default: 0).
+    pub radius: f64,
+    /// Odour o = ⟨o1..o8⟩ (default: zeros).
+    pub odour: [f64; 8],
+    /// Smell intensity i at the centre (default: 0).
+    pub intensity: f64,
+    /// Smell range θ in LU (default: absent = unlimited, eq. 25).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub range: Option<f64>,
+}
+
+/// An object at a fixed position (`[[world.objects]]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectSpec {
+    /// Name of its kind in `[world.kinds]` (required).
+    pub kind: String,
+    /// Centre `[x, y]` in LU, inside the arena (required).
+    pub position: Point,
+}
+
+/// A random placement rule (`[[world.place]]`): `count` objects of `kind`, uniform in
+/// `region`, at least `min_spacing` from every object placed before, never touching a wall.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlaceSpec {
+    /// Name of the kind in `[world.kinds]` (required).
+    pub kind: String,
+    /// How many objects (required; the world's total is at most 100000).
+    pub count: u64,
+    /// `[x0, y0, x1, y1]` in LU where centres may go (default: absent = the whole arena).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub region: Option<Region>,
+    /// Smallest distance in LU between the centre of a new object and the centre of every
+    /// object placed before it, explicit or random (default: 0 = no constraint).
+    #[serde(default)]
+    pub min_spacing: f64,
+    /// Grid pitch in LU (§2): centres are drawn among the grid points `(i·pitch, j·pitch)`
+    /// inside the region (default: absent = anywhere).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grid: Option<f64>,
+}
+
+/// Where creatures start (`[world.start]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct StartSpec {
+    /// `[x0, y0, x1, y1]` in LU where body centres may start (default: absent = the whole
+    /// arena). Each creature is placed uniformly in it, touching no wall, other creature, food
+    /// or aversive object.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub region: Option<Region>,
+    /// Initial heading in degrees, 0 = +x, 90 = +y (down the screen) (default: absent = a
+    /// uniformly random heading for each creature).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub heading: Option<f64>,
+}
+
+/// How a creature eats (SPEC-NOTES: the report does not say).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Eating {
+    /// Every tick of body contact with a food object transfers a bite (default).
+    #[default]
+    Contact,
+    /// The controller has an eat output; the creature eats when it exceeds 0.5 in contact.
+    Action,
+}
+
+/// The `[creature]` table: the body tuple ⟨d, φ, s, a, w, o⟩ of §5.1, motors, eating,
+/// metabolism and which sensors the controller receives. Defaults are the report's (Figure 2).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CreatureSpec {
+    /// Body diameter d in LU (default: 6).
+    pub diameter: f64,
+    /// Whisker angle φ between the heading and each whisker, in degrees, 0..=180
+    /// (default: 45).
+    pub whisker_angle: f64,
+    /// Whisker length s in LU, from the body centre (default: 5).
+    pub whisker_length: f64,
+    /// The report's parameter a in LU (default: 2). Figure 2, which defined it, is missing
+    /// and no equation uses it; it is kept for completeness and has no effect.
+    pub a: f64,
+    /// Wheel parameter w of eq. 28–33 in LU (default: 2).
+    pub wheel: f64,
+    /// Body odour o = ⟨o1..o8⟩ that other creatures smell (default: zeros).
+    pub odour: [f64; 8],
+    /// Intensity of the body odour (default: 0).
+    pub odour_intensity: f64,
+    /// Largest motor speed in RPT; motor commands are clamped to ±max_rpt (default: 0.25,
+    /// about 3.1 LU per tick with w = 2).
+    pub max_rpt: f64,
+    /// `"contact"` or `"action"` (default: `"contact"`).
+    pub eating: Eating,
+    /// §7.3: both smell sensors read 0 while either whisker touches something
+    /// (default: false).
+    pub inhibit_smell_on_whisker: bool,
+    /// Metabolic state m = ⟨fA, fB, fC, fD⟩ at birth (default: zeros).
+    pub initial_metabolism: [f64; 4],
+    /// Decrease of m per tick (default: zeros).
+    pub decay_per_tick: [f64; 4],
+    /// Decrease of m per LU travelled (default: zeros).
+    pub decay_per_lu: [f64; 4],
+    /// Sensor groups the controller receives (`[creature.inputs]`).
+    pub inputs: InputsSpec,
+}
+
+impl Default for CreatureSpec {
+    fn default() -> Self {
+        CreatureSpec {
+            diameter: 6.0,
+            whisker_angle: 45.0,
+            whisker_length: 5.0,
+            a: 2.0,
+            wheel: 2.0,
+            odour: [0.0; 8],
+            odour_intensity: 0.0,
+            max_rpt: 0.25,
+            eating: Eating::Contact,
+            inhibit_smell_on_whisker: false,
+            initial_metabolism: [0.0; 4],
+            decay_per_tick: [0.0; 4],
+            decay_per_lu: [0.0; 4],
+            inputs: InputsSpec::default(),
+        }
+    }
+}
+
+impl CreatureSpec {
+    /// Checks every value; keys start with `creature.`.
+    pub fn validate(&self) -> Valid {
+        positive("creature.diameter", self.diameter)?;
+        within("creature.whisker_angle", self.whisker_angle, 0.0, 180.0)?;
+        non_negative("creature.whisker_length", self.whisker_length)?;
+        non_negative("creature.a", self.a)?;
+        positive("creature.wheel", self.wheel)?;
+        all_non_negative("creature.odour", &self.odour)?;
+        non_negative("creature.odour_intensity", self.odour_intensity)?;
+        non_negative("creature.max_rpt", self.max_rpt)?;
+        all_non_negative("creature.initial_metabolism", &self.initial_metabolism)?;
+        all_non_negative("creature.decay_per_tick", &self.decay_per_tick)?;
+        all_non_negative("creature.decay_per_lu", &self.decay_per_lu)?;
+        Ok(())
+    }
+
+    /// Where each input sits in the observation.
+    pub fn layout(&self) -> ObservationLayout {
+        ObservationLayout::new(&self.inputs)
+    }
+
+    /// Does the controller need an eat output?
+    pub fn eats_by_action(&self) -> bool {
+        self.eating == Eating::Action
+    }
+
+    /// Body radius d/2 in LU.
+    pub fn radius(&self) -> f64 {
+        0.5 * self.diameter
+    }
+
+    /// The whisker angle φ in radians.
+    pub fn whisker_angle_radians(&self) -> f64 {
+        self.whisker_angle.to_radians()
+    }
+}
+
+impl WorldSpec {
+    /// Checks every value, and that everything fits in the arena; keys start with `world.`.
+    /// `creature` is needed to check that a body fits in the arena at all.
+    pub fn validate(&self, creature: &CreatureSpec) -> Valid {
+        for (i, side) in self.arena.iter().enumerate() {
+            let key = format!("world.arena[{i}]");
+            positive(&key, *side)?;
+            if *side > MAX_ARENA_SIDE {
+                return Err(InvalidValue::new(
+                    key,
+                    format!("must be at most {MAX_ARENA_SIDE} LU (f64 precision), got {side}"),
+                ));
+            }
+            if creature.diameter.is_finite() && *side < creature.diameter {
+                return Err(InvalidValue::new(
+                    key,
+                    format!(
+                        "must be at least the creature diameter {}, got {side}",
+                        creature.diameter
+                    ),
+                ));
+            }
+        }
+        non_negative("world.smell_c", self.smell_c)?;
+        count_within(
+            "world.search_steps",
+            u64::from(self.search_steps),
+            1,
+            MAX_SEARCH_STEPS,
+            "further halvings no longer move the midpoint",
+        )?;
+
+        let boundary = if self.boundary_walls { 4 } else { 0 };
+        count_within(
+            "world.walls",
+            self.walls.len() as u64 + boundary,
+            0,
+            MAX_WALLS,
+            "the largest world this simulator supports",
+        )?;
+        for (i, wall) in self.walls.iter().enumerate() {
+            self.validate_wall(&format!("world.walls[{i}]"), wall)?;
+        }
+
+        for (name, kind) in &self.kinds {
+            validate_kind(&format!("world.kinds.{name}"), name, kind)?;
+        }
+
+        count_within(
+            "world.objects",
+            self.objects.len() as u64,
+            0,
+            MAX_OBJECTS,
+            "total objects in a world, explicit and placed",
+        )?;
+        for (i, object) in self.objects.iter().enumerate() {
+            let key = format!("world.objects[{i}]");
+            self.known_kind(&format!("{key}.kind"), &object.kind)?;
+            self.inside_arena(&format!("{key}.position"), object.position)?;
+        }
+
+        let mut total = self.objects.len() as u64;
+        for (i, rule) in self.place.iter().enumerate() {
+            let key = format!("world.place[{i}]");
+            self.known_kind(&format!("{key}.kind"), &rule.kind)?;
+            total = total.saturating_add(rule.count);
+            count_within(
+                &format!("{key}.count"),
+                total,
+                0,
+                MAX_OBJECTS,
+                "total objects in a world, explicit and placed",
+            )?;
+            if let Some(region) = rule.region {
+                self.region_in_arena(&format!("{key}.region"), region)?;
+            }
+            non_negative(&format!("{key}.min_spacing"), rule.min_spacing)?;
+            if let Some(pitch) = rule.grid {
+                positive(&format!("{key}.grid"), pitch)?;
+                if pitch < MIN_GRID_PITCH {
+                    return Err(InvalidValue::new(
+                        format!("{key}.grid"),
+                        format!("must be at least {MIN_GRID_PITCH} LU (finer is below f64 precision at large arenas), got {pitch}"),
+                    ));
+                }
+                let [x0, y0, x1, y1] = rule.region.unwrap_or(self.arena_region());
+                if grid_span(x0, x1, pitch).is_none() || grid_span(y0, y1, pitch).is_none() {
+                    return Err(InvalidValue::new(
+                        format!("{key}.grid"),
+                        format!("no point of a {pitch} LU grid lies inside the region"),
+                    ));
+                }
+            }
+        }
+
+        if let Some(region) = self.start.region {
+            self.region_in_arena("world.start.region", region)?;
+        }
+        if let Some(heading) = self.start.heading {
+            finite("world.start.heading", heading)?;
+        }
+        Ok(())
+    }
+
+    /// The whole arena as a region.
+    pub fn arena_region(&self) -> Region {
+        [0.0, 0.0, self.arena[0], self.arena[1]]
+    }
+
+    fn validate_wall(&self, key: &str, wall: &WallSpec) -> Valid {
+        self.inside_arena(&format!("{key}.from"), wall.from)?;
+        self.inside_arena(&format!("{key}.to"), wall.to)?;
+        if wall.from == wall.to {
+            return Err(InvalidValue::new(
+                format!("{key}.to"),
+                format!(
+                    "a wall must have a length, but `to` equals `from` {:?}",
+                    wall.from
+                ),
+            ));
+        }
+        for (c, value) in wall.colour.iter().enumerate() {
+            within(&format!("{key}.colour[{c}]"), *value, 0.0, 1.0)?;
+        }
+        non_negative(&format!("{key}.height"), wall.height)
+    }
+
+    fn known_kind(&self, key: &str, name: &str) -> Valid {
+        if self.kinds.contains_key(name) {
+            return Ok(());
+        }
+        let known: Vec<&str> = self.kinds.keys().map(String::as_str).collect();
+        Err(InvalidValue::new(
+            key,
+            format!("unknown kind `{name}`; the kinds defined in [world.kinds] are {known:?}"),
+        ))
+    }
+
+    fn inside_arena(&self, key: &str, p: Point) -> Valid {
+        all_finite(key, &p)?;
+        let [w, h] = self.arena;
+        if p[0] < 0.0 || p[0] > w || p[1] < 0.0 || p[1] > h {
+            return Err(InvalidValue::new(
+                key,
+                format!("{p:?} lies outside the arena [0, {w}] x [0, {h}]"),
+            ));
+        }
+        Ok(())
+    }
+
+    fn region_in_arena(&self, key: &str, r: Region) -> Valid {
+        all_finite(key, &r)?;
+        if r[0] > r[2] || r[1] > r[3] {
+            return Err(InvalidValue::new(
+                key,
+                format!("must be [x0, y0, x1, y1] with x0 <= x1 and y0 <= y1, got {r:?}"),
+            ));
+        }
+        self.inside_arena(key, [r[0], r[1]])?;
+        self.inside_arena(key, [r[2], r[3]])
+    }
+}
+
+/// The grid indices `lo..=hi` whose points `i·pitch` lie in `[a, b]`, or `None` when none do.
+pub(crate) fn grid_span(a: f64, b: f64, pitch: f64) -> Option<(i64, i64)> {
+    let lo = (a / pitch).ceil();
+    let hi = (b / pitch).floor();
+    // Rounding of a / pitch could put a point a hair outside the interval; step inwards.
+    let lo = if lo * pitch < a { lo + 1.0 } else { lo };
+    let hi = if hi * pitch > b { hi - 1.0 } else { hi };
+    (lo <= hi).then_some((lo as i64, hi as i64))
+}
+
+fn validate_smell(key: &str, odour: &[f64; 8], intensity: f64, range: Option<f64>) -> Valid {
+    all_non_negative(&format!("{key}.odour"), odour)?;
+    non_negative(&format!("{key}.intensity"), intensity)?;
+    if let Some(range) = range {
+        positive(&format!("{key}.range"), range)?;
+    }
+    Ok(())
+}
+
+fn validate_kind(key: &str, name: &str, kind: &KindSpec) -> Valid {
+    if name.is_empty() {
+        return Err(InvalidValue::new(key, "a kind needs a non-empty name"));
+    }
+    match kind {
+        KindSpec::Aversive(a) => {
+            non_negative(&format!("{key}.radius"), a.radius)?;
+            validate_smell(key, &a.odour, a.intensity, a.range)
+        }
+        KindSpec::Food(f) => {
+            non_negative(&format!("{key}.radius"), f.radius)?;
+            all_non_negative(&format!("{key}.substance"), &f.substance)?;
+            all_non_negative(&format!("{key}.bite"), &f.bite)?;
+            all_non_negative(&format!("{key}.regen"), &f.regen)?;
+            if let Some(capacity) = f.capacity {
+                all_non_negative(&format!("{key}.capacity"), &capacity)?;
+                for (t, (s, c)) in f.substance.iter().zip(capacity).enumerate() {
+                    if *s > c {
+                        return Err(InvalidValue::new(
+                            format!("{key}.capacity[{t}]"),
+                            format!("must be at least the initial substance {s}, got {c}"),
+                        ));
+                    }
+                }
+            }
+            if f.smell_follows_amount && f.capacity().iter().sum::<f64>() <= 0.0 {
+                return Err(InvalidValue::new(
+                    format!("{key}.smell_follows_amount"),
+                    "needs a capacity with a positive total (the smell scales with amount / capacity)",
+                ));
+            }
+            validate_smell(key, &f.odour, f.intensity, f.range)
+        }
+    }
+}

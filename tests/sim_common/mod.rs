@@ -1,0 +1,87 @@
+//! Helpers shared by the simulator's integration tests: worlds from TOML text, exact poses,
+//! and trivial controllers.
+#![allow(dead_code)]
+
+use berry_evolve::geometry::Vec2;
+use berry_evolve::seed::{stream, Generation, IndividualId, Purpose, Rng, Seed, TrialIndex};
+use berry_evolve::sim::controller::{Controller, MotorCommand};
+use berry_evolve::sim::motion::Pose;
+use berry_evolve::sim::{CreatureSpec, World, WorldSpec};
+use serde::Deserialize;
+
+/// A `[world]` and a `[creature]` table, as in an experiment file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Setup {
+    #[serde(default)]
+    pub world: WorldSpec,
+    #[serde(default)]
+    pub creature: CreatureSpec,
+}
+
+pub fn rng(seed: u64) -> Rng {
+    stream(
+        Seed(seed),
+        Purpose::TrialWorld,
+        Generation(0),
+        IndividualId(0),
+        TrialIndex(0),
+    )
+}
+
+pub fn setup(text: &str) -> Setup {
+    toml::from_str(text).unwrap_or_else(|e| panic!("bad test TOML: {e}"))
+}
+
+/// A world from TOML text with `creatures` creatures.
+pub fn world(text: &str, creatures: usize, seed: u64) -> World {
+    let s = setup(text);
+    World::new(&s.world, &s.creature, creatures, rng(seed))
+        .unwrap_or_else(|e| panic!("cannot build test world: {e}"))
+}
+
+/// A unit heading at `degrees` (0 = +x, 90 = +y, down the screen).
+pub fn heading(degrees: f64) -> Vec2 {
+    let a = degrees.to_radians();
+    Vec2::new(libm::cos(a), libm::sin(a))
+}
+
+/// Puts creature `i` at (x, y) facing `degrees`.
+pub fn put(world: &mut World, i: usize, x: f64, y: f64, degrees: f64) {
+    world.set_pose(
+        i,
+        Pose {
+            position: Vec2::new(x, y),
+            heading: heading(degrees),
+        },
+    );
+}
+
+/// A controller that never moves (and never asks to eat).
+#[derive(Debug, Clone, Copy)]
+pub struct Still;
+
+impl Controller for Still {
+    fn act(&mut self, _: &[f64]) -> MotorCommand {
+        MotorCommand::default()
+    }
+}
+
+/// A controller with a fixed command.
+#[derive(Debug, Clone, Copy)]
+pub struct Fixed(pub MotorCommand);
+
+impl Controller for Fixed {
+    fn act(&mut self, _: &[f64]) -> MotorCommand {
+        self.0
+    }
+}
+
+pub fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-12 * (1.0 + a.abs().max(b.abs()))
+}
+
+#[track_caller]
+pub fn assert_close(got: f64, want: f64, what: &str) {
+    assert!(close(got, want), "{what}: got {got}, want {want}");
+}
