@@ -26,6 +26,7 @@
 
 pub mod brain;
 pub mod geometry;
+pub mod record;
 pub mod seed;
 pub mod sim;
 pub mod validate;
