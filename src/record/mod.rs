@@ -2,3 +2,4 @@
 //! atomic file replacement, checkpoints and the fitness CSV.
 
 pub mod atomic;
+pub mod checkpoint;
