@@ -1,4 +1,8 @@
-//! Everything berry-evolve writes to files: per-tick traces (and, from other modules, fitness
-//! tables, checkpoints and genome files).
+//! Record: all file I/O of a run, written so that it survives a crash and reproduces byte for
+//! byte: atomic file replacement, checkpoints, the fitness CSV, genome files and per-tick traces.
 
+pub mod atomic;
+pub mod checkpoint;
+pub mod fitness_csv;
+pub mod genome_file;
 pub mod trace;
