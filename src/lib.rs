@@ -26,8 +26,10 @@
 
 pub mod brain;
 pub mod evo;
+pub mod experiment;
 pub mod geometry;
 pub mod record;
+pub mod run;
 pub mod seed;
 pub mod sim;
 pub mod validate;

@@ -1,5 +1,25 @@
-//! The `berry-evolve` command: parses the command line and reports errors as a cause chain.
+//! The `berry-evolve` command: parses the command line, runs it, and prints errors as a cause
+//! chain with a non-zero exit code (never a panic or a backtrace for bad input).
+
+mod cli;
+
+use clap::Parser;
 
 fn main() {
-    println!("berry-evolve {}", env!("CARGO_PKG_VERSION"));
+    let cli = cli::Cli::parse();
+    if let Err(error) = cli::dispatch(cli) {
+        eprintln!("error: {error}");
+        for cause in error.chain().skip(1) {
+            eprintln!("  caused by: {cause}");
+        }
+        let code = if error
+            .downcast_ref::<berry_evolve::run::RunError>()
+            .is_some_and(|e| matches!(e, berry_evolve::run::RunError::Interrupted { .. }))
+        {
+            130
+        } else {
+            1
+        };
+        std::process::exit(code);
+    }
 }

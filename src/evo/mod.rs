@@ -3,9 +3,12 @@
 //! mutation) and fitness statistics; every random draw comes from a stream passed in, in a
 //! documented order, so a run reproduces bit for bit from its seed.
 
+pub mod evaluate;
+pub mod fitness;
 pub mod init;
 pub mod select;
 pub mod spec;
+pub mod state;
 pub mod stats;
 pub mod vary;
 

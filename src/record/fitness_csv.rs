@@ -293,12 +293,18 @@ pub fn read_rows(path: &Path) -> Result<Vec<FitnessRow>, FitnessCsvError> {
     Ok(parsed.rows)
 }
 
-/// Writes `rows` (header first) to `path`, atomically, in the format `append` writes.
-pub fn write_all(path: &Path, rows: &[FitnessRow]) -> Result<(), FitnessCsvError> {
+/// `rows` (header first) as the bytes of a fitness CSV, in the format `append` writes.
+pub fn to_bytes(rows: &[FitnessRow]) -> io::Result<Vec<u8>> {
     let mut text = format!("{HEADER}\n").into_bytes();
     for row in rows {
-        format_row(row, &mut text).map_err(|e| io_error(path, "write", e))?;
+        format_row(row, &mut text)?;
     }
+    Ok(text)
+}
+
+/// Writes `rows` (header first) to `path`, atomically, in the format `append` writes.
+pub fn write_all(path: &Path, rows: &[FitnessRow]) -> Result<(), FitnessCsvError> {
+    let text = to_bytes(rows).map_err(|e| io_error(path, "write", e))?;
     write_atomic(path, &text).map_err(|e| io_error(path, "write", e))
 }
 

@@ -1,0 +1,65 @@
+//! The command-line front end: one module per subcommand, each parsing its arguments and
+//! calling the library. Only this layer turns typed errors into messages.
+
+pub mod bench;
+pub mod compare;
+pub mod export;
+pub mod inspect;
+pub mod progress;
+pub mod replay;
+pub mod resume;
+pub mod run;
+pub mod simulate;
+
+use clap::{Parser, Subcommand};
+
+/// berry-evolve: evolve neural-network creatures in the BERRY III world, reproducibly.
+///
+/// `berry-evolve EXPERIMENT.toml` is short for `berry-evolve run EXPERIMENT.toml`.
+#[derive(Debug, Parser)]
+#[command(name = "berry-evolve", version, args_conflicts_with_subcommands = true)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    #[command(flatten)]
+    pub run: Option<run::RunArgs>,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Evolve a population as an experiment file describes (the main job).
+    Run(run::RunArgs),
+    /// Continue a stopped or finished run from its newest good checkpoint.
+    Resume(resume::ResumeArgs),
+    /// Write the fitness curve (or the last population) of a checkpoint or run folder as CSV.
+    ExportCsv(export::ExportArgs),
+    /// Evaluate one genome as evolution did and print its fitness and metabolic vector.
+    Replay(replay::ReplayArgs),
+    /// Run scripted creatures in an experiment's world and write a per-tick trace.
+    Simulate(simulate::SimulateArgs),
+    /// Show what an experiment file means: the observation layout, brain size and workload.
+    Inspect(inspect::InspectArgs),
+    /// Evaluate genome files and random genomes on the same (held-out) trial worlds.
+    Compare(compare::CompareArgs),
+    /// Measure simulator and evolution speed (creature-ticks per second, 1 and 2 threads).
+    Bench(bench::BenchArgs),
+}
+
+/// Runs the parsed command line.
+pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
+    match (cli.command, cli.run) {
+        (Some(Command::Run(args)), _) | (None, Some(args)) => run::run(args),
+        (Some(Command::Resume(args)), _) => resume::run(args),
+        (Some(Command::ExportCsv(args)), _) => export::run(args),
+        (Some(Command::Replay(args)), _) => replay::run(args),
+        (Some(Command::Simulate(args)), _) => simulate::run(args),
+        (Some(Command::Inspect(args)), _) => inspect::run(args),
+        (Some(Command::Bench(args)), _) => bench::run(args),
+        (Some(Command::Compare(args)), _) => compare::run(args),
+        (None, None) => {
+            use clap::CommandFactory;
+            Cli::command().print_help()?;
+            anyhow::bail!("no experiment given: try `berry-evolve experiments/foraging.toml`")
+        }
+    }
+}

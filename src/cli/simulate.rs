@@ -1,0 +1,86 @@
+//! `berry-evolve simulate`: scripted creatures (the experiment's `[demo]` table) in the
+//! experiment's world, with an optional per-tick trace CSV.
+
+use anyhow::Context;
+use berry_evolve::experiment::Experiment;
+use berry_evolve::record::trace::TraceWriter;
+use berry_evolve::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
+use berry_evolve::sim::world::World;
+use clap::Args;
+use std::path::PathBuf;
+
+/// Arguments of `simulate`.
+#[derive(Debug, Args)]
+pub struct SimulateArgs {
+    /// An experiment file; its [world], [creature] and [demo] tables are used.
+    pub file: PathBuf,
+    /// Ticks to simulate.
+    #[arg(long, default_value_t = 1000)]
+    pub ticks: u64,
+    /// Write the per-tick trace CSV here.
+    #[arg(long)]
+    pub trace: Option<PathBuf>,
+    /// Override the experiment's seed (the world is drawn from it).
+    #[arg(long)]
+    pub seed: Option<u64>,
+}
+
+/// Runs the subcommand.
+pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
+    let mut experiment = Experiment::load(&args.file)?;
+    if let Some(seed) = args.seed {
+        experiment.seed = seed;
+    }
+    anyhow::ensure!(
+        args.ticks <= berry_evolve::experiment::tables::MAX_TICKS,
+        "--ticks {}: at most {} ticks",
+        args.ticks,
+        berry_evolve::experiment::tables::MAX_TICKS
+    );
+    let layout = experiment.layout();
+    let demo = &experiment.demo;
+    let mut controllers = (0..demo.creatures)
+        .map(|_| demo.controller.build(&layout))
+        .collect::<Result<Vec<_>, _>>()
+        .with_context(|| format!("{}: [demo]", args.file.display()))?;
+    let rng = stream(
+        experiment.seed(),
+        Purpose::Demo,
+        Generation(0),
+        IndividualId(0),
+        TrialIndex(0),
+    );
+    let mut world = World::new(&experiment.world, &experiment.creature, demo.creatures, rng)
+        .with_context(|| format!("{}: cannot build the world", args.file.display()))?;
+    let mut trace = match &args.trace {
+        Some(path) => Some(TraceWriter::new(std::io::BufWriter::new(
+            std::fs::File::create(path)
+                .with_context(|| format!("cannot create {}", path.display()))?,
+        ))),
+        None => None,
+    };
+    for _ in 0..args.ticks {
+        world.step(&mut controllers);
+        if let Some(t) = &mut trace {
+            t.write_tick(&world)?;
+        }
+    }
+    if let Some(t) = &mut trace {
+        t.flush()?;
+    }
+    for (i, c) in world.creatures().iter().enumerate() {
+        println!(
+            "creature {i}: position ({:.2}, {:.2}), travelled {:.1} LU, eaten {:?}, metabolism {:?}{}",
+            c.pose.position.x,
+            c.pose.position.y,
+            c.travelled,
+            c.eaten,
+            c.metabolism,
+            if c.alive { "" } else { ", dead" }
+        );
+    }
+    if let Some(path) = &args.trace {
+        eprintln!("trace written to {}", path.display());
+    }
+    Ok(())
+}

@@ -1,0 +1,280 @@
+//! Evaluation: a genome's fitness, measured by living `trials` lives in trial worlds.
+//!
+//! One trial is a pure function of (experiment, the genomes of one group, generation, group
+//! index, trial index): it builds its world from its own seed stream and shares nothing with
+//! other trials. [`evaluate_population`] runs all (group, trial) pairs in parallel with rayon,
+//! collects them in index order and reduces them serially, so the result is the same bits for
+//! any number of threads, and the same as evaluating one group at a time with
+//! [`evaluate_group`] (which a later distributed runner can call on another machine).
+
+use crate::brain::genome::Genome;
+use crate::brain::spec::Topology;
+use crate::brain::{Brain, BrainController};
+use crate::evo::fitness::LifeScore;
+use crate::experiment::{Aggregate, Experiment};
+use crate::seed::{stream, Generation, IndividualId, Purpose, Rng, TrialIndex};
+use crate::sim::controller::{Controller, MotorCommand};
+use crate::sim::world::World;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// Why an evaluation could not run at all (as opposed to a creature doing badly).
+#[derive(Debug, Error)]
+pub enum EvaluationError {
+    /// The genome does not fit the experiment's brain topology.
+    #[error("individual {individual}: {source}")]
+    Brain {
+        /// Index in the population.
+        individual: u64,
+        /// What the brain said.
+        source: crate::brain::BrainError,
+    },
+    /// The trial world could not be built (e.g. placement impossible at this density).
+    #[error("generation {generation}, trial {trial}: cannot build the world: {source}")]
+    World {
+        /// Generation of the trial.
+        generation: u64,
+        /// Trial index.
+        trial: u64,
+        /// The placement failure.
+        source: crate::sim::PlacementError,
+    },
+}
+
+/// One individual's life in one trial world.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TrialOutcome {
+    /// The trial's score under `[fitness]`.
+    pub score: f64,
+    /// The metabolic vector at the end of life.
+    pub metabolism: [f64; 4],
+    /// Ticks on which the shock sensor was on.
+    pub shocked_ticks: u64,
+    /// True when the brain produced a NaN or infinite output: the life was stopped.
+    pub non_finite: bool,
+}
+
+/// An individual's evaluation over all its trials.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Evaluation {
+    /// The aggregated fitness; `None` when the brain produced a non-finite output in any
+    /// trial (such an individual ranks below every other and is left out of statistics).
+    pub fitness: Option<f64>,
+    /// Mean over trials of the metabolic vector at the end of life (the per-food components
+    /// kept alongside the score).
+    pub metabolism: [f64; 4],
+}
+
+impl Evaluation {
+    /// The fitness used for selection: non-finite brains rank below everything.
+    pub fn selection_fitness(&self) -> f64 {
+        self.fitness.unwrap_or(f64::MIN)
+    }
+}
+
+/// The random stream that builds trial `trial` of generation `generation` for `group`.
+/// With common random numbers every group of a generation gets the same stream.
+pub fn trial_stream(
+    experiment: &Experiment,
+    generation: Generation,
+    group: u64,
+    trial: TrialIndex,
+) -> Rng {
+    let who = if experiment.evaluation.common_random_numbers {
+        IndividualId(0)
+    } else {
+        IndividualId(group)
+    };
+    stream(
+        experiment.seed(),
+        Purpose::TrialWorld,
+        generation,
+        who,
+        trial,
+    )
+}
+
+/// A brain controller that notices non-finite outputs instead of letting NaN reach the
+/// world: the creature stands still for that tick and the life is marked invalid.
+struct CheckedController {
+    inner: BrainController,
+    non_finite: bool,
+}
+
+impl Controller for CheckedController {
+    fn act(&mut self, observation: &[f64]) -> MotorCommand {
+        let command = self.inner.act(observation);
+        if command.left.is_finite() && command.right.is_finite() && command.eat.is_finite() {
+            command
+        } else {
+            self.non_finite = true;
+            MotorCommand::default()
+        }
+    }
+}
+
+/// Lives one trial for a group of genomes sharing one world; returns one outcome per genome.
+pub fn run_trial(
+    experiment: &Experiment,
+    topology: &Topology,
+    genomes: &[Genome],
+    generation: Generation,
+    group: u64,
+    trial: TrialIndex,
+) -> Result<Vec<TrialOutcome>, EvaluationError> {
+    let mut controllers = genomes
+        .iter()
+        .enumerate()
+        .map(|(k, genome)| {
+            let brain = Brain::new(topology, &genome.parameters).map_err(|source| {
+                EvaluationError::Brain {
+                    individual: group * genomes.len() as u64 + k as u64,
+                    source,
+                }
+            })?;
+            Ok(CheckedController {
+                inner: BrainController::new(
+                    brain,
+                    experiment.creature.max_rpt,
+                    experiment.creature.eats_by_action(),
+                ),
+                non_finite: false,
+            })
+        })
+        .collect::<Result<Vec<_>, EvaluationError>>()?;
+    let rng = trial_stream(experiment, generation, group, trial);
+    let mut world = World::new(&experiment.world, &experiment.creature, genomes.len(), rng)
+        .map_err(|source| EvaluationError::World {
+            generation: generation.0,
+            trial: trial.0,
+            source,
+        })?;
+    let mut scores: Vec<LifeScore> = (0..genomes.len())
+        .map(|_| LifeScore::new(&experiment.fitness))
+        .collect();
+    for _ in 0..experiment.evaluation.ticks {
+        world.step(&mut controllers);
+        let mut anyone_alive = false;
+        for (i, creature) in world.creatures().iter().enumerate() {
+            if controllers[i].non_finite {
+                continue;
+            }
+            if creature.alive {
+                scores[i].record_tick(&creature.metabolism, creature.shocked);
+                anyone_alive = true;
+            }
+        }
+        if !anyone_alive {
+            break;
+        }
+    }
+    Ok(world
+        .creatures()
+        .iter()
+        .zip(scores)
+        .zip(&controllers)
+        .map(|((creature, score), controller)| TrialOutcome {
+            score: score.finish(&creature.metabolism),
+            metabolism: creature.metabolism,
+            shocked_ticks: score.shocked_ticks(),
+            non_finite: controller.non_finite,
+        })
+        .collect())
+}
+
+/// Combines an individual's trials (in trial order) into its evaluation.
+pub fn aggregate(experiment: &Experiment, trials: &[TrialOutcome]) -> Evaluation {
+    let n = trials.len() as f64;
+    let mut metabolism = [0.0; 4];
+    for t in trials {
+        for (m, x) in metabolism.iter_mut().zip(t.metabolism) {
+            *m += x;
+        }
+    }
+    for m in &mut metabolism {
+        *m /= n;
+    }
+    let fitness = if trials.iter().any(|t| t.non_finite || !t.score.is_finite()) {
+        None
+    } else {
+        Some(match experiment.evaluation.aggregate {
+            Aggregate::Mean => trials.iter().map(|t| t.score).sum::<f64>() / n,
+            Aggregate::Min => trials.iter().map(|t| t.score).fold(f64::INFINITY, f64::min),
+        })
+    };
+    Evaluation {
+        fitness,
+        metabolism,
+    }
+}
+
+/// Evaluates one group (individuals `group*k .. group*k + k`) serially, trial by trial.
+pub fn evaluate_group(
+    experiment: &Experiment,
+    topology: &Topology,
+    genomes: &[Genome],
+    generation: Generation,
+    group: u64,
+) -> Result<Vec<Evaluation>, EvaluationError> {
+    let mut per_individual: Vec<Vec<TrialOutcome>> = vec![Vec::new(); genomes.len()];
+    for t in 0..experiment.evaluation.trials {
+        let outcomes = run_trial(
+            experiment,
+            topology,
+            genomes,
+            generation,
+            group,
+            TrialIndex(t),
+        )?;
+        for (list, outcome) in per_individual.iter_mut().zip(outcomes) {
+            list.push(outcome);
+        }
+    }
+    Ok(per_individual
+        .iter()
+        .map(|trials| aggregate(experiment, trials))
+        .collect())
+}
+
+/// Evaluates a whole population in parallel on the current rayon pool. Every (group, trial)
+/// pair is one job; results are collected in index order and aggregated serially.
+pub fn evaluate_population(
+    experiment: &Experiment,
+    topology: &Topology,
+    population: &[Genome],
+    generation: Generation,
+) -> Result<Vec<Evaluation>, EvaluationError> {
+    let k = experiment.evaluation.group_size as usize;
+    let trials = experiment.evaluation.trials;
+    let groups = population.len() / k;
+    let jobs: Vec<(usize, u64)> = (0..groups)
+        .flat_map(|g| (0..trials).map(move |t| (g, t)))
+        .collect();
+    let outcomes: Vec<Vec<TrialOutcome>> = jobs
+        .par_iter()
+        .map(|&(g, t)| {
+            run_trial(
+                experiment,
+                topology,
+                &population[g * k..(g + 1) * k],
+                generation,
+                g as u64,
+                TrialIndex(t),
+            )
+        })
+        .collect::<Result<_, _>>()?;
+    // Serial reduction in index order: outcomes[g * trials + t][i] is individual g*k + i.
+    let mut evaluations = Vec::with_capacity(population.len());
+    let mut trial_list = Vec::with_capacity(trials as usize);
+    for g in 0..groups {
+        for i in 0..k {
+            trial_list.clear();
+            for t in 0..trials as usize {
+                trial_list.push(outcomes[g * trials as usize + t][i]);
+            }
+            evaluations.push(aggregate(experiment, &trial_list));
+        }
+    }
+    Ok(evaluations)
+}

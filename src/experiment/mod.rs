@@ -1,0 +1,204 @@
+//! Experiments: one TOML file describes a whole run (world, creature, brain, evolution,
+//! evaluation, fitness, output). This module parses it strictly, validates it, and gives the
+//! effective experiment a stable hash that checkpoints and genome files carry.
+
+pub mod tables;
+
+pub use tables::{Aggregate, EvaluationSpec, FitnessMode, FitnessSpec, OutputSpec};
+
+use crate::brain::output_count;
+use crate::brain::spec::{BrainSpec, Topology};
+use crate::evo::spec::EvolutionSpec;
+use crate::seed::Seed;
+use crate::sim::controller::ObservationLayout;
+use crate::sim::scripted::DemoSpec;
+use crate::sim::spec::{CreatureSpec, WorldSpec};
+use crate::validate::{InvalidValue, Valid};
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// The largest seed accepted: TOML integers are signed 64-bit.
+pub const MAX_SEED: u64 = i64::MAX as u64;
+
+/// A whole experiment, exactly as its TOML file says (after defaults). Unknown keys anywhere
+/// are errors, so a misspelt option can never be silently ignored.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Experiment {
+    /// Name of the experiment; names the run folder `results/<name>/seed-<seed>/`.
+    pub name: String,
+    /// Master seed: every random draw of the run derives from it (0 ≤ seed < 2^63).
+    pub seed: u64,
+    /// The world of every trial (`[world]`).
+    #[serde(default)]
+    pub world: WorldSpec,
+    /// The evolving creatures' body and senses (`[creature]`).
+    #[serde(default)]
+    pub creature: CreatureSpec,
+    /// The controller network (`[brain]`).
+    #[serde(default)]
+    pub brain: BrainSpec,
+    /// The genetic algorithm (`[evolution]`).
+    #[serde(default)]
+    pub evolution: EvolutionSpec,
+    /// How an individual is evaluated (`[evaluation]`).
+    #[serde(default)]
+    pub evaluation: EvaluationSpec,
+    /// How a life is scored (`[fitness]`).
+    #[serde(default)]
+    pub fitness: FitnessSpec,
+    /// Checkpointing and run folders (`[output]`).
+    #[serde(default)]
+    pub output: OutputSpec,
+    /// Scripted creatures for `berry-evolve simulate` (`[demo]`); unused by evolution.
+    #[serde(default)]
+    pub demo: DemoSpec,
+}
+
+/// Why an experiment file could not be used. Every variant names the file.
+#[derive(Debug, Error)]
+pub enum ExperimentError {
+    /// The file could not be read.
+    #[error("cannot read experiment file {path}: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The file is not valid TOML or does not have the experiment's shape (unknown key,
+    /// wrong type, missing field). The message carries the line, column and key.
+    #[error("{path}: {message}")]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// toml's message, which names the line, column and key.
+        message: String,
+    },
+    /// A value is well-formed but not acceptable.
+    #[error("{path}: {source}")]
+    Invalid {
+        /// The file.
+        path: PathBuf,
+        /// The key and the reason.
+        source: InvalidValue,
+    },
+}
+
+impl Experiment {
+    /// Reads and validates an experiment file.
+    pub fn load(path: &Path) -> Result<Experiment, ExperimentError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ExperimentError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Experiment::from_toml(&text, path)
+    }
+
+    /// Parses and validates experiment text; `origin` only names the source in errors.
+    pub fn from_toml(text: &str, origin: &Path) -> Result<Experiment, ExperimentError> {
+        let experiment: Experiment = toml::from_str(text).map_err(|e| ExperimentError::Parse {
+            path: origin.to_path_buf(),
+            message: e.to_string().trim_end().to_string(),
+        })?;
+        experiment
+            .validate()
+            .map_err(|source| ExperimentError::Invalid {
+                path: origin.to_path_buf(),
+                source,
+            })?;
+        Ok(experiment)
+    }
+
+    /// Checks every table and the constraints between tables.
+    pub fn validate(&self) -> Valid {
+        if self.name.trim().is_empty() {
+            return Err(InvalidValue::new("name", "must not be empty"));
+        }
+        if self
+            .name
+            .chars()
+            .any(|c| !(c.is_ascii_alphanumeric() || c == '-' || c == '_' || c == '.'))
+        {
+            return Err(InvalidValue::new(
+                "name",
+                "may hold only letters, digits, '-', '_' and '.' (it names the run folder)",
+            ));
+        }
+        if self.seed > MAX_SEED {
+            return Err(InvalidValue::new(
+                "seed",
+                format!("must be below 2^63, got {}", self.seed),
+            ));
+        }
+        self.creature.validate()?;
+        self.world.validate(&self.creature)?;
+        self.brain.validate()?;
+        self.evolution.validate()?;
+        self.evaluation.validate()?;
+        self.fitness.validate()?;
+        self.output.validate()?;
+        self.evaluation
+            .validate_against_population(self.evolution.population)?;
+        Ok(())
+    }
+
+    /// The master seed as a typed value.
+    pub fn seed(&self) -> Seed {
+        Seed(self.seed)
+    }
+
+    /// The observation layout the creature's senses produce.
+    pub fn layout(&self) -> ObservationLayout {
+        self.creature.layout()
+    }
+
+    /// The names of the brain's outputs, in order.
+    pub fn output_names(&self) -> Vec<String> {
+        let mut names = vec!["motor_left".to_string(), "motor_right".to_string()];
+        if self.creature.eats_by_action() {
+            names.push("eat".to_string());
+        }
+        names
+    }
+
+    /// The network topology: the brain table plus the sizes the creature implies.
+    pub fn topology(&self) -> Topology {
+        Topology {
+            spec: self.brain.clone(),
+            inputs: self.layout().len(),
+            outputs: output_count(self.creature.eats_by_action()),
+        }
+    }
+
+    /// The experiment as TOML, as written to a run folder's `experiment.toml`.
+    pub fn to_toml(&self) -> String {
+        // Serialising plain data structures to TOML cannot fail: every field is a table,
+        // an array or a scalar.
+        toml::to_string(self).expect("experiment serialises to TOML")
+    }
+
+    /// A stable SHA-256 hash (hex) of everything that decides what a run computes.
+    ///
+    /// Excluded: `evolution.generations` (how long to run, not what is run, so a finished
+    /// run can be extended with `resume --generations`) and `[output]` (where and how often
+    /// results are saved). The canonical form is the JSON of the experiment with sorted keys.
+    pub fn config_hash(&self) -> String {
+        let mut identity = self.clone();
+        identity.evolution.generations = 0;
+        identity.output = OutputSpec::default();
+        let value = serde_json::to_value(&identity).expect("experiment serialises to JSON");
+        let bytes = serde_json::to_vec(&value).expect("JSON value serialises");
+        let digest = Sha256::digest(&bytes);
+        digest.iter().map(|b| format!("{b:02x}")).collect()
+    }
+
+    /// The run folder used when `--out` is not given.
+    pub fn default_run_dir(&self) -> PathBuf {
+        PathBuf::from("results")
+            .join(&self.name)
+            .join(format!("seed-{}", self.seed))
+    }
+}

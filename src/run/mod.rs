@@ -1,0 +1,507 @@
+//! A run: one experiment evolving in a run folder. Owns the folder's files (effective
+//! `experiment.toml`, `fitness.csv` written row by row, `best.json`, `checkpoints/`) and the
+//! generation loop that connects evolution to them, including resuming from a checkpoint so
+//! that a stopped run finishes with the same bytes as one never stopped.
+
+use crate::brain::spec::Topology;
+use crate::evo::evaluate::EvaluationError;
+use crate::evo::state::{
+    evaluate, first_population, improved_champion, offspring, Champion, EvaluatedGeneration,
+    GenerationSummary,
+};
+use crate::experiment::{Experiment, ExperimentError};
+use crate::record::atomic::{remove_stale_temp_files, write_atomic};
+use crate::record::checkpoint::{self, CheckpointError, CheckpointErrorKind};
+use crate::record::fitness_csv::{FitnessCsv, FitnessRow};
+use crate::record::genome_file::{GenomeFile, GenomeFileError, Origin};
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use thiserror::Error;
+
+/// File names inside a run folder.
+pub const EXPERIMENT_FILE: &str = "experiment.toml";
+/// The fitness curve.
+pub const FITNESS_FILE: &str = "fitness.csv";
+/// The best genome so far.
+pub const BEST_FILE: &str = "best.json";
+/// The checkpoint folder.
+pub const CHECKPOINT_DIR: &str = "checkpoints";
+
+/// What a checkpoint holds besides its envelope (format, program version, config hash,
+/// generation, checksum). No random generator state is needed: every stream is derived from
+/// the seed and the generation (see `seed::stream`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CheckpointPayload {
+    /// The effective experiment, seed included.
+    pub experiment: Experiment,
+    /// The last completed generation: genomes and evaluations.
+    pub last: EvaluatedGeneration,
+    /// The best individual ever seen.
+    pub best_ever: Option<Champion>,
+    /// One fitness row per completed generation.
+    pub history: Vec<FitnessRow>,
+}
+
+/// Why a run could not start, continue or finish.
+#[derive(Debug, Error)]
+pub enum RunError {
+    /// The run folder already holds a run.
+    #[error("{dir} already holds a run; continue it with `berry-evolve resume {dir}` or start over with --force")]
+    FolderInUse {
+        /// The folder.
+        dir: PathBuf,
+    },
+    /// A file of the run folder could not be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file or folder.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The experiment is not usable.
+    #[error(transparent)]
+    Experiment(#[from] ExperimentError),
+    /// A checkpoint could not be read or written.
+    #[error(transparent)]
+    Checkpoint(#[from] CheckpointError),
+    /// The fitness CSV could not be written.
+    #[error(transparent)]
+    Csv(#[from] crate::record::fitness_csv::FitnessCsvError),
+    /// best.json could not be written.
+    #[error(transparent)]
+    Genome(#[from] GenomeFileError),
+    /// Evaluation failed.
+    #[error(transparent)]
+    Evaluation(#[from] EvaluationError),
+    /// The thread pool could not be built.
+    #[error("cannot start {jobs} worker threads: {message}")]
+    Threads {
+        /// Requested threads.
+        jobs: usize,
+        /// rayon's message.
+        message: String,
+    },
+    /// The experiment file in the folder differs from the checkpoint's experiment.
+    #[error("{path} differs from the experiment in checkpoint {checkpoint} (config hash {found} vs {expected}); the run would no longer be the one its seed describes. Restore the file, or pass --allow-config-change to continue anyway (the change is recorded in the run folder)")]
+    ConfigChanged {
+        /// The experiment file.
+        path: PathBuf,
+        /// The checkpoint.
+        checkpoint: PathBuf,
+        /// Hash of the file's experiment (short).
+        found: String,
+        /// Hash in the checkpoint (short).
+        expected: String,
+    },
+    /// Stopped by the user (Ctrl-C / SIGTERM) after writing a checkpoint.
+    #[error("interrupted after generation {generation}; the checkpoint {checkpoint} holds it. Continue with: berry-evolve resume {dir}")]
+    Interrupted {
+        /// Last completed generation.
+        generation: u64,
+        /// The checkpoint written.
+        checkpoint: PathBuf,
+        /// The run folder.
+        dir: PathBuf,
+    },
+}
+
+/// Receives progress reports; the CLI draws a bar or prints lines.
+pub trait Progress {
+    /// The run will evaluate generations `first..total`.
+    fn begin(&mut self, first: u64, total: u64);
+    /// Generation `row.generation` is done.
+    fn generation(&mut self, row: &FitnessRow);
+    /// A checkpoint was written.
+    fn checkpoint(&mut self, path: &Path);
+    /// The run ended normally.
+    fn end(&mut self);
+}
+
+/// A [`Progress`] that reports nothing.
+pub struct Silent;
+
+impl Progress for Silent {
+    fn begin(&mut self, _: u64, _: u64) {}
+    fn generation(&mut self, _: &FitnessRow) {}
+    fn checkpoint(&mut self, _: &Path) {}
+    fn end(&mut self) {}
+}
+
+/// How a run is executed (none of this changes its results).
+pub struct RunOptions<'a> {
+    /// Worker threads; 0 means one per core.
+    pub jobs: usize,
+    /// Set to true (e.g. by a signal handler) to stop after the current generation.
+    pub stop: Option<&'a AtomicBool>,
+}
+
+/// What a finished run reports.
+#[derive(Debug, Clone)]
+pub struct RunSummary {
+    /// The run folder.
+    pub dir: PathBuf,
+    /// Generations completed in total.
+    pub generations: u64,
+    /// The best individual ever seen.
+    pub best_ever: Option<Champion>,
+    /// The last checkpoint written.
+    pub checkpoint: Option<PathBuf>,
+}
+
+fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> RunError + '_ {
+    move |source| RunError::Io {
+        path: path.to_path_buf(),
+        source,
+    }
+}
+
+/// Does `dir` already hold (part of) a run?
+fn holds_run(dir: &Path) -> bool {
+    [EXPERIMENT_FILE, FITNESS_FILE, BEST_FILE, CHECKPOINT_DIR]
+        .iter()
+        .any(|f| dir.join(f).exists())
+}
+
+/// Starts a new run of `experiment` in `dir`. Refuses a folder that already holds a run
+/// unless `force`, in which case the old run's files are removed first.
+pub fn start(
+    experiment: Experiment,
+    dir: &Path,
+    force: bool,
+    options: RunOptions<'_>,
+    progress: &mut dyn Progress,
+) -> Result<RunSummary, RunError> {
+    if holds_run(dir) {
+        if !force {
+            return Err(RunError::FolderInUse {
+                dir: dir.to_path_buf(),
+            });
+        }
+        for f in [EXPERIMENT_FILE, FITNESS_FILE, BEST_FILE] {
+            let p = dir.join(f);
+            if p.exists() {
+                std::fs::remove_file(&p).map_err(io_err(&p))?;
+            }
+        }
+        let c = dir.join(CHECKPOINT_DIR);
+        if c.exists() {
+            std::fs::remove_dir_all(&c).map_err(io_err(&c))?;
+        }
+    }
+    let checkpoints = dir.join(CHECKPOINT_DIR);
+    std::fs::create_dir_all(&checkpoints).map_err(io_err(&checkpoints))?;
+    let experiment_path = dir.join(EXPERIMENT_FILE);
+    write_atomic(&experiment_path, experiment.to_toml().as_bytes())
+        .map_err(io_err(&experiment_path))?;
+    let csv = FitnessCsv::create(&dir.join(FITNESS_FILE))?;
+    let topology = experiment.topology();
+    let population = first_population(&experiment, &topology);
+    drive(
+        Loop {
+            experiment,
+            topology,
+            dir: dir.to_path_buf(),
+            csv,
+            history: Vec::new(),
+            best_ever: None,
+            next_generation: 0,
+        },
+        population,
+        options,
+        progress,
+    )
+}
+
+/// Where to resume from: a run folder (its newest good checkpoint) or a checkpoint file.
+pub fn resume(
+    target: &Path,
+    generations: Option<u64>,
+    allow_config_change: bool,
+    options: RunOptions<'_>,
+    progress: &mut dyn Progress,
+) -> Result<RunSummary, RunError> {
+    let (dir, loaded_path, payload) = load_checkpoint(target)?;
+    let mut experiment = payload.experiment.clone();
+    let experiment_path = dir.join(EXPERIMENT_FILE);
+    if experiment_path.exists() {
+        let on_disk = Experiment::load(&experiment_path)?;
+        if on_disk.config_hash() != experiment.config_hash() {
+            if !allow_config_change {
+                return Err(RunError::ConfigChanged {
+                    path: experiment_path,
+                    checkpoint: loaded_path,
+                    found: on_disk.config_hash()[..12].to_string(),
+                    expected: experiment.config_hash()[..12].to_string(),
+                });
+            }
+            record_config_change(&dir, &experiment, &on_disk, &loaded_path)?;
+            experiment = on_disk;
+        } else if on_disk.evolution.generations != experiment.evolution.generations
+            && generations.is_none()
+        {
+            // Only the length differs: the file was edited to extend the run.
+            experiment.evolution.generations = on_disk.evolution.generations;
+        }
+    }
+    if let Some(g) = generations {
+        experiment.evolution.generations = g;
+    }
+    experiment
+        .validate()
+        .map_err(|source| ExperimentError::Invalid {
+            path: experiment_path.clone(),
+            source,
+        })?;
+    write_atomic(&experiment_path, experiment.to_toml().as_bytes())
+        .map_err(io_err(&experiment_path))?;
+    let last_generation = payload.last.generation;
+    let csv = FitnessCsv::reopen_for_resume(&dir.join(FITNESS_FILE), last_generation)?.csv;
+    let topology = experiment.topology();
+    let mut state = Loop {
+        topology,
+        dir: dir.clone(),
+        csv,
+        history: payload.history,
+        best_ever: payload.best_ever,
+        next_generation: last_generation + 1,
+        experiment,
+    };
+    if state.next_generation >= state.experiment.evolution.generations {
+        // Nothing left to evaluate: make sure the final files match the finished run.
+        let checkpoint = state.finish(&payload.last)?;
+        progress.end();
+        return Ok(RunSummary {
+            dir,
+            generations: state.next_generation,
+            best_ever: state.best_ever,
+            checkpoint: Some(checkpoint),
+        });
+    }
+    let population = offspring(&state.experiment, &payload.last);
+    drive(state, population, options, progress)
+}
+
+/// Finds and reads the checkpoint to resume from. Returns (run folder, checkpoint, payload).
+pub fn load_checkpoint(target: &Path) -> Result<(PathBuf, PathBuf, CheckpointPayload), RunError> {
+    if target.is_file() {
+        let loaded = checkpoint::load::<CheckpointPayload>(target, None)?;
+        check_payload_hash(target, &loaded.config_hash, &loaded.payload)?;
+        let dir = run_dir_of_checkpoint(target);
+        return Ok((dir, target.to_path_buf(), loaded.payload));
+    }
+    let cdir = target.join(CHECKPOINT_DIR);
+    remove_stale_temp_files(target).map_err(io_err(target))?;
+    if cdir.is_dir() {
+        remove_stale_temp_files(&cdir).map_err(io_err(&cdir))?;
+    }
+    let loaded = checkpoint::load_latest_good::<CheckpointPayload>(&cdir, None)?
+        .refuse_if_newest_unusable()?;
+    check_payload_hash(
+        &loaded.path,
+        &loaded.checkpoint.config_hash,
+        &loaded.checkpoint.payload,
+    )?;
+    Ok((
+        target.to_path_buf(),
+        loaded.path.clone(),
+        loaded.checkpoint.payload,
+    ))
+}
+
+/// The envelope's config hash must be the hash of the experiment inside it.
+fn check_payload_hash(
+    path: &Path,
+    envelope_hash: &str,
+    payload: &CheckpointPayload,
+) -> Result<(), RunError> {
+    let inner = payload.experiment.config_hash();
+    if inner != envelope_hash {
+        return Err(RunError::Checkpoint(CheckpointError {
+            path: path.to_path_buf(),
+            kind: CheckpointErrorKind::ConfigMismatch {
+                found: envelope_hash[..envelope_hash.len().min(12)].to_string(),
+                expected: inner[..12].to_string(),
+            },
+            previous_good: None,
+        }));
+    }
+    Ok(())
+}
+
+/// `run/checkpoints/gen-000010.json` → `run`.
+fn run_dir_of_checkpoint(path: &Path) -> PathBuf {
+    let parent = path.parent().unwrap_or(Path::new("."));
+    if parent.file_name().is_some_and(|n| n == CHECKPOINT_DIR) {
+        parent.parent().unwrap_or(Path::new(".")).to_path_buf()
+    } else {
+        parent.to_path_buf()
+    }
+}
+
+/// Appends a note to `config-changes.log` in the run folder.
+fn record_config_change(
+    dir: &Path,
+    old: &Experiment,
+    new: &Experiment,
+    checkpoint: &Path,
+) -> Result<(), RunError> {
+    use std::io::Write;
+    let path = dir.join("config-changes.log");
+    let mut f = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(&path)
+        .map_err(io_err(&path))?;
+    writeln!(
+        f,
+        "resumed from {} with a changed experiment: config hash {} -> {}",
+        checkpoint.display(),
+        old.config_hash(),
+        new.config_hash()
+    )
+    .and_then(|_| f.sync_all())
+    .map_err(io_err(&path))
+}
+
+/// The state the generation loop carries.
+struct Loop {
+    experiment: Experiment,
+    topology: Topology,
+    dir: PathBuf,
+    csv: FitnessCsv,
+    history: Vec<FitnessRow>,
+    best_ever: Option<Champion>,
+    next_generation: u64,
+}
+
+impl Loop {
+    fn row(&self, generation: &EvaluatedGeneration, summary: &GenerationSummary) -> FitnessRow {
+        let population = self.experiment.evolution.population as u64;
+        FitnessRow {
+            generation: generation.generation,
+            evaluations: population * (generation.generation + 1),
+            best: summary.stats.best,
+            mean: summary.stats.mean,
+            median: summary.stats.median,
+            worst: summary.stats.worst,
+            std: summary.stats.std,
+            // 0 until some individual has a finite fitness (as FitnessStats reports an empty set).
+            best_ever: self.best_ever.as_ref().map_or(0.0, |c| c.fitness),
+            mean_food_a: summary.mean_metabolism[0],
+            mean_food_b: summary.mean_metabolism[1],
+            mean_food_c: summary.mean_metabolism[2],
+            mean_food_d: summary.mean_metabolism[3],
+            best_food_a: summary.best_metabolism[0],
+            best_food_b: summary.best_metabolism[1],
+            best_food_c: summary.best_metabolism[2],
+            best_food_d: summary.best_metabolism[3],
+            non_finite: summary.non_finite,
+        }
+    }
+
+    fn write_best(&self) -> Result<(), RunError> {
+        if let Some(c) = &self.best_ever {
+            let file = GenomeFile::new(
+                &self.experiment,
+                &c.genome,
+                Origin {
+                    description: None,
+                    experiment: Some(self.experiment.name.clone()),
+                    config_hash: Some(self.experiment.config_hash()),
+                    generation: Some(c.generation),
+                    individual: Some(c.individual),
+                    fitness: Some(c.fitness),
+                    metabolism: Some(c.metabolism),
+                },
+            );
+            file.save(&self.dir.join(BEST_FILE))?;
+        }
+        Ok(())
+    }
+
+    fn write_checkpoint(&mut self, last: &EvaluatedGeneration) -> Result<PathBuf, RunError> {
+        // The checkpoint must never be ahead of the CSV on disk (power loss).
+        self.csv.sync()?;
+        let payload = CheckpointPayload {
+            experiment: self.experiment.clone(),
+            last: last.clone(),
+            best_ever: self.best_ever.clone(),
+            history: self.history.clone(),
+        };
+        Ok(checkpoint::write_checkpoint(
+            &self.dir.join(CHECKPOINT_DIR),
+            &self.experiment.config_hash(),
+            last.generation,
+            &payload,
+            self.experiment.output.keep_checkpoints as usize,
+        )?)
+    }
+
+    /// Final files of a finished run: best.json and the last checkpoint.
+    fn finish(&mut self, last: &EvaluatedGeneration) -> Result<PathBuf, RunError> {
+        self.write_best()?;
+        self.write_checkpoint(last)
+    }
+}
+
+/// The generation loop: evaluate, record, checkpoint, vary, until done or stopped.
+fn drive(
+    mut state: Loop,
+    mut population: Vec<crate::brain::genome::Genome>,
+    options: RunOptions<'_>,
+    progress: &mut dyn Progress,
+) -> Result<RunSummary, RunError> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(options.jobs)
+        .build()
+        .map_err(|e| RunError::Threads {
+            jobs: options.jobs,
+            message: e.to_string(),
+        })?;
+    let total = state.experiment.evolution.generations;
+    let every = state.experiment.output.checkpoint_every;
+    progress.begin(state.next_generation, total);
+    let mut generation = state.next_generation;
+    loop {
+        let evaluated =
+            pool.install(|| evaluate(&state.experiment, &state.topology, generation, population))?;
+        let summary = evaluated.summary();
+        let improved = improved_champion(state.best_ever.as_ref(), &evaluated, &summary);
+        if let Some(champion) = improved {
+            state.best_ever = Some(champion);
+            state.write_best()?;
+        }
+        let row = state.row(&evaluated, &summary);
+        state.csv.append(&row)?;
+        state.history.push(row.clone());
+        progress.generation(&row);
+        let is_last = generation + 1 >= total;
+        let stop_requested = options.stop.is_some_and(|s| s.load(Ordering::SeqCst));
+        if is_last {
+            let path = state.finish(&evaluated)?;
+            progress.checkpoint(&path);
+            progress.end();
+            return Ok(RunSummary {
+                dir: state.dir.clone(),
+                generations: total,
+                best_ever: state.best_ever.clone(),
+                checkpoint: Some(path),
+            });
+        }
+        if (generation + 1) % every == 0 || stop_requested {
+            let path = state.write_checkpoint(&evaluated)?;
+            progress.checkpoint(&path);
+            if stop_requested {
+                return Err(RunError::Interrupted {
+                    generation,
+                    checkpoint: path,
+                    dir: state.dir.clone(),
+                });
+            }
+        }
+        population = pool.install(|| offspring(&state.experiment, &evaluated));
+        generation += 1;
+    }
+}
