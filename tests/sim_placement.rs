@@ -229,7 +229,7 @@ kind = "apple"
 count = 1000
 min_spacing = 50
 "#;
-    let e = build(text, 1, 1).err().expect("must fail");
+    let e = build(text, 1, 1).expect_err("must fail");
     match &e {
         PlacementError::Object {
             rule, kind, number, ..
@@ -249,9 +249,7 @@ min_spacing = 50
 #[test]
 fn creatures_that_cannot_fit_are_a_placement_error() {
     // A 1 x 1 LU start region holds one body of diameter 6, not two.
-    let e = build("[world.start]\nregion = [10, 10, 11, 11]", 2, 1)
-        .err()
-        .expect("must fail");
+    let e = build("[world.start]\nregion = [10, 10, 11, 11]", 2, 1).expect_err("must fail");
     assert!(
         matches!(
             e,
@@ -265,14 +263,12 @@ fn creatures_that_cannot_fit_are_a_placement_error() {
     );
     assert!(e.to_string().contains("creature 2 of 2"), "{e}");
     // A region against the boundary wall: every body there touches it.
-    let e = build("[world.start]\nregion = [0, 0, 2, 300]", 1, 1)
-        .err()
-        .expect("must fail");
+    let e = build("[world.start]\nregion = [0, 0, 2, 300]", 1, 1).expect_err("must fail");
     assert!(
         matches!(e, PlacementError::Creature { number: 1, .. }),
         "{e:?}"
     );
-    let e = build("", 1_000_000, 1).err().expect("must fail");
+    let e = build("", 1_000_000, 1).expect_err("must fail");
     assert!(
         matches!(e, PlacementError::TooManyCreatures { .. }),
         "{e:?}"
