@@ -97,11 +97,122 @@ pub fn circle_touches_segment(c: Vec2, r: f64, seg: &Segment) -> bool {
     point_segment_distance_squared(c, seg) <= r * r
 }
 
-/// Twice the signed area of the triangle (a, b, c): positive, negative or zero as c lies on
-/// one side of the line a→b, the other, or on it.
+/// Twice the signed area of the triangle (a, b, c), with its sign exact for the given f64
+/// values: positive, negative or zero exactly as c lies on one side of the line a→b, the
+/// other, or on it. (In the screen frame, positive means a→b→c turns clockwise on screen.)
+///
+/// A plain float determinant can get the sign wrong, or miss an exact zero, when c lies
+/// within rounding error of the line; then T-junctions, shared corners and collinear walls
+/// would depend on float accidents. This is Shewchuk's adaptive `orient2d`: the float
+/// determinant is returned when its error bound proves the sign, and the rare remaining
+/// cases are decided by exact expansion arithmetic (then the value is just -1, 0 or 1).
+/// Exact unless a product underflows (coordinate differences below ~1e-150 LU).
 #[inline]
 fn orientation(a: Vec2, b: Vec2, c: Vec2) -> f64 {
-    (b - a).perp_dot(c - a)
+    let detleft = (a.x - c.x) * (b.y - c.y);
+    let detright = (a.y - c.y) * (b.x - c.x);
+    let det = detleft - detright;
+    let detsum = if detleft > 0.0 {
+        if detright <= 0.0 {
+            return det;
+        }
+        detleft + detright
+    } else if detleft < 0.0 {
+        if detright >= 0.0 {
+            return det;
+        }
+        -detleft - detright
+    } else {
+        // A factor is exactly zero, so detleft is exact and det = -detright is exact in sign.
+        return det;
+    };
+    // Shewchuk's ccwerrboundA = (3 + 16ε)ε with ε = 2^-53.
+    const EPS: f64 = f64::EPSILON * 0.5;
+    const ERRBOUND_A: f64 = (3.0 + 16.0 * EPS) * EPS;
+    let errbound = ERRBOUND_A * detsum;
+    if det >= errbound || -det >= errbound {
+        return det;
+    }
+    orientation_exact(a, b, c)
+}
+
+/// The sign (-1, 0 or 1) of (a.x−c.x)(b.y−c.y) − (a.y−c.y)(b.x−c.x), computed exactly: every
+/// difference and product is split into error-free float pairs and their sum is accumulated
+/// as a non-overlapping expansion, whose largest component carries the sign.
+#[cold]
+fn orientation_exact(a: Vec2, b: Vec2, c: Vec2) -> f64 {
+    let (acx, acxt) = two_diff(a.x, c.x);
+    let (acy, acyt) = two_diff(a.y, c.y);
+    let (bcx, bcxt) = two_diff(b.x, c.x);
+    let (bcy, bcyt) = two_diff(b.y, c.y);
+    let mut expansion = [0.0f64; 16];
+    let mut len = 0usize;
+    let products = [
+        (acx, bcy),
+        (acx, bcyt),
+        (acxt, bcy),
+        (acxt, bcyt),
+        (-acy, bcx),
+        (-acy, bcxt),
+        (-acyt, bcx),
+        (-acyt, bcxt),
+    ];
+    for (x, y) in products {
+        let (p, e) = two_product(x, y);
+        len = grow_expansion(&mut expansion, len, e);
+        len = grow_expansion(&mut expansion, len, p);
+    }
+    // Non-overlapping components in increasing magnitude: the last non-zero one dominates.
+    match expansion[..len].iter().rev().find(|&&x| x != 0.0) {
+        Some(&x) if x > 0.0 => 1.0,
+        Some(&x) if x < 0.0 => -1.0,
+        Some(&x) => x, // NaN input stays NaN
+        None => 0.0,
+    }
+}
+
+/// Knuth's TwoSum: a + b = s + e exactly.
+#[inline]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bv = s - a;
+    let av = s - bv;
+    (s, (a - av) + (b - bv))
+}
+
+/// a − b = s + e exactly.
+#[inline]
+fn two_diff(a: f64, b: f64) -> (f64, f64) {
+    two_sum(a, -b)
+}
+
+/// a · b = p + e exactly (barring underflow). `libm::fma` is correctly rounded on every
+/// platform, unlike some system fma implementations.
+#[inline]
+fn two_product(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    (p, libm::fma(a, b, -p))
+}
+
+/// Shewchuk's Grow-Expansion with zero elimination: adds `b` to the non-overlapping
+/// expansion `e[..len]` (increasing magnitude) in place and returns the new length. The
+/// length grows by at most one, so 16 additions fit in 16 slots.
+fn grow_expansion(e: &mut [f64; 16], len: usize, b: f64) -> usize {
+    let mut q = b;
+    let mut out = 0usize;
+    for i in 0..len {
+        let (s, h) = two_sum(q, e[i]);
+        q = s;
+        if h != 0.0 {
+            e[out] = h;
+            out += 1;
+        }
+    }
+    if q != 0.0 && out < e.len() {
+        e[out] = q;
+        out += 1;
+    }
+    out
 }
 
 /// Given that `p` is collinear with segment (a, b), does it lie within the segment's box?
@@ -193,11 +304,18 @@ pub fn ray_circle(origin: Vec2, dir: Vec2, centre: Vec2, radius: f64) -> Option<
         // Outside and pointing away.
         return None;
     }
-    let disc = b * b - a * c;
+    // The discriminant b² − ac equals a r² − (m × dir)² (Lagrange's identity); this form
+    // measures the ray's distance from the centre directly instead of cancelling two large
+    // squares, so a ray passing just beside a small circle is not counted as a hit.
+    let cross = m.perp_dot(dir);
+    let disc = a * (radius * radius) - cross * cross;
     if disc < 0.0 {
         return None;
     }
-    Some((-b - disc.sqrt()) / a)
+    // The nearer root (-b - √disc)/a, written as c/(√disc - b) (the product of the roots is
+    // c/a) so that it does not cancel when the origin is close to the circle. b < 0 here
+    // (b = 0 would make disc = -ac < 0), so the denominator is positive.
+    Some(c / (disc.sqrt() - b))
 }
 
 /// Does the segment touch the circle (share at least one point with the disc)?

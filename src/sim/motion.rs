@@ -37,6 +37,13 @@
 //!   centre may never pass to the wall's other side).
 //!
 //! A creature that starts clear of everything is judged by plain §8.2, so it always ends clear.
+//!
+//! # What §8.2 does not catch
+//!
+//! As in the report, bodies are tested only at the end point, and the body is tested only at
+//! the end point: within one tick the body may sweep over a wall corner, and a creature moving
+//! farther in one tick than the combined diameters can pass another body. Walls cannot be
+//! crossed: the centre's path is tested against them exactly (see `geometry`).
 
 use crate::geometry::{
     circle_touches_segment, circles_touch, point_segment_distance_squared, segments_intersect,

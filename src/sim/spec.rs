@@ -29,6 +29,28 @@ pub const MIN_GRID_PITCH: f64 = 1.0e-6;
 /// Most halvings of the §8.2 binary search: after 64 the midpoint no longer changes in f64.
 pub const MAX_SEARCH_STEPS: u64 = 64;
 
+/// Fixed-length arrays read exactly: the `toml` crate silently drops extra elements when it
+/// fills a Rust array (`arena = [300, 300, 300]` would read as `[300, 300]`), so every
+/// array field goes through a `Vec` and its length is checked.
+mod exact {
+    use serde::de::Error;
+    use serde::{Deserialize, Deserializer};
+
+    pub fn array<'de, D: Deserializer<'de>, const N: usize>(d: D) -> Result<[f64; N], D::Error> {
+        let values = Vec::<f64>::deserialize(d)?;
+        let n = values.len();
+        values
+            .try_into()
+            .map_err(|_| D::Error::invalid_length(n, &format!("an array of {N} numbers").as_str()))
+    }
+
+    pub fn option_array<'de, D: Deserializer<'de>, const N: usize>(
+        d: D,
+    ) -> Result<Option<[f64; N]>, D::Error> {
+        array(d).map(Some)
+    }
+}
+
 /// A point `[x, y]` in LU.
 pub type Point = [f64; 2];
 /// An axis-aligned rectangle `[x0, y0, x1, y1]` in LU with `x0 <= x1` and `y0 <= y1`.
@@ -41,6 +63,7 @@ pub type Region = [f64; 4];
 pub struct WorldSpec {
     /// Arena size `[width, height]` in LU; the arena is `[0, width] x [0, height]`
     /// (default: `[300, 300]`, §3).
+    #[serde(deserialize_with = "exact::array")]
     pub arena: [f64; 2],
     /// Add the four walls along the arena's edges (default: true, §3). Boundary walls are
     /// opaque, grey and 10 LU high.
@@ -92,15 +115,17 @@ impl Default for WorldSpec {
 #[serde(deny_unknown_fields)]
 pub struct WallSpec {
     /// First end point `[x, y]` in LU (required; inside the arena).
+    #[serde(deserialize_with = "exact::array")]
     pub from: Point,
     /// Second end point `[x, y]` in LU (required; inside the arena, not equal to `from`).
+    #[serde(deserialize_with = "exact::array")]
     pub to: Point,
     /// Stops smells passing through it (default: true). Every wall blocks movement and is
     /// felt by whiskers, opaque or not.
     #[serde(default = "default_true")]
     pub opaque: bool,
     /// Colour `[r, g, b]`, each in [0, 1], for the eye and for pictures (default: grey 0.5).
-    #[serde(default = "default_wall_colour")]
+    #[serde(default = "default_wall_colour", deserialize_with = "exact::array")]
     pub colour: [f64; 3],
     /// Height in LU, for the eye (default: 10, §4.1).
     #[serde(default = "default_wall_height")]
@@ -126,13 +151,101 @@ fn default_wall_height() -> f64 {
 
 /// A kind of object (`[world.kinds.<name>]`), chosen by `class = "food"` or
 /// `class = "aversive"`. Each class accepts only its own keys.
+///
+/// Read through [`RawKind`] rather than serde's internally tagged enums: those buffer the
+/// table before choosing the variant, and the `toml` crate then loses the key of a bad value
+/// inside it ("invalid length 2" without saying which array).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "class", rename_all = "snake_case")]
+#[serde(tag = "class", rename_all = "snake_case", try_from = "RawKind")]
 pub enum KindSpec {
     /// Food (§4.3): substance a creature can eat.
     Food(FoodKind),
     /// An aversive object (§4.4): shocks a creature touching it.
     Aversive(AversiveKind),
+}
+
+/// The class of a kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+enum Class {
+    Food,
+    Aversive,
+}
+
+/// Every key a kind table may hold, as read from the file; see [`FoodKind`] and
+/// [`AversiveKind`] for their meaning and defaults.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawKind {
+    class: Class,
+    #[serde(default)]
+    radius: f64,
+    #[serde(default, deserialize_with = "exact::option_array")]
+    substance: Option<[f64; 4]>,
+    #[serde(default, deserialize_with = "exact::option_array")]
+    capacity: Option<[f64; 4]>,
+    #[serde(default, deserialize_with = "exact::option_array")]
+    bite: Option<[f64; 4]>,
+    #[serde(default, deserialize_with = "exact::option_array")]
+    regen: Option<[f64; 4]>,
+    #[serde(default)]
+    depletes: Option<bool>,
+    #[serde(default)]
+    smell_follows_amount: Option<bool>,
+    #[serde(default, deserialize_with = "exact::option_array")]
+    odour: Option<[f64; 8]>,
+    #[serde(default)]
+    intensity: f64,
+    #[serde(default)]
+    range: Option<f64>,
+}
+
+impl TryFrom<RawKind> for KindSpec {
+    type Error = String;
+
+    fn try_from(raw: RawKind) -> Result<KindSpec, String> {
+        let odour = raw.odour.unwrap_or([0.0; 8]);
+        match raw.class {
+            Class::Food => {
+                let d = FoodKind::default();
+                Ok(KindSpec::Food(FoodKind {
+                    radius: raw.radius,
+                    substance: raw.substance.unwrap_or(d.substance),
+                    capacity: raw.capacity,
+                    bite: raw.bite.unwrap_or(d.bite),
+                    regen: raw.regen.unwrap_or(d.regen),
+                    depletes: raw.depletes.unwrap_or(d.depletes),
+                    smell_follows_amount: raw
+                        .smell_follows_amount
+                        .unwrap_or(d.smell_follows_amount),
+                    odour,
+                    intensity: raw.intensity,
+                    range: raw.range,
+                }))
+            }
+            Class::Aversive => {
+                let food_only = [
+                    ("substance", raw.substance.is_some()),
+                    ("capacity", raw.capacity.is_some()),
+                    ("bite", raw.bite.is_some()),
+                    ("regen", raw.regen.is_some()),
+                    ("depletes", raw.depletes.is_some()),
+                    ("smell_follows_amount", raw.smell_follows_amount.is_some()),
+                ];
+                if let Some((key, _)) = food_only.iter().find(|(_, set)| *set) {
+                    return Err(format!(
+                        "`{key}` applies only to food kinds, and this kind has class = \"aversive\""
+                    ));
+                }
+                Ok(KindSpec::Aversive(AversiveKind {
+                    radius: raw.radius,
+                    odour,
+                    intensity: raw.intensity,
+                    range: raw.range,
+                }))
+            }
+        }
+    }
 }
 
 impl KindSpec {
@@ -146,8 +259,7 @@ impl KindSpec {
 }
 
 /// A food kind (§4.3, §5.2–5.3). Substance vectors are ⟨A, B, C, D⟩.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FoodKind {
     /// Radius in LU; 0 is a point (default: 0, "typically the radius is 0").
     pub radius: f64,
@@ -155,7 +267,11 @@ pub struct FoodKind {
     pub substance: [f64; 4],
     /// Most substance the object can hold: regeneration stops there, and `smell_follows_amount`
     /// divides by its total (default: absent = equal to `substance`). Must be >= `substance`.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "exact::option_array"
+    )]
     pub capacity: Option<[f64; 4]>,
     /// Bite b: substance moved to the creature per eating tick, per type; the creature gets
     /// min(bite, what is left) (default: `[1, 1, 1, 1]`).
@@ -202,8 +318,7 @@ impl FoodKind {
 }
 
 /// An aversive kind (§4.4): a circle or point that shocks creatures touching it, and smells.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
-#[serde(deny_unknown_fields, default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Default)]
 pub struct AversiveKind {
     /// Radius in LU; 0 is a point (default: 0).
     pub radius: f64,
@@ -223,6 +338,7 @@ pub struct ObjectSpec {
     /// Name of its kind in `[world.kinds]` (required).
     pub kind: String,
     /// Centre `[x, y]` in LU, inside the arena (required).
+    #[serde(deserialize_with = "exact::array")]
     pub position: Point,
 }
 
@@ -236,7 +352,11 @@ pub struct PlaceSpec {
     /// How many objects (required; the world's total is at most 100000).
     pub count: u64,
     /// `[x0, y0, x1, y1]` in LU where centres may go (default: absent = the whole arena).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "exact::option_array"
+    )]
     pub region: Option<Region>,
     /// Smallest distance in LU between the centre of a new object and the centre of every
     /// object placed before it, explicit or random (default: 0 = no constraint).
@@ -255,7 +375,11 @@ pub struct StartSpec {
     /// `[x0, y0, x1, y1]` in LU where body centres may start (default: absent = the whole
     /// arena). Each creature is placed uniformly in it, touching no wall, other creature, food
     /// or aversive object.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "exact::option_array"
+    )]
     pub region: Option<Region>,
     /// Initial heading in degrees, 0 = +x, 90 = +y (down the screen) (default: absent = a
     /// uniformly random heading for each creature).
@@ -292,6 +416,7 @@ pub struct CreatureSpec {
     /// Wheel parameter w of eq. 28–33 in LU (default: 2).
     pub wheel: f64,
     /// Body odour o = ⟨o1..o8⟩ that other creatures smell (default: zeros).
+    #[serde(deserialize_with = "exact::array")]
     pub odour: [f64; 8],
     /// Intensity of the body odour (default: 0).
     pub odour_intensity: f64,
@@ -304,10 +429,13 @@ pub struct CreatureSpec {
     /// (default: false).
     pub inhibit_smell_on_whisker: bool,
     /// Metabolic state m = ⟨fA, fB, fC, fD⟩ at birth (default: zeros).
+    #[serde(deserialize_with = "exact::array")]
     pub initial_metabolism: [f64; 4],
     /// Decrease of m per tick (default: zeros).
+    #[serde(deserialize_with = "exact::array")]
     pub decay_per_tick: [f64; 4],
     /// Decrease of m per LU travelled (default: zeros).
+    #[serde(deserialize_with = "exact::array")]
     pub decay_per_lu: [f64; 4],
     /// Sensor groups the controller receives (`[creature.inputs]`).
     pub inputs: InputsSpec,
