@@ -146,11 +146,11 @@ fn resumed_run_equals_uninterrupted_run() {
     csv.extend_from_slice(b"8,108,0.5,0.");
     std::fs::write(killed.join("fitness.csv"), csv).unwrap();
     std::fs::write(killed.join("best.json"), b"{ half a file").unwrap();
-    std::fs::write(killed.join("checkpoints/.gen-000005.json.tmp-999"), b"junk").unwrap();
+    std::fs::write(killed.join("checkpoints/.gen-000005.json.tmp-999-0"), b"junk").unwrap();
     run_ok(&["resume", killed.to_str().unwrap(), "--quiet"]);
     assert_same_outputs(&full, &killed, "resume after a kill");
     assert!(
-        !killed.join("checkpoints/.gen-000005.json.tmp-999").exists(),
+        !killed.join("checkpoints/.gen-000005.json.tmp-999-0").exists(),
         "stale temporary file left behind"
     );
 }
@@ -313,7 +313,7 @@ fn damaged_or_foreign_checkpoints_and_genomes_are_refused() {
         other.to_str().unwrap(),
         "--quiet",
         "--generations",
-        "2",
+        "10",
     ]);
     let foreign = checkpoints(&other).pop().unwrap();
     let planted = dir.join("checkpoints/gen-000009.json");
