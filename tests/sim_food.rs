@@ -238,7 +238,10 @@ fn a_wall_stopping_the_move_shocks_only_with_wall_shock() {
             shocked.push(w.creatures()[0].shocked);
         }
         let x = w.creatures()[0].pose.position.x;
-        assert!((3.0..3.01).contains(&x), "stopped against the wall, x = {x}");
+        assert!(
+            (3.0..3.01).contains(&x),
+            "stopped against the wall, x = {x}"
+        );
         let want = if wall_shock {
             vec![false, false, true, true]
         } else {

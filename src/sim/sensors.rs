@@ -6,6 +6,7 @@ use crate::geometry::{circles_touch, segment_touches_circle, segments_intersect,
 use crate::sim::controller::{ObservationLayout, SensorGroup};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::smell::{accumulate, saturate, Smell};
+use crate::sim::wall::BoxedSegment;
 use crate::sim::world::Creature;
 
 /// The body geometry the senses need, precomputed from the creature spec once per world.
@@ -42,10 +43,10 @@ impl Body {
 /// Everything around a creature that its senses read: the world as left by the objects that
 /// moved before it this tick.
 pub struct Surroundings<'a> {
-    /// Segments of every wall (what whiskers feel).
-    pub walls: &'a [Segment],
-    /// Segments of opaque walls (what hides smells).
-    pub opaque: &'a [Segment],
+    /// Every wall (what whiskers feel).
+    pub walls: &'a [BoxedSegment],
+    /// Opaque walls (what hides smells).
+    pub opaque: &'a [BoxedSegment],
     /// Food objects.
     pub food: &'a [Food],
     /// Aversive objects.
@@ -73,7 +74,10 @@ impl Surroundings<'_> {
     /// than creature `me`'s own body? Point objects (radius 0) are not felt (SPEC-NOTES).
     pub fn whisker_touches(&self, me: usize, body: &Body, from: Vec2, tip: Vec2) -> bool {
         let whisker = Segment::new(from, tip);
-        self.walls.iter().any(|w| segments_intersect(&whisker, w))
+        let (lo, hi) = (from.min(tip), from.max(tip));
+        self.walls
+            .iter()
+            .any(|w| w.may_meet(lo, hi) && segments_intersect(&whisker, &w.segment))
             || self.creatures.iter().enumerate().any(|(j, c)| {
                 j != me && c.alive && segment_touches_circle(&whisker, c.pose.position, body.radius)
             })

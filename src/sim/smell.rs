@@ -2,6 +2,7 @@
 //! (eq. 25, cut off by the range θ of eq. 26), and how opaque walls hide it from a receptor.
 
 use crate::geometry::{segments_intersect, Segment, Vec2};
+use crate::sim::wall::BoxedSegment;
 use serde::{Deserialize, Serialize};
 
 /// What one smelly thing gives off, precomputed for the receptor loop.
@@ -50,9 +51,12 @@ pub fn falloff(d2: f64, c: f64, range_squared: f64) -> f64 {
 /// §7.1: a thing at `centre` is visible to a receptor at `receptor` when the segment between
 /// them crosses no opaque wall (touching counts as crossing, as everywhere in §6).
 #[inline]
-pub fn visible(receptor: Vec2, centre: Vec2, opaque: &[Segment]) -> bool {
+pub fn visible(receptor: Vec2, centre: Vec2, opaque: &[BoxedSegment]) -> bool {
     let line = Segment::new(receptor, centre);
-    !opaque.iter().any(|wall| segments_intersect(&line, wall))
+    let (lo, hi) = (receptor.min(centre), receptor.max(centre));
+    !opaque
+        .iter()
+        .any(|wall| wall.may_meet(lo, hi) && segments_intersect(&line, &wall.segment))
 }
 
 /// Adds the smell of one thing at `centre` to a receptor's accumulator `acc`: `scale` · I(d) ·
@@ -67,7 +71,7 @@ pub fn accumulate(
     smell: &Smell,
     scale: f64,
     c: f64,
-    opaque: &[Segment],
+    opaque: &[BoxedSegment],
 ) {
     if smell.silent || scale == 0.0 {
         return;

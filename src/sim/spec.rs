@@ -152,7 +152,7 @@ fn default_wall_height() -> f64 {
 /// A kind of object (`[world.kinds.<name>]`), chosen by `class = "food"` or
 /// `class = "aversive"`. Each class accepts only its own keys.
 ///
-/// Read through [`RawKind`] rather than serde's internally tagged enums: those buffer the
+/// Read through a flat raw table (every key optional) rather than serde's internally tagged enums: those buffer the
 /// table before choosing the variant, and the `toml` crate then loses the key of a bad value
 /// inside it ("invalid length 2" without saying which array).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -31,15 +31,45 @@ impl Wall {
     }
 }
 
+/// A wall segment with its bounding box, so that the sensor loops can reject far walls with
+/// four inline comparisons before calling the exact intersection test (eq. 5–8 done once per
+/// wall instead of once per query).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BoxedSegment {
+    /// The segment.
+    pub segment: Segment,
+    /// Smallest x and y of its end points.
+    pub lo: Vec2,
+    /// Largest x and y of its end points.
+    pub hi: Vec2,
+}
+
+impl BoxedSegment {
+    /// `segment` with its box.
+    pub fn new(segment: Segment) -> BoxedSegment {
+        let (lo, hi) = segment.bounds();
+        BoxedSegment { segment, lo, hi }
+    }
+
+    /// Can this wall meet anything inside the box `[lo, hi]`? False only when the boxes are
+    /// disjoint (touching boxes may meet).
+    #[inline]
+    pub fn may_meet(&self, lo: Vec2, hi: Vec2) -> bool {
+        !(self.hi.x < lo.x || hi.x < self.lo.x || self.hi.y < lo.y || hi.y < self.lo.y)
+    }
+}
+
 /// The walls of a world and the lists the tick loop reads, built once per world.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Walls {
     walls: Vec<Wall>,
-    /// Every wall's segment: what blocks motion and what whiskers feel.
+    /// Every wall's segment: what blocks motion.
     blocking: Vec<Segment>,
-    /// Opaque walls' segments only: what occludes smell. Kept apart so that smell tests do
-    /// not skip over transparent walls one by one.
-    opaque: Vec<Segment>,
+    /// The same with boxes: what whiskers feel.
+    felt: Vec<BoxedSegment>,
+    /// Opaque walls only: what occludes smell. Kept apart so that smell tests do not skip
+    /// over transparent walls one by one.
+    opaque: Vec<BoxedSegment>,
 }
 
 impl Walls {
@@ -65,15 +95,17 @@ impl Walls {
             }
         }
         walls.extend(spec.walls.iter().map(Wall::from_spec));
-        let blocking = walls.iter().map(|w| w.segment).collect();
+        let blocking: Vec<Segment> = walls.iter().map(|w| w.segment).collect();
+        let felt = blocking.iter().copied().map(BoxedSegment::new).collect();
         let opaque = walls
             .iter()
             .filter(|w| w.opaque)
-            .map(|w| w.segment)
+            .map(|w| BoxedSegment::new(w.segment))
             .collect();
         Walls {
             walls,
             blocking,
+            felt,
             opaque,
         }
     }
@@ -83,13 +115,18 @@ impl Walls {
         &self.walls
     }
 
-    /// Segments that block movement and are felt by whiskers.
+    /// Segments that block movement (every wall).
     pub fn blocking(&self) -> &[Segment] {
         &self.blocking
     }
 
-    /// Segments that stop smells.
-    pub fn opaque(&self) -> &[Segment] {
+    /// Segments whiskers feel (every wall), with boxes.
+    pub fn felt(&self) -> &[BoxedSegment] {
+        &self.felt
+    }
+
+    /// Segments that stop smells, with boxes.
+    pub fn opaque(&self) -> &[BoxedSegment] {
         &self.opaque
     }
 }

@@ -94,6 +94,9 @@ pub struct World {
     /// Kind names; `Food::kind` and `Aversive::kind` index this.
     kinds: Vec<String>,
     food: Vec<Food>,
+    /// Indices of the food objects that regenerate, in list order, so that worlds of
+    /// non-regenerating food pay nothing for phase 1.
+    regrowing: Vec<usize>,
     aversives: Vec<Aversive>,
     creatures: Vec<Creature>,
     body: Body,
@@ -141,6 +144,9 @@ impl World {
             &objects,
             &mut rng,
         )?;
+        let regrowing = (0..objects.food.len())
+            .filter(|&i| objects.food[i].regen.iter().any(|&r| r > 0.0))
+            .collect();
         let phi = creature.whisker_angle_radians();
         let layout = creature.layout();
         Ok(World {
@@ -149,6 +155,7 @@ impl World {
             walls,
             kinds: world.kinds.keys().cloned().collect(),
             food: objects.food,
+            regrowing,
             aversives: objects.aversives,
             creatures: poses
                 .into_iter()
@@ -212,15 +219,15 @@ impl World {
 
     /// Phase 1: every food object regenerates, in list order.
     fn regenerate_food(&mut self) {
-        for f in &mut self.food {
-            f.regenerate();
+        for &i in &self.regrowing {
+            self.food[i].regenerate();
         }
     }
 
     /// Phase 2.1: creature `i` senses and its observation is written.
     fn sense(&mut self, i: usize) {
         let surroundings = Surroundings {
-            walls: self.walls.blocking(),
+            walls: self.walls.felt(),
             opaque: self.walls.opaque(),
             food: &self.food,
             aversives: &self.aversives,

@@ -1,0 +1,109 @@
+//! A tick allocates nothing: a counting global allocator watches `World::step` on a world
+//! with walls, smelly food, aversive objects and several creatures, every sensor switched on.
+
+mod sim_common;
+use berry_evolve::sim::scripted::ScriptedSpec;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Counting;
+
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+thread_local! {
+    // Only the test thread's allocations inside the measured loop count.
+    static ACTIVE: Cell<bool> = const { Cell::new(false) };
+}
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if ACTIVE.try_with(Cell::get).unwrap_or(false) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        if ACTIVE.try_with(Cell::get).unwrap_or(false) {
+            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        }
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+const WORLD: &str = r#"
+[[world.walls]]
+from = [150, 20]
+to = [150, 280]
+
+[[world.walls]]
+from = [20, 150]
+to = [120, 150]
+opaque = false
+
+[world.kinds.rose]
+class = "food"
+radius = 1
+regen = [0.01, 0, 0, 0]
+capacity = [2, 0, 0, 0]
+smell_follows_amount = true
+odour = [1, 0, 0, 0, 0, 0, 0, 0]
+intensity = 0.5
+
+[world.kinds.nettle]
+class = "aversive"
+radius = 2
+odour = [0, 1, 0, 0, 0, 0, 0, 0]
+intensity = 0.5
+range = 50
+
+[[world.place]]
+kind = "rose"
+count = 30
+
+[[world.place]]
+kind = "nettle"
+count = 10
+
+[creature]
+odour = [0, 0, 1, 0, 0, 0, 0, 0]
+odour_intensity = 0.3
+eating = "action"
+decay_per_lu = [0.01, 0, 0, 0]
+
+[creature.inputs]
+metabolism = true
+"#;
+
+#[test]
+fn step_does_not_allocate() {
+    let mut w = sim_common::world(WORLD, 5, 1);
+    w.set_full_sensing(true);
+    let spec = ScriptedSpec::Braitenberg {
+        receptor: 1,
+        gain: 0.5,
+        base: 0.1,
+    };
+    let mut controllers = vec![spec.build(w.layout()).unwrap(); 5];
+    // One tick outside the count, in case anything lazy happens on first use.
+    w.step(&mut controllers);
+    ACTIVE.with(|a| a.set(true));
+    for _ in 0..2_000 {
+        w.step(&mut controllers);
+    }
+    ACTIVE.with(|a| a.set(false));
+    let n = ALLOCATIONS.load(Ordering::Relaxed);
+    assert_eq!(n, 0, "{n} heap allocations in 2000 ticks");
+    assert!(
+        w.creatures().iter().any(|c| c.travelled > 10.0),
+        "nobody moved"
+    );
+}
