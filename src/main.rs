@@ -8,6 +8,13 @@ use clap::Parser;
 fn main() {
     let cli = cli::Cli::parse();
     if let Err(error) = cli::dispatch(cli) {
+        // A reader that closed the pipe (`berry-evolve inspect x.toml | head`) is not an error.
+        if error.chain().any(|c| {
+            c.downcast_ref::<std::io::Error>()
+                .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe)
+        }) {
+            std::process::exit(0);
+        }
         eprintln!("error: {error}");
         for cause in error.chain().skip(1) {
             eprintln!("  caused by: {cause}");

@@ -146,11 +146,17 @@ fn resumed_run_equals_uninterrupted_run() {
     csv.extend_from_slice(b"8,108,0.5,0.");
     std::fs::write(killed.join("fitness.csv"), csv).unwrap();
     std::fs::write(killed.join("best.json"), b"{ half a file").unwrap();
-    std::fs::write(killed.join("checkpoints/.gen-000005.json.tmp-999-0"), b"junk").unwrap();
+    std::fs::write(
+        killed.join("checkpoints/.gen-000005.json.tmp-999-0"),
+        b"junk",
+    )
+    .unwrap();
     run_ok(&["resume", killed.to_str().unwrap(), "--quiet"]);
     assert_same_outputs(&full, &killed, "resume after a kill");
     assert!(
-        !killed.join("checkpoints/.gen-000005.json.tmp-999-0").exists(),
+        !killed
+            .join("checkpoints/.gen-000005.json.tmp-999-0")
+            .exists(),
         "stale temporary file left behind"
     );
 }
