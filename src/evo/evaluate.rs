@@ -267,12 +267,10 @@ pub fn evaluate_population(
     // Serial reduction in index order: outcomes[g * trials + t][i] is individual g*k + i.
     let mut evaluations = Vec::with_capacity(population.len());
     let mut trial_list = Vec::with_capacity(trials as usize);
-    for g in 0..groups {
+    for group_trials in outcomes.chunks(trials as usize) {
         for i in 0..k {
             trial_list.clear();
-            for t in 0..trials as usize {
-                trial_list.push(outcomes[g * trials as usize + t][i]);
-            }
+            trial_list.extend(group_trials.iter().map(|outcome| outcome[i]));
             evaluations.push(aggregate(experiment, &trial_list));
         }
     }

@@ -475,7 +475,7 @@ fn drive(
         }
         let row = state.row(&evaluated, &summary);
         state.csv.append(&row)?;
-        state.history.push(row.clone());
+        state.history.push(row);
         progress.generation(&row);
         let is_last = generation + 1 >= total;
         let stop_requested = options.stop.is_some_and(|s| s.load(Ordering::SeqCst));
