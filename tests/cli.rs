@@ -345,3 +345,51 @@ fn damaged_or_foreign_checkpoints_and_genomes_are_refused() {
     ]);
     assert!(err.contains("best.json") && err.contains("inputs"), "{err}");
 }
+
+#[test]
+fn simulate_writes_the_same_trace_twice() {
+    let tmp = tempfile::tempdir().unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for demo in [
+        "experiments/open-arena.toml",
+        "experiments/walled-arena.toml",
+    ] {
+        let file = root.join(demo);
+        let a = tmp.path().join("a.csv");
+        let b = tmp.path().join("b.csv");
+        for trace in [&a, &b] {
+            run_ok(&[
+                "simulate",
+                file.to_str().unwrap(),
+                "--ticks",
+                "300",
+                "--trace",
+                trace.to_str().unwrap(),
+            ]);
+        }
+        let text = std::fs::read_to_string(&a).unwrap();
+        assert!(text.starts_with("tick,creature,x,y,heading,"), "{demo}");
+        assert!(read(&a) == read(&b), "{demo}: traces differ");
+    }
+}
+
+#[test]
+fn hand_designed_forager_replays_and_eats() {
+    // All five trials of generation 0: single worlds can hold no reachable food.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = run_ok(&[
+        "replay",
+        root.join("genomes/braitenberg-forager.json")
+            .to_str()
+            .unwrap(),
+        "--experiment",
+        root.join("experiments/foraging.toml").to_str().unwrap(),
+    ]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    let line = text.lines().find(|l| l.starts_with("fitness ")).unwrap();
+    let fitness: f64 = line.split_whitespace().nth(1).unwrap().parse().unwrap();
+    assert!(
+        fitness > 0.0,
+        "the hand-designed forager should eat something:\n{text}"
+    );
+}
