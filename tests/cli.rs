@@ -133,6 +133,11 @@ fn resumed_run_equals_uninterrupted_run() {
         "1",
     ]);
     assert_same_outputs(&full, &short, "extended run");
+    let err = run_err(&["resume", short.to_str().unwrap(), "--generations", "5"]);
+    assert!(
+        err.contains("already holds 8 completed generations"),
+        "{err}"
+    );
 
     // Killed between checkpoints: the folder holds rows past its newest checkpoint and a
     // half-written row; the newer checkpoints are gone.

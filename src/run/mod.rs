@@ -95,6 +95,16 @@ pub enum RunError {
         /// Hash in the checkpoint (short).
         expected: String,
     },
+    /// `resume --generations N` asked for fewer generations than the checkpoint holds.
+    #[error("--generations {requested}: checkpoint {checkpoint} already holds {completed} completed generations; ask for at least that many")]
+    TooFewGenerations {
+        /// What was asked for.
+        requested: u64,
+        /// Generations the checkpoint holds.
+        completed: u64,
+        /// The checkpoint.
+        checkpoint: PathBuf,
+    },
     /// Stopped by the user (Ctrl-C / SIGTERM) after writing a checkpoint.
     #[error("interrupted after generation {generation}; the checkpoint {checkpoint} holds it. Continue with: berry-evolve resume {dir}")]
     Interrupted {
@@ -246,6 +256,13 @@ pub fn resume(
         }
     }
     if let Some(g) = generations {
+        if g < payload.last.generation + 1 {
+            return Err(RunError::TooFewGenerations {
+                requested: g,
+                completed: payload.last.generation + 1,
+                checkpoint: loaded_path,
+            });
+        }
         experiment.evolution.generations = g;
     }
     experiment
