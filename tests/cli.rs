@@ -108,6 +108,18 @@ fn same_seed_gives_same_bytes_with_one_or_two_threads() {
         "header + one row per generation"
     );
     assert!(csv.starts_with("generation,evaluations,best,mean,median,worst,std,best_ever,"));
+    // The bare form `berry-evolve FILE` (the README's main command) is the same as `run FILE`.
+    let bare = tmp.path().join("bare");
+    let exp = fixture("tiny.toml");
+    run_ok(&[
+        exp.to_str().unwrap(),
+        "--out",
+        bare.to_str().unwrap(),
+        "--quiet",
+        "--jobs",
+        "2",
+    ]);
+    assert_same_outputs(&a, &bare, "bare command vs run");
     // A different seed is a different run.
     let d = tmp.path().join("d");
     run_tiny(&d, &["--seed", "6"]);

@@ -23,14 +23,20 @@ pub struct RunArgs {
     /// Override the number of generations.
     #[arg(long)]
     pub generations: Option<u64>,
-    #[command(flatten)]
-    pub execution: ExecutionArgs,
+    // Not `#[command(flatten)] ExecutionArgs`: clap leaves the top-level `Option<RunArgs>`
+    // (the bare `berry-evolve FILE` form) as None when it holds a nested flatten.
+    /// Worker threads (default: one per core). Results do not depend on it.
+    #[arg(long)]
+    pub jobs: Option<usize>,
+    /// Print nothing but errors.
+    #[arg(long, short)]
+    pub quiet: bool,
     /// Replace a run already in the run folder.
     #[arg(long)]
     pub force: bool,
 }
 
-/// How a run executes, shared by `run` and `resume`; none of it changes the results.
+/// How a resumed run executes; none of it changes the results.
 #[derive(Debug, Args)]
 pub struct ExecutionArgs {
     /// Worker threads (default: one per core). Results do not depend on it.
@@ -74,18 +80,18 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     })?;
     let dir = args.out.unwrap_or_else(|| experiment.default_run_dir());
     let stop = stop_flag()?;
-    let mut progress = reporter(args.execution.quiet);
+    let mut progress = reporter(args.quiet);
     let summary = start(
         experiment,
         &dir,
         args.force,
         RunOptions {
-            jobs: args.execution.jobs.unwrap_or(0),
+            jobs: args.jobs.unwrap_or(0),
             stop: Some(&stop),
         },
         progress.as_mut(),
     )?;
-    if !args.execution.quiet {
+    if !args.quiet {
         report(&summary);
     }
     Ok(())
