@@ -1,5 +1,6 @@
 //! A tick allocates nothing: a counting global allocator watches `World::step` on a world
-//! with walls, smelly food, aversive objects and several creatures, every sensor switched on.
+//! with walls, smelly food, aversive objects, landmarks, smelly areas and several creatures,
+//! every sensor switched on (the eye with a 2-D retina) and noise on several groups.
 
 mod sim_common;
 use berry_evolve::sim::scripted::ScriptedSpec;
@@ -79,8 +80,42 @@ odour_intensity = 0.3
 eating = "action"
 decay_per_lu = [0.01, 0, 0, 0]
 
+[[world.landmarks]]
+position = [0, 0]
+
+[[world.landmarks]]
+position = [500, 150]
+
+[[world.areas]]
+region = [200, 200, 300, 300]
+kind = "safe"
+odour = [0, 0, 0, 1, 0, 0, 0, 0]
+intensity = 1
+
 [creature.inputs]
 metabolism = true
+landmarks = true
+areas = true
+eye = true
+
+[creature.eye]
+width = 12
+height = 4
+range = 150
+
+[creature.noise.smell]
+n = 0.1
+n_sigma = 0.05
+m = 0.2
+m_sigma = 0.1
+
+[creature.noise.eye]
+n = 0.05
+n_sigma = 0.05
+
+[creature.noise.landmarks]
+m = 0.1
+m_sigma = 0.1
 "#;
 
 #[test]

@@ -143,7 +143,7 @@ fn complete_example_parses_validates_and_builds() {
         file.demo,
         "{text}"
     );
-    let layout = file.creature.layout();
+    let layout = file.creature.layout(&file.world);
     assert_eq!(layout.range(SensorGroup::Metabolism), Some(23..27));
     let controller = file.demo.controller.build(&layout).unwrap();
     let w = World::new(&file.world, &file.creature, file.demo.creatures, rng(1)).unwrap();

@@ -152,7 +152,7 @@ impl Experiment {
 
     /// The observation layout the creature's senses produce.
     pub fn layout(&self) -> ObservationLayout {
-        self.creature.layout()
+        self.creature.layout(&self.world)
     }
 
     /// The names of the brain's outputs, in order.

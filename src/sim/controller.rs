@@ -44,23 +44,42 @@ pub enum SensorGroup {
     Shock,
     /// The metabolic vector m = ⟨fA, fB, fC, fD⟩ (§5.3), raw values.
     Metabolism,
+    /// For each distal landmark (§4.5.3), its bearing relative to the heading as (sin, cos):
+    /// straight ahead is (0, 1), to the creature's right (clockwise on screen, y down) is
+    /// (1, 0), behind is (0, −1). Two inputs per landmark of `[[world.landmarks]]`.
+    Landmarks,
+    /// One input per area of `[[world.areas]]` (§4.6): 1 while the body centre is inside.
+    Areas,
+    /// The retina of the eye (§7.4): `width × height × 3` values in [0, 1], row-major
+    /// (top row first, left column first), each pixel R, G, B.
+    Eye,
     /// A constant 1, so that networks without biases can still shift their units.
     Bias,
 }
 
 impl SensorGroup {
     /// Every group, in the order they appear in an observation.
-    pub const ORDER: [SensorGroup; 6] = [
+    ///
+    /// The groups added after the report's own senses (landmarks, areas, eye) sit after the
+    /// metabolism and before the bias; they are off by default, so genomes made for the
+    /// original layout keep their meaning.
+    pub const ORDER: [SensorGroup; 9] = [
         SensorGroup::Smell,
         SensorGroup::Whiskers,
         SensorGroup::Food,
         SensorGroup::Shock,
         SensorGroup::Metabolism,
+        SensorGroup::Landmarks,
+        SensorGroup::Areas,
+        SensorGroup::Eye,
         SensorGroup::Bias,
     ];
 
-    /// Names of the group's inputs, in order.
-    pub fn input_names(self) -> Vec<String> {
+    /// Names of the group's inputs, in order; `sizes` gives the widths that depend on the
+    /// world and the creature. Landmarks and areas count from 1 in file order
+    /// (`landmark_1_sin`, `landmark_1_cos`, `area_1`); eye pixels are `eye_<c>_<row>_<column>`
+    /// with c one of r, g, b, rows and columns from 0.
+    pub fn input_names(self, sizes: &GroupSizes) -> Vec<String> {
         match self {
             SensorGroup::Smell => ["left", "right"]
                 .iter()
@@ -76,21 +95,50 @@ impl SensorGroup {
                 .iter()
                 .map(|t| format!("metabolism_{t}"))
                 .collect(),
+            SensorGroup::Landmarks => (1..=sizes.landmarks)
+                .flat_map(|k| [format!("landmark_{k}_sin"), format!("landmark_{k}_cos")])
+                .collect(),
+            SensorGroup::Areas => (1..=sizes.areas).map(|k| format!("area_{k}")).collect(),
+            SensorGroup::Eye => {
+                let [w, h] = sizes.retina;
+                (0..h)
+                    .flat_map(|row| {
+                        (0..w).flat_map(move |col| {
+                            ["r", "g", "b"].map(|c| format!("eye_{c}_{row}_{col}"))
+                        })
+                    })
+                    .collect()
+            }
             SensorGroup::Bias => vec!["bias".into()],
         }
     }
 
-    /// How many inputs the group contributes.
-    pub fn width(self) -> usize {
+    /// How many inputs the group contributes, given the world- and creature-dependent
+    /// `sizes`.
+    pub fn width(self, sizes: &GroupSizes) -> usize {
         match self {
             SensorGroup::Smell => 16,
             SensorGroup::Whiskers => 2,
             SensorGroup::Food => 4,
             SensorGroup::Shock => 1,
             SensorGroup::Metabolism => 4,
+            SensorGroup::Landmarks => 2 * sizes.landmarks,
+            SensorGroup::Areas => sizes.areas,
+            SensorGroup::Eye => 3 * sizes.retina[0] * sizes.retina[1],
             SensorGroup::Bias => 1,
         }
     }
+}
+
+/// The sizes of the sensor groups whose width depends on the world or the creature.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct GroupSizes {
+    /// Number of distal landmarks in the world.
+    pub landmarks: usize,
+    /// Number of areas in the world.
+    pub areas: usize,
+    /// Retina `[width, height]` in pixels.
+    pub retina: [usize; 2],
 }
 
 /// Which sensor groups a creature's controller receives (`[creature.inputs]`).
@@ -109,6 +157,22 @@ pub struct InputsSpec {
     pub metabolism: bool,
     /// A constant 1 input (default: on).
     pub bias: bool,
+    /// Bearings of the distal landmarks, 2 inputs each (default: off).
+    #[serde(skip_serializing_if = "is_false")]
+    pub landmarks: bool,
+    /// Inside-area flags, 1 input per area (default: off).
+    #[serde(skip_serializing_if = "is_false")]
+    pub areas: bool,
+    /// The eye's retina, `width × height × 3` inputs (default: off; `[creature.eye]` sets
+    /// its size).
+    #[serde(skip_serializing_if = "is_false")]
+    pub eye: bool,
+}
+
+// Switches that are off are left out when an experiment is written back, so that experiment
+// files written before these groups existed keep their config hash.
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 impl Default for InputsSpec {
@@ -120,6 +184,9 @@ impl Default for InputsSpec {
             shock: true,
             metabolism: false,
             bias: true,
+            landmarks: false,
+            areas: false,
+            eye: false,
         }
     }
 }
@@ -133,6 +200,9 @@ impl InputsSpec {
             SensorGroup::Food => self.food,
             SensorGroup::Shock => self.shock,
             SensorGroup::Metabolism => self.metabolism,
+            SensorGroup::Landmarks => self.landmarks,
+            SensorGroup::Areas => self.areas,
+            SensorGroup::Eye => self.eye,
             SensorGroup::Bias => self.bias,
         }
     }
@@ -147,14 +217,16 @@ pub struct ObservationLayout {
 }
 
 impl ObservationLayout {
-    /// The layout for the groups `inputs` switches on.
-    pub fn new(inputs: &InputsSpec) -> Self {
+    /// The layout for the groups `inputs` switches on, with the world- and
+    /// creature-dependent widths `sizes`. A group switched on with width 0 (landmarks in a
+    /// world without landmarks) is listed with an empty range.
+    pub fn new(inputs: &InputsSpec, sizes: &GroupSizes) -> Self {
         let mut groups = Vec::new();
         let mut names = Vec::new();
         for group in SensorGroup::ORDER {
             if inputs.includes(group) {
                 let start = names.len();
-                names.extend(group.input_names());
+                names.extend(group.input_names(sizes));
                 groups.push((group, start..names.len()));
             }
         }
@@ -196,7 +268,7 @@ mod tests {
 
     #[test]
     fn default_layout_is_documented_order() {
-        let layout = ObservationLayout::new(&InputsSpec::default());
+        let layout = ObservationLayout::new(&InputsSpec::default(), &GroupSizes::default());
         assert_eq!(layout.len(), 16 + 2 + 4 + 1 + 1);
         assert_eq!(layout.names()[0], "smell_left_1");
         assert_eq!(layout.names()[8], "smell_right_1");
@@ -215,9 +287,57 @@ mod tests {
             metabolism: true,
             ..InputsSpec::default()
         };
-        let layout = ObservationLayout::new(&inputs);
+        let layout = ObservationLayout::new(&inputs, &GroupSizes::default());
         assert_eq!(layout.range(SensorGroup::Whiskers), Some(0..2));
         assert_eq!(layout.range(SensorGroup::Metabolism), Some(7..11));
         assert_eq!(layout.names().last().map(String::as_str), Some("bias"));
+    }
+
+    #[test]
+    fn new_groups_sit_between_metabolism_and_bias() {
+        let inputs = InputsSpec {
+            metabolism: true,
+            landmarks: true,
+            areas: true,
+            eye: true,
+            ..InputsSpec::default()
+        };
+        let sizes = GroupSizes {
+            landmarks: 2,
+            areas: 3,
+            retina: [4, 2],
+        };
+        let layout = ObservationLayout::new(&inputs, &sizes);
+        assert_eq!(layout.range(SensorGroup::Metabolism), Some(23..27));
+        assert_eq!(layout.range(SensorGroup::Landmarks), Some(27..31));
+        assert_eq!(layout.range(SensorGroup::Areas), Some(31..34));
+        assert_eq!(layout.range(SensorGroup::Eye), Some(34..58));
+        assert_eq!(layout.range(SensorGroup::Bias), Some(58..59));
+        let names = layout.names();
+        assert_eq!(names[27], "landmark_1_sin");
+        assert_eq!(names[28], "landmark_1_cos");
+        assert_eq!(names[30], "landmark_2_cos");
+        assert_eq!(names[31], "area_1");
+        assert_eq!(names[33], "area_3");
+        assert_eq!(names[34], "eye_r_0_0");
+        assert_eq!(names[35], "eye_g_0_0");
+        assert_eq!(names[36], "eye_b_0_0");
+        assert_eq!(names[37], "eye_r_0_1");
+        // Row-major: row 1 starts after the 4 pixels of row 0.
+        assert_eq!(names[34 + 12], "eye_r_1_0");
+        assert_eq!(names[57], "eye_b_1_3");
+    }
+
+    #[test]
+    fn new_groups_off_keep_the_default_layout() {
+        let sizes = GroupSizes {
+            landmarks: 2,
+            areas: 3,
+            retina: [16, 1],
+        };
+        assert_eq!(
+            ObservationLayout::new(&InputsSpec::default(), &sizes),
+            ObservationLayout::new(&InputsSpec::default(), &GroupSizes::default())
+        );
     }
 }

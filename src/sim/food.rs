@@ -4,7 +4,9 @@
 
 use crate::geometry::Vec2;
 use crate::sim::smell::Smell;
-use crate::sim::spec::{AversiveKind, FoodKind};
+use crate::sim::spec::{
+    AversiveKind, FoodKind, DEFAULT_AVERSIVE_COLOUR, DEFAULT_FOOD_COLOUR, DEFAULT_OBJECT_HEIGHT,
+};
 use serde::{Deserialize, Serialize};
 
 /// One food object.
@@ -35,6 +37,10 @@ pub struct Food {
     pub given: [f64; 4],
     /// Substance added by regeneration over the trial.
     pub regenerated: [f64; 4],
+    /// Colour `[r, g, b]` the eye sees.
+    pub colour: [f64; 3],
+    /// Height in LU of the cylinder the eye sees.
+    pub height: f64,
 }
 
 impl Food {
@@ -53,6 +59,8 @@ impl Food {
             smell: Smell::new(&spec.odour, spec.intensity, spec.range),
             given: [0.0; 4],
             regenerated: [0.0; 4],
+            colour: spec.colour.unwrap_or(DEFAULT_FOOD_COLOUR),
+            height: spec.height.unwrap_or(DEFAULT_OBJECT_HEIGHT),
         }
     }
 
@@ -121,6 +129,10 @@ pub struct Aversive {
     pub radius: f64,
     /// What it gives off.
     pub smell: Smell,
+    /// Colour `[r, g, b]` the eye sees.
+    pub colour: [f64; 3],
+    /// Height in LU of the cylinder the eye sees.
+    pub height: f64,
 }
 
 impl Aversive {
@@ -131,6 +143,8 @@ impl Aversive {
             position,
             radius: spec.radius,
             smell: Smell::new(&spec.odour, spec.intensity, spec.range),
+            colour: spec.colour.unwrap_or(DEFAULT_AVERSIVE_COLOUR),
+            height: spec.height.unwrap_or(DEFAULT_OBJECT_HEIGHT),
         }
     }
 }

@@ -6,15 +6,19 @@
 //! - [`world`]: the running world and the tick loop of §9.
 //! - [`wall`], [`food`], [`smell`]: the things in the world.
 //! - [`sensors`]: whiskers, smell sensors, food detectors, observation layout.
+//! - [`area`]: areas and distal landmarks; [`eye`]: the retina; [`noise`]: sensor noise.
 //! - [`motion`]: the body's movement (§8).
 //! - [`metabolism`]: the metabolic vector m.
 //! - [`placement`]: building a trial world from a seed.
 //! - [`scripted`]: controllers without a brain, for tests and demos.
 
+pub mod area;
 pub mod controller;
+pub mod eye;
 pub mod food;
 pub mod metabolism;
 pub mod motion;
+pub mod noise;
 pub mod placement;
 pub mod scripted;
 pub mod sensors;

@@ -3,6 +3,7 @@
 //! controller's observation vector.
 
 use crate::geometry::{circles_touch, segment_touches_circle, segments_intersect, Segment, Vec2};
+use crate::sim::area::Area;
 use crate::sim::controller::{ObservationLayout, SensorGroup};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::smell::{accumulate, saturate, Smell};
@@ -51,6 +52,8 @@ pub struct Surroundings<'a> {
     pub food: &'a [Food],
     /// Aversive objects.
     pub aversives: &'a [Aversive],
+    /// Areas (only their smell matters here).
+    pub areas: &'a [Area],
     /// Every creature, the sensing one included (skipped by index).
     pub creatures: &'a [Creature],
     /// The constant c of eq. 25.
@@ -92,7 +95,8 @@ impl Surroundings<'_> {
     }
 
     /// §7.1: one smell sensor at `receptor`: receptor k = min(1, Σ I(d) o_k) over the smelly
-    /// things it can see: food, aversive objects and every other living creature.
+    /// things it can see: food, aversive objects, areas (from their centre, §4.6) and every
+    /// other living creature.
     pub fn smell_at(&self, me: usize, body: &Body, receptor: Vec2) -> [f64; 8] {
         let mut acc = [0.0; 8];
         let (c, opaque) = (self.smell_c, self.opaque);
@@ -109,6 +113,9 @@ impl Surroundings<'_> {
         }
         for a in self.aversives {
             accumulate(&mut acc, receptor, a.position, &a.smell, 1.0, c, opaque);
+        }
+        for a in self.areas {
+            accumulate(&mut acc, receptor, a.centre(), &a.smell, 1.0, c, opaque);
         }
         if !body.smell.silent {
             for (j, other) in self.creatures.iter().enumerate() {
@@ -179,6 +186,12 @@ pub struct Offsets {
     food: Option<usize>,
     shock: Option<usize>,
     metabolism: Option<usize>,
+    /// Start of the landmark bearings.
+    pub landmarks: Option<usize>,
+    /// Start of the area flags.
+    pub areas: Option<usize>,
+    /// Start of the retina.
+    pub eye: Option<usize>,
     bias: Option<usize>,
 }
 
@@ -192,6 +205,9 @@ impl Offsets {
             food: at(SensorGroup::Food),
             shock: at(SensorGroup::Shock),
             metabolism: at(SensorGroup::Metabolism),
+            landmarks: at(SensorGroup::Landmarks),
+            areas: at(SensorGroup::Areas),
+            eye: at(SensorGroup::Eye),
             bias: at(SensorGroup::Bias),
         }
     }
@@ -201,8 +217,9 @@ impl Offsets {
         self.smell.is_some()
     }
 
-    /// Writes one observation: the groups switched on, in the layout's order. `shock` is the
-    /// shock sensor, `metabolism` the raw vector m.
+    /// Writes one observation's report groups (smell to metabolism, and the bias) in the
+    /// layout's order. `shock` is the shock sensor, `metabolism` the raw vector m. Landmarks,
+    /// areas and the eye are written by the world, which holds what they read.
     pub fn write(&self, out: &mut [f64], senses: &Senses, shock: bool, metabolism: &[f64; 4]) {
         let bit = |b: bool| if b { 1.0 } else { 0.0 };
         if let Some(o) = self.smell {

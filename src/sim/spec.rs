@@ -8,7 +8,7 @@
 //! `[0, width] x [0, height]`, and a positive angle turns clockwise on screen (towards the
 //! creature's right), so heading 0° points along +x and 90° along +y (down the screen).
 
-use crate::sim::controller::{InputsSpec, ObservationLayout};
+use crate::sim::controller::{GroupSizes, InputsSpec, ObservationLayout};
 use crate::validate::{
     all_finite, all_non_negative, count_within, finite, non_negative, positive, within,
     InvalidValue, Valid,
@@ -28,6 +28,12 @@ pub const MAX_ARENA_SIDE: f64 = 1.0e6;
 pub const MIN_GRID_PITCH: f64 = 1.0e-6;
 /// Most halvings of the §8.2 binary search: after 64 the midpoint no longer changes in f64.
 pub const MAX_SEARCH_STEPS: u64 = 64;
+/// Most distal landmarks or areas a world may hold: each adds inputs to every brain.
+pub const MAX_LANDMARKS: u64 = 1_000;
+/// Most pixels on either side of the retina.
+pub const MAX_RETINA_SIDE: u64 = 4_096;
+/// Most pixels of a retina (width × height): 3 inputs each.
+pub const MAX_RETINA_PIXELS: u64 = 65_536;
 
 /// Fixed-length arrays read exactly: the `toml` crate silently drops extra elements when it
 /// fills a Rust array (`arena = [300, 300, 300]` would read as `[300, 300]`), so every
@@ -89,6 +95,59 @@ pub struct WorldSpec {
     pub place: Vec<PlaceSpec>,
     /// Where and how the creatures start (`[world.start]`).
     pub start: StartSpec,
+    /// Distal landmarks (`[[world.landmarks]]`, §4.5.3): positions whose bearing every
+    /// creature knows everywhere; they have no body (default: none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub landmarks: Vec<LandmarkSpec>,
+    /// Areas (`[[world.areas]]`, §4.6): rectangles a creature can be inside (default: none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub areas: Vec<AreaSpec>,
+}
+
+/// A distal landmark (`[[world.landmarks]]`, §4.5.3): a point with no body, not felt, not
+/// smelled, not seen, not blocking; only its bearing is sensed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LandmarkSpec {
+    /// Position `[x, y]` in LU (required; may lie outside the arena: distal landmarks are
+    /// typically far away).
+    #[serde(deserialize_with = "exact::array")]
+    pub position: Point,
+}
+
+/// What an area is for (§4.6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum AreaKind {
+    /// A region with no effect of its own (default): sensed, and may smell.
+    #[default]
+    Plain,
+    /// A safe area: predators do not attack creatures whose centre is inside
+    /// ([`crate::sim::World::in_safe_area`]).
+    Safe,
+}
+
+/// An area (`[[world.areas]]`, §4.6): an axis-aligned rectangle, optionally smelling at its
+/// centre. Areas neither block, nor are felt, nor are seen.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AreaSpec {
+    /// `[x0, y0, x1, y1]` in LU inside the arena, x0 <= x1, y0 <= y1 (required). A point is
+    /// inside when x0 <= x <= x1 and y0 <= y <= y1 (bounds included).
+    #[serde(deserialize_with = "exact::array")]
+    pub region: Region,
+    /// `"plain"` or `"safe"` (default: `"plain"`).
+    #[serde(default)]
+    pub kind: AreaKind,
+    /// Odour o = ⟨o1..o8⟩ given off at the centre of the region (default: zeros, no smell).
+    #[serde(default, deserialize_with = "exact::array")]
+    pub odour: [f64; 8],
+    /// Smell intensity i at the centre (eq. 25; default: 0).
+    #[serde(default)]
+    pub intensity: f64,
+    /// Smell range θ of eq. 26 in LU (default: absent = unlimited).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub range: Option<f64>,
 }
 
 impl Default for WorldSpec {
@@ -105,6 +164,8 @@ impl Default for WorldSpec {
             objects: Vec::new(),
             place: Vec::new(),
             start: StartSpec::default(),
+            landmarks: Vec::new(),
+            areas: Vec::new(),
         }
     }
 }
@@ -198,6 +259,10 @@ struct RawKind {
     intensity: f64,
     #[serde(default)]
     range: Option<f64>,
+    #[serde(default, deserialize_with = "exact::option_array")]
+    colour: Option<[f64; 3]>,
+    #[serde(default)]
+    height: Option<f64>,
 }
 
 impl TryFrom<RawKind> for KindSpec {
@@ -221,6 +286,8 @@ impl TryFrom<RawKind> for KindSpec {
                     odour,
                     intensity: raw.intensity,
                     range: raw.range,
+                    colour: raw.colour,
+                    height: raw.height,
                 }))
             }
             Class::Aversive => {
@@ -242,6 +309,8 @@ impl TryFrom<RawKind> for KindSpec {
                     odour,
                     intensity: raw.intensity,
                     range: raw.range,
+                    colour: raw.colour,
+                    height: raw.height,
                 }))
             }
         }
@@ -291,7 +360,26 @@ pub struct FoodKind {
     /// eq. 25, unlimited range).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub range: Option<f64>,
+    /// Colour `[r, g, b]`, each in [0, 1], as the eye sees the object (default: absent =
+    /// green `[0, 1, 0]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub colour: Option<[f64; 3]>,
+    /// Height in LU of the cylinder the eye sees (default: absent = 5, the default eye
+    /// height, so that a 1-row retina sees it). Objects of radius 0 are never seen.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub height: Option<f64>,
 }
+
+/// Default colour of food for the eye.
+pub const DEFAULT_FOOD_COLOUR: [f64; 3] = [0.0, 1.0, 0.0];
+/// Default colour of aversive objects for the eye.
+pub const DEFAULT_AVERSIVE_COLOUR: [f64; 3] = [1.0, 0.0, 0.0];
+/// Default colour of creatures for the eye.
+pub const DEFAULT_CREATURE_COLOUR: [f64; 3] = [0.0, 0.0, 1.0];
+/// Default height of food and aversive objects in LU (the default eye height).
+pub const DEFAULT_OBJECT_HEIGHT: f64 = 5.0;
+/// Default height of a creature's body in LU (the default body diameter).
+pub const DEFAULT_CREATURE_HEIGHT: f64 = 6.0;
 
 impl Default for FoodKind {
     fn default() -> Self {
@@ -306,6 +394,8 @@ impl Default for FoodKind {
             odour: [0.0; 8],
             intensity: 0.0,
             range: None,
+            colour: None,
+            height: None,
         }
     }
 }
@@ -329,6 +419,12 @@ pub struct AversiveKind {
     /// Smell range θ in LU (default: absent = unlimited, eq. 25).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub range: Option<f64>,
+    /// Colour `[r, g, b]` for the eye (default: absent = red `[1, 0, 0]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub colour: Option<[f64; 3]>,
+    /// Height in LU for the eye (default: absent = 5). Radius-0 objects are never seen.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub height: Option<f64>,
 }
 
 /// An object at a fixed position (`[[world.objects]]`).
@@ -439,6 +535,214 @@ pub struct CreatureSpec {
     pub decay_per_lu: [f64; 4],
     /// Sensor groups the controller receives (`[creature.inputs]`).
     pub inputs: InputsSpec,
+    /// Body colour `[r, g, b]` as other creatures' eyes see it (default: absent = blue
+    /// `[0, 0, 1]`).
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "exact::option_array"
+    )]
+    pub colour: Option<[f64; 3]>,
+    /// Body height in LU as other creatures' eyes see it (default: absent = 6).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub height: Option<f64>,
+    /// The eye (`[creature.eye]`, §7.4); rendered only when `inputs.eye` is on.
+    #[serde(skip_serializing_if = "EyeSpec::is_default")]
+    pub eye: EyeSpec,
+    /// Sensor noise (`[creature.noise.<group>]`, §7.5, eq. 27); default: none.
+    #[serde(skip_serializing_if = "NoiseSpec::is_none")]
+    pub noise: NoiseSpec,
+}
+
+/// The eye (`[creature.eye]`, §7.4): a cyclopean eye at the body centre, `eye_height` above
+/// the ground, looking along the heading. Pixel column i (from 0, left to right) looks along
+/// the heading rotated by −fov/2 + (i + ½)·fov/width (positive = clockwise = right); row j
+/// (from 0, top to bottom) at elevation vertical_fov/2 − (j + ½)·vertical_fov/height above
+/// the horizontal (0 for a 1-row retina). A surface of height H at distance d along a pixel's
+/// ray covers the elevations e with −eye_height ≤ d·tan e ≤ H − eye_height, so a 1-row
+/// retina sees exactly the surfaces at least `eye_height` tall.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct EyeSpec {
+    /// Horizontal field of view in degrees, in (0, 360] (default: 90).
+    pub fov: f64,
+    /// Vertical field of view in degrees, in (0, 180), used when `height` > 1 (default: 60).
+    pub vertical_fov: f64,
+    /// Pixels per row (default: 16).
+    pub width: u64,
+    /// Rows of pixels; 1 is a 1-D retina (default: 1).
+    pub height: u64,
+    /// Height of the eye above the ground in LU (default: 5).
+    pub eye_height: f64,
+    /// Colour `[r, g, b]` of a pixel whose ray meets nothing (default: black `[0, 0, 0]`).
+    #[serde(deserialize_with = "exact::array")]
+    pub background: [f64; 3],
+    /// Largest distance in LU at which a surface is seen (default: absent = unlimited).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub range: Option<f64>,
+}
+
+impl Default for EyeSpec {
+    fn default() -> Self {
+        EyeSpec {
+            fov: 90.0,
+            vertical_fov: 60.0,
+            width: 16,
+            height: 1,
+            eye_height: 5.0,
+            background: [0.0; 3],
+            range: None,
+        }
+    }
+}
+
+impl EyeSpec {
+    fn is_default(&self) -> bool {
+        *self == EyeSpec::default()
+    }
+
+    /// Checks every value; keys start with `key`.
+    pub fn validate(&self, key: &str) -> Valid {
+        finite(&format!("{key}.fov"), self.fov)?;
+        if !(self.fov > 0.0 && self.fov <= 360.0) {
+            return Err(InvalidValue::new(
+                format!("{key}.fov"),
+                format!("must be in (0, 360] degrees, got {}", self.fov),
+            ));
+        }
+        finite(&format!("{key}.vertical_fov"), self.vertical_fov)?;
+        if !(self.vertical_fov > 0.0 && self.vertical_fov < 180.0) {
+            return Err(InvalidValue::new(
+                format!("{key}.vertical_fov"),
+                format!("must be in (0, 180) degrees, got {}", self.vertical_fov),
+            ));
+        }
+        let why = "retina side in pixels";
+        count_within(&format!("{key}.width"), self.width, 1, MAX_RETINA_SIDE, why)?;
+        count_within(
+            &format!("{key}.height"),
+            self.height,
+            1,
+            MAX_RETINA_SIDE,
+            why,
+        )?;
+        count_within(
+            &format!("{key}.height"),
+            self.width * self.height,
+            1,
+            MAX_RETINA_PIXELS,
+            "pixels of the retina (width x height)",
+        )?;
+        non_negative(&format!("{key}.eye_height"), self.eye_height)?;
+        for (c, value) in self.background.iter().enumerate() {
+            within(&format!("{key}.background[{c}]"), *value, 0.0, 1.0)?;
+        }
+        if let Some(range) = self.range {
+            positive(&format!("{key}.range"), range)?;
+        }
+        Ok(())
+    }
+}
+
+/// Noise on one sensor group (eq. 27): each input s becomes ŝ = N + (1 + M)·s, clipped to
+/// the group's range, with N = |normal(0, n_sigma)| clipped to [0, n] and M =
+/// normal(0, m_sigma) clipped to [−m, m].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct NoiseChannel {
+    /// Largest additive noise N (default: 0).
+    pub n: f64,
+    /// Standard deviation of the normal draw behind N (default: 0).
+    pub n_sigma: f64,
+    /// Largest multiplicative noise |M|, at most 1 so that 1 + M is never negative
+    /// (default: 0).
+    pub m: f64,
+    /// Standard deviation of M (default: 0).
+    pub m_sigma: f64,
+}
+
+impl NoiseChannel {
+    fn validate(&self, key: &str) -> Valid {
+        non_negative(&format!("{key}.n"), self.n)?;
+        non_negative(&format!("{key}.n_sigma"), self.n_sigma)?;
+        within(&format!("{key}.m"), self.m, 0.0, 1.0)?;
+        non_negative(&format!("{key}.m_sigma"), self.m_sigma)
+    }
+}
+
+/// Sensor noise per group (`[creature.noise.<group>]`, §7.5). A group without a table gets no
+/// noise and costs no random draws, so noise-free runs are unchanged. Ranges the noisy value
+/// is clipped to: [0, 1] for smell, whiskers, food, shock, areas and eye; [0, ∞) for
+/// metabolism; [−1, 1] for landmarks. The bias is never noisy.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct NoiseSpec {
+    /// Noise on the 16 smell receptors (default: none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub smell: Option<NoiseChannel>,
+    /// Noise on the whiskers (default: none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub whiskers: Option<NoiseChannel>,
+    /// Noise on the food detectors (default: none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub food: Option<NoiseChannel>,
+    /// Noise on the shock sensor (default: none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shock: Option<NoiseChannel>,
+    /// Noise on the metabolism inputs (default: none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub metabolism: Option<NoiseChannel>,
+    /// Noise on the landmark bearings (default: none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub landmarks: Option<NoiseChannel>,
+    /// Noise on the area inputs (default: none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub areas: Option<NoiseChannel>,
+    /// Noise on every retina value (default: none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub eye: Option<NoiseChannel>,
+}
+
+impl NoiseSpec {
+    fn is_none(&self) -> bool {
+        *self == NoiseSpec::default()
+    }
+
+    /// The noise on `group`, if configured.
+    pub fn channel(&self, group: crate::sim::controller::SensorGroup) -> Option<NoiseChannel> {
+        use crate::sim::controller::SensorGroup as G;
+        match group {
+            G::Smell => self.smell,
+            G::Whiskers => self.whiskers,
+            G::Food => self.food,
+            G::Shock => self.shock,
+            G::Metabolism => self.metabolism,
+            G::Landmarks => self.landmarks,
+            G::Areas => self.areas,
+            G::Eye => self.eye,
+            G::Bias => None,
+        }
+    }
+
+    /// Checks every value; keys start with `creature.noise.`.
+    pub fn validate(&self) -> Valid {
+        let groups = [
+            ("smell", self.smell),
+            ("whiskers", self.whiskers),
+            ("food", self.food),
+            ("shock", self.shock),
+            ("metabolism", self.metabolism),
+            ("landmarks", self.landmarks),
+            ("areas", self.areas),
+            ("eye", self.eye),
+        ];
+        for (name, channel) in groups {
+            if let Some(c) = channel {
+                c.validate(&format!("creature.noise.{name}"))?;
+            }
+        }
+        Ok(())
+    }
 }
 
 impl Default for CreatureSpec {
@@ -458,6 +762,10 @@ impl Default for CreatureSpec {
             decay_per_tick: [0.0; 4],
             decay_per_lu: [0.0; 4],
             inputs: InputsSpec::default(),
+            colour: None,
+            height: None,
+            eye: EyeSpec::default(),
+            noise: NoiseSpec::default(),
         }
     }
 }
@@ -476,12 +784,42 @@ impl CreatureSpec {
         all_non_negative("creature.initial_metabolism", &self.initial_metabolism)?;
         all_non_negative("creature.decay_per_tick", &self.decay_per_tick)?;
         all_non_negative("creature.decay_per_lu", &self.decay_per_lu)?;
+        if let Some(colour) = self.colour {
+            for (c, value) in colour.iter().enumerate() {
+                within(&format!("creature.colour[{c}]"), *value, 0.0, 1.0)?;
+            }
+        }
+        if let Some(height) = self.height {
+            non_negative("creature.height", height)?;
+        }
+        self.eye.validate("creature.eye")?;
+        self.noise.validate()?;
         Ok(())
     }
 
-    /// Where each input sits in the observation.
-    pub fn layout(&self) -> ObservationLayout {
-        ObservationLayout::new(&self.inputs)
+    /// Where each input sits in the observation of this creature in `world` (the number of
+    /// landmarks and areas decides the width of their groups).
+    pub fn layout(&self, world: &WorldSpec) -> ObservationLayout {
+        ObservationLayout::new(&self.inputs, &self.group_sizes(world))
+    }
+
+    /// The widths of the world- and creature-dependent sensor groups.
+    pub fn group_sizes(&self, world: &WorldSpec) -> GroupSizes {
+        GroupSizes {
+            landmarks: world.landmarks.len(),
+            areas: world.areas.len(),
+            retina: [self.eye.width as usize, self.eye.height as usize],
+        }
+    }
+
+    /// Body colour for the eye, with its default.
+    pub fn body_colour(&self) -> [f64; 3] {
+        self.colour.unwrap_or(DEFAULT_CREATURE_COLOUR)
+    }
+
+    /// Body height for the eye, with its default.
+    pub fn body_height(&self) -> f64 {
+        self.height.unwrap_or(DEFAULT_CREATURE_HEIGHT)
     }
 
     /// Does the controller need an eat output?
@@ -601,6 +939,33 @@ impl WorldSpec {
         if let Some(heading) = self.start.heading {
             finite("world.start.heading", heading)?;
         }
+
+        let why = "landmarks or areas in a world (each adds brain inputs)";
+        count_within(
+            "world.landmarks",
+            self.landmarks.len() as u64,
+            0,
+            MAX_LANDMARKS,
+            why,
+        )?;
+        for (i, landmark) in self.landmarks.iter().enumerate() {
+            all_finite(
+                &format!("world.landmarks[{i}].position"),
+                &landmark.position,
+            )?;
+        }
+        count_within(
+            "world.areas",
+            self.areas.len() as u64,
+            0,
+            MAX_LANDMARKS,
+            why,
+        )?;
+        for (i, area) in self.areas.iter().enumerate() {
+            let key = format!("world.areas[{i}]");
+            self.region_in_arena(&format!("{key}.region"), area.region)?;
+            validate_smell(&key, &area.odour, area.intensity, area.range)?;
+        }
         Ok(())
     }
 
@@ -689,6 +1054,7 @@ fn validate_kind(key: &str, name: &str, kind: &KindSpec) -> Valid {
     match kind {
         KindSpec::Aversive(a) => {
             non_negative(&format!("{key}.radius"), a.radius)?;
+            validate_look(key, a.colour, a.height)?;
             validate_smell(key, &a.odour, a.intensity, a.range)
         }
         KindSpec::Food(f) => {
@@ -713,7 +1079,21 @@ fn validate_kind(key: &str, name: &str, kind: &KindSpec) -> Valid {
                     "needs a capacity with a positive total (the smell scales with amount / capacity)",
                 ));
             }
+            validate_look(key, f.colour, f.height)?;
             validate_smell(key, &f.odour, f.intensity, f.range)
         }
     }
+}
+
+/// Colour and height for the eye.
+fn validate_look(key: &str, colour: Option<[f64; 3]>, height: Option<f64>) -> Valid {
+    if let Some(colour) = colour {
+        for (c, value) in colour.iter().enumerate() {
+            within(&format!("{key}.colour[{c}]"), *value, 0.0, 1.0)?;
+        }
+    }
+    if let Some(height) = height {
+        non_negative(&format!("{key}.height"), height)?;
+    }
+    Ok(())
 }

@@ -21,10 +21,13 @@
 
 use crate::geometry::{circles_touch, Circle, Segment, Vec2};
 use crate::seed::Rng;
-use crate::sim::controller::{Controller, MotorCommand, ObservationLayout};
+use crate::sim::area::{bearing, Area};
+use crate::sim::controller::{Controller, MotorCommand, ObservationLayout, SensorGroup};
+use crate::sim::eye::{Eye, Scene};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::metabolism::Decay;
 use crate::sim::motion::{plan_move, Blockers, MotionParams, MoveOutcome, Pose};
+use crate::sim::noise::Noise;
 use crate::sim::placement::{place_creatures, place_objects, PlacementError};
 use crate::sim::sensors::{Body, Offsets, Senses, Surroundings};
 use crate::sim::smell::Smell;
@@ -115,9 +118,19 @@ pub struct World {
     /// Scratch list of the bodies that may block the creature now moving (every other living
     /// creature); refilled for each move, never reallocated.
     blockers: Vec<Circle>,
-    /// The trial's generator, kept for what is random during a trial (noise, wanderers and
-    /// predators of later issues).
-    #[allow(dead_code)]
+    /// Distal landmarks (§4.5.3), in file order.
+    landmarks: Vec<Vec2>,
+    /// Areas (§4.6), in file order.
+    areas: Vec<Area>,
+    /// The eye, built only when the controller receives it (no cost otherwise).
+    eye: Option<Eye>,
+    /// Body colour and height of every creature, for eyes.
+    creature_colour: [f64; 3],
+    creature_height: f64,
+    /// Sensor noise on the groups that have it (§7.5).
+    noise: Noise,
+    /// The trial's generator, kept for what is random during a trial: sensor noise (drawn
+    /// in the order [`crate::sim::noise`] documents), and later wanderers and predators.
     rng: Rng,
 }
 
@@ -148,7 +161,11 @@ impl World {
             .filter(|&i| objects.food[i].regen.iter().any(|&r| r > 0.0))
             .collect();
         let phi = creature.whisker_angle_radians();
-        let layout = creature.layout();
+        let layout = creature.layout(world);
+        let eye = layout
+            .range(SensorGroup::Eye)
+            .map(|_| Eye::new(&creature.eye));
+        let noise = Noise::new(&creature.noise, &layout);
         Ok(World {
             tick: 0,
             arena: world.arena,
@@ -187,6 +204,16 @@ impl World {
             layout,
             full_sensing: false,
             blockers: Vec::with_capacity(creatures),
+            landmarks: world
+                .landmarks
+                .iter()
+                .map(|l| Vec2::from(l.position))
+                .collect(),
+            areas: world.areas.iter().map(Area::from_spec).collect(),
+            eye,
+            creature_colour: creature.body_colour(),
+            creature_height: creature.body_height(),
+            noise,
             rng,
         })
     }
@@ -231,6 +258,7 @@ impl World {
             opaque: self.walls.opaque(),
             food: &self.food,
             aversives: &self.aversives,
+            areas: &self.areas,
             creatures: &self.creatures,
             smell_c: self.smell_c,
         };
@@ -242,12 +270,37 @@ impl World {
         c.smell = senses.smell;
         c.food_detectors = senses.food;
         let width = self.layout.len();
-        self.offsets.write(
-            &mut self.observations[i * width..(i + 1) * width],
-            &senses,
-            c.shocked,
-            &c.metabolism,
-        );
+        let out = &mut self.observations[i * width..(i + 1) * width];
+        self.offsets.write(out, &senses, c.shocked, &c.metabolism);
+        let pose = c.pose;
+        if let Some(o) = self.offsets.landmarks {
+            for (k, &l) in self.landmarks.iter().enumerate() {
+                let (s, c) = bearing(pose.position, pose.heading, l);
+                out[o + 2 * k] = s;
+                out[o + 2 * k + 1] = c;
+            }
+        }
+        if let Some(o) = self.offsets.areas {
+            for (k, a) in self.areas.iter().enumerate() {
+                out[o + k] = if a.contains(pose.position) { 1.0 } else { 0.0 };
+            }
+        }
+        if let (Some(o), Some(eye)) = (self.offsets.eye, self.eye.as_mut()) {
+            let scene = Scene {
+                walls: self.walls.all(),
+                food: &self.food,
+                aversives: &self.aversives,
+                creatures: &self.creatures,
+                creature_radius: self.body.radius,
+                creature_colour: self.creature_colour,
+                creature_height: self.creature_height,
+            };
+            let n = eye.len();
+            eye.render(&scene, pose.position, pose.heading, i, &mut out[o..o + n]);
+        }
+        if !self.noise.is_empty() {
+            self.noise.apply(out, &mut self.rng);
+        }
     }
 
     /// Phase 2.3: clamp the motors and move creature `i`, blocked by walls and by the other
@@ -391,6 +444,50 @@ impl World {
     /// of all senses). Does not change the observations or any other result.
     pub fn set_full_sensing(&mut self, on: bool) {
         self.full_sensing = on;
+    }
+
+    /// Distal landmarks (§4.5.3), in file order.
+    pub fn landmarks(&self) -> &[Vec2] {
+        &self.landmarks
+    }
+
+    /// Areas (§4.6), in file order.
+    pub fn areas(&self) -> &[Area] {
+        &self.areas
+    }
+
+    /// Is `position` inside a safe area (bounds included)? Predators leave such creatures
+    /// alone.
+    pub fn in_safe_area(&self, position: Vec2) -> bool {
+        self.areas
+            .iter()
+            .any(|a| a.is_safe() && a.contains(position))
+    }
+
+    /// Renders what creature `creature` sees now into `out` (3 × width × height values, the
+    /// layout of the eye group), without noise, or returns false when the creature has no
+    /// eye (its controller does not receive it). For tests and pictures.
+    pub fn render_eye(&mut self, creature: usize, out: &mut [f64]) -> bool {
+        let Some(eye) = self.eye.as_mut() else {
+            return false;
+        };
+        let pose = self.creatures[creature].pose;
+        let scene = Scene {
+            walls: self.walls.all(),
+            food: &self.food,
+            aversives: &self.aversives,
+            creatures: &self.creatures,
+            creature_radius: self.body.radius,
+            creature_colour: self.creature_colour,
+            creature_height: self.creature_height,
+        };
+        eye.render(&scene, pose.position, pose.heading, creature, out);
+        true
+    }
+
+    /// The retina `[width, height]` of the creatures' eye, when their controller receives it.
+    pub fn retina_size(&self) -> Option<[usize; 2]> {
+        self.eye.as_ref().map(Eye::size)
     }
 
     /// Puts creature `creature` at `pose` (the heading is re-normalised). For tests, demos and
