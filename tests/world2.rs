@@ -642,6 +642,11 @@ fn bad_values_are_rejected_with_their_key() {
         "[world.kinds.nettle]\nclass = \"aversive\"\nheight = -2",
         "world.kinds.nettle.height",
     );
+    rejects(
+        "[creature.inputs]\nlandmarks = true",
+        "creature.inputs.landmarks",
+    );
+    rejects("[creature.inputs]\nareas = true", "creature.inputs.areas");
 }
 
 #[test]

@@ -954,6 +954,12 @@ impl WorldSpec {
                 &landmark.position,
             )?;
         }
+        if creature.inputs.landmarks && self.landmarks.is_empty() {
+            return Err(InvalidValue::new(
+                "creature.inputs.landmarks",
+                "is on, but the world has no [[world.landmarks]] to sense",
+            ));
+        }
         count_within(
             "world.areas",
             self.areas.len() as u64,
@@ -961,6 +967,12 @@ impl WorldSpec {
             MAX_LANDMARKS,
             why,
         )?;
+        if creature.inputs.areas && self.areas.is_empty() {
+            return Err(InvalidValue::new(
+                "creature.inputs.areas",
+                "is on, but the world has no [[world.areas]] to sense",
+            ));
+        }
         for (i, area) in self.areas.iter().enumerate() {
             let key = format!("world.areas[{i}]");
             self.region_in_arena(&format!("{key}.region"), area.region)?;

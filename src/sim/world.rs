@@ -1,14 +1,17 @@
-//! The running world of one trial: walls, food, aversive objects and creatures, and the tick
-//! loop of §9 in its fixed order. Everything the loop needs is allocated when the world is
-//! built; a tick allocates nothing.
+//! The running world of one trial: walls, food, aversive objects, landmarks, areas and
+//! creatures, and the tick loop of §9 in its fixed order. Everything the loop needs is
+//! allocated when the world is built; a tick allocates nothing.
 //!
 //! # One tick ([`World::step`])
 //!
 //! 1. **Food** regenerates, each object in list order (§4.3).
 //! 2. Each **living creature**, in index order, does in turn (§9; it sees the world as left by
 //!    the creatures before it in this tick):
-//!    1. *sense*: whiskers, smell, food detectors; the shock sensor carries the creature's
-//!       shock state from the end of its previous tick; the observation is written;
+//!    1. *sense*: whiskers, smell (food, aversive objects, areas, other creatures), food
+//!       detectors; the shock sensor carries the creature's shock state from the end of its
+//!       previous tick; landmark bearings, area flags and the eye's retina when the
+//!       controller receives them; the observation is written, then sensor noise (§7.5) is
+//!       applied to it with draws from the trial's generator (see [`crate::sim::noise`]);
 //!    2. *act*: its controller turns the observation into a motor command;
 //!    3. *move*: the motors are clamped to ±`max_rpt` and the body moves (§8), blocked by
 //!       walls and by the other living creatures' bodies;
@@ -58,7 +61,8 @@ pub struct Creature {
     /// Left and right whisker at the start of its last tick (§7.3).
     pub whiskers: [bool; 2],
     /// Left and right smell sensors at the start of its last tick, 8 receptors each (§7.1).
-    /// All zeros when smell was not computed (see [`World::set_full_sensing`]).
+    /// All zeros when smell was not computed (see [`World::set_full_sensing`]). Without sensor
+    /// noise: noise goes only into the observation.
     pub smell: [[f64; 8]; 2],
     /// Food detectors A–D at the start of its last tick (§5.2).
     pub food_detectors: [bool; 4],
