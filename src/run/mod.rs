@@ -183,6 +183,10 @@ pub fn start(
     options: RunOptions<'_>,
     progress: &mut dyn Progress,
 ) -> Result<RunSummary, RunError> {
+    if dir.is_dir() {
+        // A run killed while writing (e.g. before --force) leaves `.<name>.tmp-*` files.
+        remove_stale_temp_files(dir).map_err(io_err(dir))?;
+    }
     if holds_run(dir) {
         if !force {
             return Err(RunError::FolderInUse {
