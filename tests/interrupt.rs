@@ -182,13 +182,12 @@ fn second_signal_stops_at_once_leaving_a_good_checkpoint() {
     // Whichever way the stop went, the newest checkpoint reads back and resume completes.
     let newest = checkpoints(&dir)
         .into_iter()
-        .filter(|p| {
+        .rfind(|p| {
             p.file_name()
                 .and_then(|n| n.to_str())
                 .and_then(checkpoint::parse_checkpoint_file_name)
                 .is_some()
         })
-        .next_back()
         .expect("a checkpoint");
     checkpoint::load::<CheckpointPayload>(&newest, None).expect("newest checkpoint is good");
     let out = bin()
