@@ -52,6 +52,14 @@ pub enum RunError {
         /// The folder.
         dir: PathBuf,
     },
+    /// The run folder could not be created (e.g. a parent is a regular file).
+    #[error("cannot create the run folder {dir}: {source}; choose another --out, or make sure every parent of it is a writable folder")]
+    CreateFolder {
+        /// The run folder.
+        dir: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
     /// A file of the run folder could not be read or written.
     #[error("{path}: {source}")]
     Io {
@@ -205,7 +213,10 @@ pub fn start(
         }
     }
     let checkpoints = dir.join(CHECKPOINT_DIR);
-    std::fs::create_dir_all(&checkpoints).map_err(io_err(&checkpoints))?;
+    std::fs::create_dir_all(&checkpoints).map_err(|source| RunError::CreateFolder {
+        dir: dir.to_path_buf(),
+        source,
+    })?;
     let experiment_path = dir.join(EXPERIMENT_FILE);
     write_atomic(&experiment_path, experiment.to_toml().as_bytes())
         .map_err(io_err(&experiment_path))?;
