@@ -7,6 +7,7 @@
 //! Crossover clamps to the parents' range and mutation cannot overflow f64::MAX, so the huge
 //! genomes also breed without producing an infinite parameter.
 
+use berry_evolve::brain::Brain;
 use berry_evolve::evo::state::{evaluate, first_population};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::checkpoint;
@@ -34,6 +35,40 @@ fn huge(n: usize, variant: usize) -> Vec<f64> {
         .collect()
 }
 
+/// Hidden layer all +f64::MAX (sums overflow to +∞, ReLU keeps ∞), output weights alternating
+/// ±f64::MAX: each output sum is ∞ − ∞ = NaN, which the brain turns into 0.
+fn nan_inside(experiment: &Experiment) -> Vec<f64> {
+    let topology = experiment.topology();
+    let n = topology.parameter_count();
+    let inputs = Brain::new(&topology, &vec![0.0; n]).unwrap().inputs();
+    let first = (inputs + 1) * 4; // the hidden layer: (inputs + 1) × 4 units
+    (0..n)
+        .map(|i| {
+            if i < first || i % 2 == 0 {
+                f64::MAX
+            } else {
+                -f64::MAX
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn a_brain_whose_sums_become_nan_outputs_zero() {
+    let experiment = relu_tiny();
+    let topology = experiment.topology();
+    let mut brain = Brain::new(&topology, &nan_inside(&experiment)).unwrap();
+    // Layout assumed by nan_inside: hidden layer, then (4 + 1) × outputs.
+    assert_eq!(
+        (brain.inputs() + 1) * 4 + 5 * brain.outputs(),
+        topology.parameter_count()
+    );
+    let inputs = vec![1.0; brain.inputs()];
+    let mut outputs = vec![f64::NAN; brain.outputs()];
+    brain.activate(&inputs, &mut outputs);
+    assert_eq!(outputs, vec![0.0; brain.outputs()]);
+}
+
 #[test]
 fn overflowing_brains_get_a_finite_fitness_or_are_counted_as_non_finite() {
     let experiment = relu_tiny();
@@ -43,6 +78,7 @@ fn overflowing_brains_get_a_finite_fitness_or_are_counted_as_non_finite() {
     for (k, genome) in population.iter_mut().enumerate().take(6) {
         genome.parameters = huge(n, k);
     }
+    population[6].parameters = nan_inside(&experiment);
     let evaluated = evaluate(&experiment, &topology, 0, population).expect("evaluation runs");
     let summary = evaluated.summary();
     let mut non_finite = 0;
