@@ -109,6 +109,7 @@ fn a_checkpoint_folder_that_disappears_mid_run_stops_the_run_and_keeps_the_last_
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert_clean_error(&stderr);
     assert!(stderr.contains(checkpoints.to_str().unwrap()), "{stderr}");
+    assert!(stderr.contains("could not be written"), "{stderr}");
 
     // The checkpoints written before are intact.
     let kept = checkpoint_files(&saved);
@@ -137,4 +138,64 @@ fn a_checkpoint_folder_that_disappears_mid_run_stops_the_run_and_keeps_the_last_
     let b = checkpoint_files(&checkpoints).pop().unwrap();
     assert_eq!(a.file_name(), b.file_name());
     assert!(std::fs::read(a).unwrap() == std::fs::read(b).unwrap());
+}
+
+#[test]
+fn a_checkpoint_that_cannot_be_written_names_the_last_good_one_and_resume_continues() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("run");
+    let checkpoints = dir.join("checkpoints");
+    let mut child = bin()
+        .args([
+            "run",
+            fixture("slow.toml").to_str().unwrap(),
+            "--quiet",
+            "--out",
+        ])
+        .arg(&dir)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let deadline = Instant::now() + Duration::from_secs(60);
+    while !checkpoints.is_dir() || checkpoint_files(&checkpoints).is_empty() {
+        assert!(child.try_wait().unwrap().is_none(), "run ended too early");
+        assert!(Instant::now() < deadline, "no checkpoint after 60 s");
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    // Folders squat on the names of every later checkpoint: the next one cannot be renamed
+    // into place (as with a full disk, the write fails after the older ones are safe).
+    let first = checkpoint_files(&checkpoints)[0].clone();
+    let squatters: Vec<PathBuf> = (3..60)
+        .map(|g| checkpoints.join(checkpoint::checkpoint_file_name(g)))
+        .collect();
+    for s in &squatters {
+        let _ = std::fs::create_dir(s);
+    }
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert_clean_error(&stderr);
+    assert!(stderr.contains("could not be written"), "{stderr}");
+    assert!(
+        stderr.contains(&format!("berry-evolve resume {}", dir.display())),
+        "{stderr}"
+    );
+    // The checkpoint the message names is good, and so is every real checkpoint file.
+    let named = checkpoint_files(&checkpoints)
+        .into_iter()
+        .rfind(|p| p.is_file())
+        .expect("a good checkpoint");
+    assert!(named >= first);
+    assert!(stderr.contains(named.to_str().unwrap()), "{stderr}");
+    checkpoint::load::<CheckpointPayload>(&named, None).expect("intact checkpoint");
+    for s in &squatters {
+        let _ = std::fs::remove_dir(s);
+    }
+    let out = bin()
+        .args(["resume", "--quiet"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
 }

@@ -113,6 +113,17 @@ pub enum RunError {
         /// The checkpoint.
         checkpoint: PathBuf,
     },
+    /// A file of the run could not be written during the run (full disk, permissions, the
+    /// folder removed); the run stopped.
+    #[error("the run in {dir} stopped: an output file could not be written. {advice}")]
+    OutputFailed {
+        /// The run folder.
+        dir: PathBuf,
+        /// What the user can do, naming the last good checkpoint if there is one.
+        advice: String,
+        /// The write that failed.
+        source: Box<RunError>,
+    },
     /// Stopped by the user (Ctrl-C / SIGTERM) after writing a checkpoint.
     #[error("interrupted after generation {generation}; the checkpoint {checkpoint} holds it. Continue with: berry-evolve resume {dir}")]
     Interrupted {
@@ -478,6 +489,29 @@ impl Loop {
     }
 }
 
+/// Wraps a failed write of the generation loop with what the user can do about it.
+fn output_failed(dir: &Path, source: RunError) -> RunError {
+    let newest = checkpoint::load_latest_good::<CheckpointPayload>(&dir.join(CHECKPOINT_DIR), None)
+        .ok()
+        .map(|loaded| loaded.path);
+    let advice = match newest {
+        Some(path) => format!(
+            "The last good checkpoint, {}, is kept. Fix the cause below (disk space, permissions, \
+             the folder) and continue with: berry-evolve resume {}",
+            path.display(),
+            dir.display()
+        ),
+        None => "No checkpoint was written yet. Fix the cause below (disk space, permissions, \
+                 the folder) and start the run again with --force"
+            .to_string(),
+    };
+    RunError::OutputFailed {
+        dir: dir.to_path_buf(),
+        advice,
+        source: Box::new(source),
+    }
+}
+
 /// The generation loop: evaluate, record, checkpoint, vary, until done or stopped.
 fn drive(
     mut state: Loop,
@@ -503,16 +537,23 @@ fn drive(
         let improved = improved_champion(state.best_ever.as_ref(), &evaluated, &summary);
         if let Some(champion) = improved {
             state.best_ever = Some(champion);
-            state.write_best()?;
+            state
+                .write_best()
+                .map_err(|e| output_failed(&state.dir, e))?;
         }
         let row = state.row(&evaluated, &summary);
-        state.csv.append(&row)?;
+        state
+            .csv
+            .append(&row)
+            .map_err(|e| output_failed(&state.dir, e.into()))?;
         state.history.push(row);
         progress.generation(&row);
         let is_last = generation + 1 >= total;
         let stop_requested = options.stop.is_some_and(|s| s.load(Ordering::SeqCst));
         if is_last {
-            let path = state.finish(&evaluated)?;
+            let path = state
+                .finish(&evaluated)
+                .map_err(|e| output_failed(&state.dir, e))?;
             progress.checkpoint(&path);
             progress.end();
             return Ok(RunSummary {
@@ -523,7 +564,9 @@ fn drive(
             });
         }
         if (generation + 1) % every == 0 || stop_requested {
-            let path = state.write_checkpoint(&evaluated)?;
+            let path = state
+                .write_checkpoint(&evaluated)
+                .map_err(|e| output_failed(&state.dir, e))?;
             progress.checkpoint(&path);
             if stop_requested {
                 return Err(RunError::Interrupted {
