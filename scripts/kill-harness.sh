@@ -5,6 +5,7 @@
 #
 #   bash scripts/kill-harness.sh            # 200 kills
 #   BERRY_KILLS=1000 BERRY_KILL_SEED=7 bash scripts/kill-harness.sh
+#   BERRY_KILL_MAX_DELAY_MS=80 bash scripts/kill-harness.sh   # kill sooner after each start
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export BERRY_KILLS="${BERRY_KILLS:-200}"
