@@ -335,3 +335,120 @@ fn genome_loader_never_panics_on_random_or_mutated_json() {
         never_panics("mutated genome JSON", &bytes, || load(&bytes));
     }
 }
+
+/// A finished 2-generation run of tiny.toml: (its final checkpoint, its fitness.csv).
+fn real_run(tmp: &Path) -> (Vec<u8>, Vec<u8>) {
+    let base = tmp.join("base");
+    let mut experiment = Experiment::from_toml(&tiny(), Path::new("tiny.toml")).unwrap();
+    experiment.evolution.generations = 2;
+    let summary = run::start(
+        experiment,
+        &base,
+        false,
+        RunOptions {
+            jobs: 1,
+            stop: None,
+        },
+        &mut Silent,
+    )
+    .unwrap();
+    let checkpoint = std::fs::read(summary.checkpoint.unwrap()).unwrap();
+    (checkpoint, std::fs::read(base.join("fitness.csv")).unwrap())
+}
+
+/// Checkpoints edited and re-signed with a correct checksum reach `resume`, which must refuse
+/// what does not fit (wrong genome sizes, an empty generation, ...) instead of panicking in
+/// variation or selection.
+#[test]
+fn resume_never_panics_on_re_signed_edited_checkpoints() {
+    let mut rng = rng(0x5e);
+    let tmp = tempfile::tempdir().unwrap();
+    let (good, csv) = real_run(tmp.path());
+    let envelope: Value = serde_json::from_slice(&good).unwrap();
+    let hash = envelope["config_hash"].as_str().unwrap().to_string();
+    let generation = envelope["generation"].as_u64().unwrap();
+    let (mut resumed, mut refused) = (0, 0);
+    for case in 0..cases(300) {
+        let mut payload = envelope["payload"].clone();
+        for _ in 0..1 + below(&mut rng, 3) {
+            mutate_json(&mut rng, &mut payload);
+        }
+        let Ok(bytes) = checkpoint::encode(&hash, generation, &payload) else {
+            continue;
+        };
+        let dir = tmp.path().join(format!("case-{case}"));
+        let checkpoints = dir.join(run::CHECKPOINT_DIR);
+        std::fs::create_dir_all(&checkpoints).unwrap();
+        std::fs::write(
+            checkpoints.join(checkpoint::checkpoint_file_name(generation)),
+            &bytes,
+        )
+        .unwrap();
+        std::fs::write(dir.join(run::FITNESS_FILE), &csv).unwrap();
+        let ok = never_panics("resume of a re-signed checkpoint", &bytes, || {
+            let options = RunOptions {
+                jobs: 1,
+                stop: None,
+            };
+            run::resume(&dir, Some(3), false, options, &mut Silent).map(|_| ())
+        });
+        if ok {
+            resumed += 1;
+        } else {
+            refused += 1;
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+    assert!(
+        resumed > 0 && refused > 0,
+        "{resumed} resumed, {refused} refused"
+    );
+}
+
+/// A change to a checkpoint payload.
+type Edit = fn(&mut Value);
+
+/// The two shapes the fuzzer found panicking before `resume` checked the payload.
+#[test]
+fn resume_refuses_a_checkpoint_whose_genomes_do_not_fit_its_experiment() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (good, csv) = real_run(tmp.path());
+    let envelope: Value = serde_json::from_slice(&good).unwrap();
+    let hash = envelope["config_hash"].as_str().unwrap().to_string();
+    let generation = envelope["generation"].as_u64().unwrap();
+    let edits: [(&str, Edit); 2] = [
+        ("individual 3 has 109 parameters", |p| {
+            p["last"]["individuals"][3]["genome"]["parameters"]
+                .as_array_mut()
+                .unwrap()
+                .pop();
+        }),
+        ("holds 0 individuals", |p| {
+            p["last"]["individuals"].as_array_mut().unwrap().clear();
+        }),
+    ];
+    for (needle, edit) in edits {
+        let mut payload = envelope["payload"].clone();
+        edit(&mut payload);
+        let dir = tmp.path().join("edited");
+        let checkpoints = dir.join(run::CHECKPOINT_DIR);
+        std::fs::create_dir_all(&checkpoints).unwrap();
+        let path = checkpoints.join(checkpoint::checkpoint_file_name(generation));
+        std::fs::write(
+            &path,
+            checkpoint::encode(&hash, generation, &payload).unwrap(),
+        )
+        .unwrap();
+        std::fs::write(dir.join(run::FITNESS_FILE), &csv).unwrap();
+        let options = RunOptions {
+            jobs: 1,
+            stop: None,
+        };
+        let message = run::resume(&dir, Some(3), false, options, &mut Silent)
+            .expect_err("edited checkpoint accepted")
+            .to_string();
+        assert!(message.contains(needle), "{message}");
+        assert!(message.contains(path.to_str().unwrap()), "{message}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

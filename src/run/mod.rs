@@ -11,7 +11,7 @@ use crate::evo::state::{
 };
 use crate::experiment::{Experiment, ExperimentError};
 use crate::record::atomic::{remove_stale_temp_files, write_atomic};
-use crate::record::checkpoint::{self, CheckpointError, CheckpointErrorKind};
+use crate::record::checkpoint::{self, CheckpointError, CheckpointErrorKind, ContentError};
 use crate::record::fitness_csv::{FitnessCsv, FitnessRow};
 use crate::record::genome_file::{GenomeFile, GenomeFileError, Origin};
 use serde::{Deserialize, Serialize};
@@ -331,6 +331,7 @@ pub fn load_checkpoint(target: &Path) -> Result<(PathBuf, PathBuf, CheckpointPay
     if target.is_file() {
         let loaded = checkpoint::load::<CheckpointPayload>(target, None)?;
         check_payload_hash(target, &loaded.config_hash, &loaded.payload)?;
+        check_payload_shape(target, &loaded.payload)?;
         let dir = run_dir_of_checkpoint(target);
         return Ok((dir, target.to_path_buf(), loaded.payload));
     }
@@ -346,6 +347,7 @@ pub fn load_checkpoint(target: &Path) -> Result<(PathBuf, PathBuf, CheckpointPay
         &loaded.checkpoint.config_hash,
         &loaded.checkpoint.payload,
     )?;
+    check_payload_shape(&loaded.path, &loaded.checkpoint.payload)?;
     Ok((
         target.to_path_buf(),
         loaded.path.clone(),
@@ -369,6 +371,49 @@ fn check_payload_hash(
             },
             previous_good: None,
         }));
+    }
+    Ok(())
+}
+
+/// The payload must fit its experiment before evolution touches it: a checkpoint edited by
+/// hand (and re-signed) could otherwise make variation or selection panic.
+fn check_payload_shape(path: &Path, payload: &CheckpointPayload) -> Result<(), RunError> {
+    let refuse = |message: String| {
+        Err(RunError::Checkpoint(CheckpointError {
+            path: path.to_path_buf(),
+            kind: CheckpointErrorKind::Content(ContentError::PayloadShape(message)),
+            previous_good: None,
+        }))
+    };
+    if let Err(e) = payload.experiment.validate() {
+        return refuse(format!("its experiment is not valid: {e}"));
+    }
+    let population = payload.experiment.evolution.population;
+    let individuals = payload.last.individuals.len();
+    if individuals != population {
+        return refuse(format!(
+            "the last generation holds {individuals} individuals, its experiment's population is {population}"
+        ));
+    }
+    let parameters = payload.experiment.topology().parameter_count();
+    let genomes = payload
+        .last
+        .individuals
+        .iter()
+        .map(|i| &i.genome)
+        .chain(payload.best_ever.as_ref().map(|c| &c.genome));
+    for (k, genome) in genomes.enumerate() {
+        if genome.parameters.len() != parameters {
+            let which = if k < individuals {
+                format!("individual {k}")
+            } else {
+                "the best individual".to_string()
+            };
+            return refuse(format!(
+                "{which} has {} parameters, the experiment's brain has {parameters}",
+                genome.parameters.len()
+            ));
+        }
     }
     Ok(())
 }
