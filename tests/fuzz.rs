@@ -5,7 +5,7 @@
 
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::checkpoint;
-use berry_evolve::record::genome_file::GenomeFile;
+use berry_evolve::record::genome_file::{GenomeFile, GenomeFileError};
 use berry_evolve::run::{self, CheckpointPayload, RunOptions, Silent};
 use berry_evolve::seed::{below, chance, Rng};
 use rand::{RngCore, SeedableRng};
@@ -311,10 +311,17 @@ fn genome_loader_never_panics_on_random_or_mutated_json() {
     let good = GenomeFile::new(&experiment, &genome, Default::default()).to_json();
     let origin = Path::new("fuzz.json");
     let load = |bytes: &[u8]| {
-        GenomeFile::from_slice(bytes, origin).map(|file| {
-            // A genome that loads must also decode into some brain or say why not.
-            let _ = file.genome();
-        })
+        let file = GenomeFile::from_slice(bytes, origin)?;
+        // A genome that loads must fit the experiment and become a brain, or say why not
+        // (as `replay` does).
+        let topology = file.topology_for(&experiment, origin)?;
+        file.genome()
+            .decode(&topology)
+            .map(|_| ())
+            .map_err(|e| GenomeFileError::Mismatch {
+                path: origin.to_path_buf(),
+                reason: e.to_string(),
+            })
     };
     assert!(load(&good).is_ok());
     for _ in 0..cases(1000) {
