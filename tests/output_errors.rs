@@ -199,3 +199,39 @@ fn a_checkpoint_that_cannot_be_written_names_the_last_good_one_and_resume_contin
         .unwrap();
     assert!(out.status.success(), "{out:?}");
 }
+
+#[test]
+fn a_deleted_fitness_csv_is_rebuilt_from_the_checkpoint_on_resume() {
+    let tmp = tempfile::tempdir().unwrap();
+    let full = tmp.path().join("full");
+    let short = tmp.path().join("short");
+    let tiny = fixture("tiny.toml");
+    for (dir, generations) in [(&full, "8"), (&short, "5")] {
+        let out = bin()
+            .args([
+                "run",
+                tiny.to_str().unwrap(),
+                "--quiet",
+                "--generations",
+                generations,
+            ])
+            .arg("--out")
+            .arg(dir)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{out:?}");
+    }
+    std::fs::remove_file(short.join("fitness.csv")).unwrap();
+    let out = bin()
+        .args(["resume", "--quiet", "--generations", "8"])
+        .arg(&short)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
+    for name in ["fitness.csv", "best.json"] {
+        assert!(
+            std::fs::read(full.join(name)).unwrap() == std::fs::read(short.join(name)).unwrap(),
+            "{name} differs"
+        );
+    }
+}

@@ -300,7 +300,18 @@ pub fn resume(
     write_atomic(&experiment_path, experiment.to_toml().as_bytes())
         .map_err(io_err(&experiment_path))?;
     let last_generation = payload.last.generation;
-    let csv = FitnessCsv::reopen_for_resume(&dir.join(FITNESS_FILE), last_generation)?.csv;
+    let csv_path = dir.join(FITNESS_FILE);
+    let csv = if csv_path.exists() || payload.history.len() as u64 != last_generation + 1 {
+        FitnessCsv::reopen_for_resume(&csv_path, last_generation)?.csv
+    } else {
+        // A deleted fitness.csv is rebuilt from the rows the checkpoint carries (the same
+        // bytes: the same rows through the same writer).
+        let mut csv = FitnessCsv::create(&csv_path)?;
+        for row in &payload.history {
+            csv.append(row)?;
+        }
+        csv
+    };
     let topology = experiment.topology();
     let mut state = Loop {
         topology,
