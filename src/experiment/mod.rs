@@ -22,6 +22,11 @@ use thiserror::Error;
 /// The largest seed accepted: TOML integers are signed 64-bit.
 pub const MAX_SEED: u64 = i64::MAX as u64;
 
+/// The most network parameters a generation may hold in total (population × parameters per
+/// genome): 8 bytes each, and two generations are in memory at once, so at most 4 GB. Each
+/// limit alone (population, units per layer, layers) still allows petabytes together.
+pub const MAX_GENERATION_PARAMETERS: u64 = 250_000_000;
+
 /// A whole experiment, exactly as its TOML file says (after defaults). Unknown keys anywhere
 /// are errors, so a misspelt option can never be silently ignored.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -142,6 +147,20 @@ impl Experiment {
         self.output.validate()?;
         self.evaluation
             .validate_against_population(self.evolution.population)?;
+        let parameters = self.topology().parameter_count() as u64;
+        let total = parameters.saturating_mul(self.evolution.population as u64);
+        if total > MAX_GENERATION_PARAMETERS {
+            return Err(InvalidValue::new(
+                "brain.hidden",
+                format!(
+                    "population × brain parameters must be at most {MAX_GENERATION_PARAMETERS} \
+                     (limit: memory for two generations of genomes), got {} × {parameters} = \
+                     {total}; use fewer or smaller hidden layers or a smaller \
+                     evolution.population",
+                    self.evolution.population
+                ),
+            ));
+        }
         Ok(())
     }
 

@@ -11,7 +11,7 @@ use crate::evo::state::{
 };
 use crate::experiment::{Experiment, ExperimentError};
 use crate::record::atomic::{remove_stale_temp_files, write_atomic};
-use crate::record::checkpoint::{self, CheckpointError, CheckpointErrorKind};
+use crate::record::checkpoint::{self, CheckpointError, CheckpointErrorKind, ContentError};
 use crate::record::fitness_csv::{FitnessCsv, FitnessRow};
 use crate::record::genome_file::{GenomeFile, GenomeFileError, Origin};
 use serde::{Deserialize, Serialize};
@@ -51,6 +51,14 @@ pub enum RunError {
     FolderInUse {
         /// The folder.
         dir: PathBuf,
+    },
+    /// The run folder could not be created (e.g. a parent is a regular file).
+    #[error("cannot create the run folder {dir}: {source}; choose another --out, or make sure every parent of it is a writable folder")]
+    CreateFolder {
+        /// The run folder.
+        dir: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
     },
     /// A file of the run folder could not be read or written.
     #[error("{path}: {source}")]
@@ -104,6 +112,17 @@ pub enum RunError {
         completed: u64,
         /// The checkpoint.
         checkpoint: PathBuf,
+    },
+    /// A file of the run could not be written during the run (full disk, permissions, the
+    /// folder removed); the run stopped.
+    #[error("the run in {dir} stopped: an output file could not be written. {advice}")]
+    OutputFailed {
+        /// The run folder.
+        dir: PathBuf,
+        /// What the user can do, naming the last good checkpoint if there is one.
+        advice: String,
+        /// The write that failed.
+        source: Box<RunError>,
     },
     /// Stopped by the user (Ctrl-C / SIGTERM) after writing a checkpoint.
     #[error("interrupted after generation {generation}; the checkpoint {checkpoint} holds it. Continue with: berry-evolve resume {dir}")]
@@ -183,6 +202,10 @@ pub fn start(
     options: RunOptions<'_>,
     progress: &mut dyn Progress,
 ) -> Result<RunSummary, RunError> {
+    if dir.is_dir() {
+        // A run killed while writing (e.g. before --force) leaves `.<name>.tmp-*` files.
+        remove_stale_temp_files(dir).map_err(io_err(dir))?;
+    }
     if holds_run(dir) {
         if !force {
             return Err(RunError::FolderInUse {
@@ -201,7 +224,10 @@ pub fn start(
         }
     }
     let checkpoints = dir.join(CHECKPOINT_DIR);
-    std::fs::create_dir_all(&checkpoints).map_err(io_err(&checkpoints))?;
+    std::fs::create_dir_all(&checkpoints).map_err(|source| RunError::CreateFolder {
+        dir: dir.to_path_buf(),
+        source,
+    })?;
     let experiment_path = dir.join(EXPERIMENT_FILE);
     write_atomic(&experiment_path, experiment.to_toml().as_bytes())
         .map_err(io_err(&experiment_path))?;
@@ -274,7 +300,18 @@ pub fn resume(
     write_atomic(&experiment_path, experiment.to_toml().as_bytes())
         .map_err(io_err(&experiment_path))?;
     let last_generation = payload.last.generation;
-    let csv = FitnessCsv::reopen_for_resume(&dir.join(FITNESS_FILE), last_generation)?.csv;
+    let csv_path = dir.join(FITNESS_FILE);
+    let csv = if csv_path.exists() || payload.history.len() as u64 != last_generation + 1 {
+        FitnessCsv::reopen_for_resume(&csv_path, last_generation)?.csv
+    } else {
+        // A deleted fitness.csv is rebuilt from the rows the checkpoint carries (the same
+        // bytes: the same rows through the same writer).
+        let mut csv = FitnessCsv::create(&csv_path)?;
+        for row in &payload.history {
+            csv.append(row)?;
+        }
+        csv
+    };
     let topology = experiment.topology();
     let mut state = Loop {
         topology,
@@ -305,6 +342,7 @@ pub fn load_checkpoint(target: &Path) -> Result<(PathBuf, PathBuf, CheckpointPay
     if target.is_file() {
         let loaded = checkpoint::load::<CheckpointPayload>(target, None)?;
         check_payload_hash(target, &loaded.config_hash, &loaded.payload)?;
+        check_payload_shape(target, &loaded.payload)?;
         let dir = run_dir_of_checkpoint(target);
         return Ok((dir, target.to_path_buf(), loaded.payload));
     }
@@ -320,6 +358,7 @@ pub fn load_checkpoint(target: &Path) -> Result<(PathBuf, PathBuf, CheckpointPay
         &loaded.checkpoint.config_hash,
         &loaded.checkpoint.payload,
     )?;
+    check_payload_shape(&loaded.path, &loaded.checkpoint.payload)?;
     Ok((
         target.to_path_buf(),
         loaded.path.clone(),
@@ -343,6 +382,49 @@ fn check_payload_hash(
             },
             previous_good: None,
         }));
+    }
+    Ok(())
+}
+
+/// The payload must fit its experiment before evolution touches it: a checkpoint edited by
+/// hand (and re-signed) could otherwise make variation or selection panic.
+fn check_payload_shape(path: &Path, payload: &CheckpointPayload) -> Result<(), RunError> {
+    let refuse = |message: String| {
+        Err(RunError::Checkpoint(CheckpointError {
+            path: path.to_path_buf(),
+            kind: CheckpointErrorKind::Content(ContentError::PayloadShape(message)),
+            previous_good: None,
+        }))
+    };
+    if let Err(e) = payload.experiment.validate() {
+        return refuse(format!("its experiment is not valid: {e}"));
+    }
+    let population = payload.experiment.evolution.population;
+    let individuals = payload.last.individuals.len();
+    if individuals != population {
+        return refuse(format!(
+            "the last generation holds {individuals} individuals, its experiment's population is {population}"
+        ));
+    }
+    let parameters = payload.experiment.topology().parameter_count();
+    let genomes = payload
+        .last
+        .individuals
+        .iter()
+        .map(|i| &i.genome)
+        .chain(payload.best_ever.as_ref().map(|c| &c.genome));
+    for (k, genome) in genomes.enumerate() {
+        if genome.parameters.len() != parameters {
+            let which = if k < individuals {
+                format!("individual {k}")
+            } else {
+                "the best individual".to_string()
+            };
+            return refuse(format!(
+                "{which} has {} parameters, the experiment's brain has {parameters}",
+                genome.parameters.len()
+            ));
+        }
     }
     Ok(())
 }
@@ -463,6 +545,29 @@ impl Loop {
     }
 }
 
+/// Wraps a failed write of the generation loop with what the user can do about it.
+fn output_failed(dir: &Path, source: RunError) -> RunError {
+    let newest = checkpoint::load_latest_good::<CheckpointPayload>(&dir.join(CHECKPOINT_DIR), None)
+        .ok()
+        .map(|loaded| loaded.path);
+    let advice = match newest {
+        Some(path) => format!(
+            "The last good checkpoint, {}, is kept. Fix the cause below (disk space, permissions, \
+             the folder) and continue with: berry-evolve resume {}",
+            path.display(),
+            dir.display()
+        ),
+        None => "No checkpoint was written yet. Fix the cause below (disk space, permissions, \
+                 the folder) and start the run again with --force"
+            .to_string(),
+    };
+    RunError::OutputFailed {
+        dir: dir.to_path_buf(),
+        advice,
+        source: Box::new(source),
+    }
+}
+
 /// The generation loop: evaluate, record, checkpoint, vary, until done or stopped.
 fn drive(
     mut state: Loop,
@@ -488,16 +593,23 @@ fn drive(
         let improved = improved_champion(state.best_ever.as_ref(), &evaluated, &summary);
         if let Some(champion) = improved {
             state.best_ever = Some(champion);
-            state.write_best()?;
+            state
+                .write_best()
+                .map_err(|e| output_failed(&state.dir, e))?;
         }
         let row = state.row(&evaluated, &summary);
-        state.csv.append(&row)?;
+        state
+            .csv
+            .append(&row)
+            .map_err(|e| output_failed(&state.dir, e.into()))?;
         state.history.push(row);
         progress.generation(&row);
         let is_last = generation + 1 >= total;
         let stop_requested = options.stop.is_some_and(|s| s.load(Ordering::SeqCst));
         if is_last {
-            let path = state.finish(&evaluated)?;
+            let path = state
+                .finish(&evaluated)
+                .map_err(|e| output_failed(&state.dir, e))?;
             progress.checkpoint(&path);
             progress.end();
             return Ok(RunSummary {
@@ -508,7 +620,9 @@ fn drive(
             });
         }
         if (generation + 1) % every == 0 || stop_requested {
-            let path = state.write_checkpoint(&evaluated)?;
+            let path = state
+                .write_checkpoint(&evaluated)
+                .map_err(|e| output_failed(&state.dir, e))?;
             progress.checkpoint(&path);
             if stop_requested {
                 return Err(RunError::Interrupted {
