@@ -144,3 +144,16 @@ fn nan_and_infinite_values_are_refused_naming_the_key() {
         assert_names(&m, key, &["finite"]);
     }
 }
+
+#[test]
+fn an_absurd_retina_is_refused_naming_the_limit() {
+    let text = "name = \"x\"\nseed = 1\n[creature.eye]\nwidth = 1000000\nheight = 1\n[creature.inputs]\neye = true\n";
+    let err =
+        berry_evolve::experiment::Experiment::from_toml(text, std::path::Path::new("eye.toml"))
+            .unwrap_err()
+            .to_string();
+    assert!(
+        err.contains("eye.toml") && err.contains("creature.eye.width") && err.contains("at most"),
+        "{err}"
+    );
+}

@@ -23,22 +23,22 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 pub enum EvaluationError {
     /// The genome does not fit the experiment's brain topology.
-    #[error("individual {individual}: {source}")]
+    #[error("individual {individual}: {error}")]
     Brain {
         /// Index in the population.
         individual: u64,
         /// What the brain said.
-        source: crate::brain::BrainError,
+        error: crate::brain::BrainError,
     },
     /// The trial world could not be built (e.g. placement impossible at this density).
-    #[error("generation {generation}, trial {trial}: cannot build the world: {source}")]
+    #[error("generation {generation}, trial {trial}: cannot build the world: {error}")]
     World {
         /// Generation of the trial.
         generation: u64,
         /// Trial index.
         trial: u64,
         /// The placement failure.
-        source: crate::sim::PlacementError,
+        error: crate::sim::PlacementError,
     },
 }
 
@@ -127,10 +127,10 @@ pub fn run_trial(
         .iter()
         .enumerate()
         .map(|(k, genome)| {
-            let brain = Brain::new(topology, &genome.parameters).map_err(|source| {
+            let brain = Brain::new(topology, &genome.parameters).map_err(|error| {
                 EvaluationError::Brain {
                     individual: group * genomes.len() as u64 + k as u64,
-                    source,
+                    error,
                 }
             })?;
             Ok(CheckedController {
@@ -145,10 +145,10 @@ pub fn run_trial(
         .collect::<Result<Vec<_>, EvaluationError>>()?;
     let rng = trial_stream(experiment, generation, group, trial);
     let mut world = World::new(&experiment.world, &experiment.creature, genomes.len(), rng)
-        .map_err(|source| EvaluationError::World {
+        .map_err(|error| EvaluationError::World {
             generation: generation.0,
             trial: trial.0,
-            source,
+            error,
         })?;
     let mut scores: Vec<LifeScore> = (0..genomes.len())
         .map(|_| LifeScore::new(&experiment.fitness))

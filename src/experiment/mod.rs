@@ -66,12 +66,12 @@ pub struct Experiment {
 #[derive(Debug, Error)]
 pub enum ExperimentError {
     /// The file could not be read.
-    #[error("cannot read experiment file {path}: {source}")]
+    #[error("cannot read experiment file {path}: {error}")]
     Read {
         /// The file.
         path: PathBuf,
         /// The I/O error.
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// The file is not valid TOML or does not have the experiment's shape (unknown key,
     /// wrong type, missing field). The message carries the line, column and key.
@@ -83,26 +83,26 @@ pub enum ExperimentError {
         message: String,
     },
     /// A value is well-formed but not acceptable.
-    #[error("{path}: {source}")]
+    #[error("{path}: {error}")]
     Invalid {
         /// The file.
         path: PathBuf,
         /// The key and the reason.
-        source: InvalidValue,
+        error: InvalidValue,
     },
 }
 
 impl Experiment {
     /// Reads and validates an experiment file.
     pub fn load(path: &Path) -> Result<Experiment, ExperimentError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ExperimentError::Read {
+        let text = std::fs::read_to_string(path).map_err(|error| ExperimentError::Read {
             path: path.to_path_buf(),
-            source,
+            error,
         })?;
         Experiment::from_toml(&text, path)
     }
 
-    /// Parses and validates experiment text; `origin` only names the source in errors.
+    /// Parses and validates experiment text; `origin` only names the error in errors.
     pub fn from_toml(text: &str, origin: &Path) -> Result<Experiment, ExperimentError> {
         let experiment: Experiment = toml::from_str(text).map_err(|e| ExperimentError::Parse {
             path: origin.to_path_buf(),
@@ -110,9 +110,9 @@ impl Experiment {
         })?;
         experiment
             .validate()
-            .map_err(|source| ExperimentError::Invalid {
+            .map_err(|error| ExperimentError::Invalid {
                 path: origin.to_path_buf(),
-                source,
+                error,
             })?;
         Ok(experiment)
     }

@@ -65,12 +65,12 @@ pub struct GenomeFile {
 #[derive(Debug, Error)]
 pub enum GenomeFileError {
     /// Reading or writing failed.
-    #[error("{path}: {source}")]
+    #[error("{path}: {error}")]
     Io {
         /// The file.
         path: PathBuf,
         /// The I/O error.
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// Not a genome file: bad JSON, missing or unknown field.
     #[error("{path}: not a valid genome file: {message}")]
@@ -122,14 +122,14 @@ impl GenomeFile {
 
     /// Reads and checks a genome file (format, finite values, parameter count).
     pub fn load(path: &Path) -> Result<GenomeFile, GenomeFileError> {
-        let bytes = std::fs::read(path).map_err(|source| GenomeFileError::Io {
+        let bytes = std::fs::read(path).map_err(|error| GenomeFileError::Io {
             path: path.to_path_buf(),
-            source,
+            error,
         })?;
         GenomeFile::from_slice(&bytes, path)
     }
 
-    /// Parses and checks genome file bytes; `origin` only names the source in errors.
+    /// Parses and checks genome file bytes; `origin` only names the error in errors.
     pub fn from_slice(bytes: &[u8], origin: &Path) -> Result<GenomeFile, GenomeFileError> {
         let file: GenomeFile =
             serde_json::from_slice(bytes).map_err(|e| GenomeFileError::Parse {
@@ -225,9 +225,9 @@ impl GenomeFile {
                 reason: format!("refusing to write: parameters[{i}] is not finite"),
             });
         }
-        write_atomic(path, &self.to_json()).map_err(|source| GenomeFileError::Io {
+        write_atomic(path, &self.to_json()).map_err(|error| GenomeFileError::Io {
             path: path.to_path_buf(),
-            source,
+            error,
         })
     }
 }

@@ -53,20 +53,20 @@ pub enum RunError {
         dir: PathBuf,
     },
     /// The run folder could not be created (e.g. a parent is a regular file).
-    #[error("cannot create the run folder {dir}: {source}; choose another --out, or make sure every parent of it is a writable folder")]
+    #[error("cannot create the run folder {dir}: {error}; choose another --out, or make sure every parent of it is a writable folder")]
     CreateFolder {
         /// The run folder.
         dir: PathBuf,
         /// The I/O error.
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// A file of the run folder could not be read or written.
-    #[error("{path}: {source}")]
+    #[error("{path}: {error}")]
     Io {
         /// The file or folder.
         path: PathBuf,
         /// The I/O error.
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// The experiment is not usable.
     #[error(transparent)]
@@ -180,9 +180,9 @@ pub struct RunSummary {
 }
 
 fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> RunError + '_ {
-    move |source| RunError::Io {
+    move |error| RunError::Io {
         path: path.to_path_buf(),
-        source,
+        error,
     }
 }
 
@@ -224,9 +224,9 @@ pub fn start(
         }
     }
     let checkpoints = dir.join(CHECKPOINT_DIR);
-    std::fs::create_dir_all(&checkpoints).map_err(|source| RunError::CreateFolder {
+    std::fs::create_dir_all(&checkpoints).map_err(|error| RunError::CreateFolder {
         dir: dir.to_path_buf(),
-        source,
+        error,
     })?;
     let experiment_path = dir.join(EXPERIMENT_FILE);
     write_atomic(&experiment_path, experiment.to_toml().as_bytes())
@@ -293,9 +293,9 @@ pub fn resume(
     }
     experiment
         .validate()
-        .map_err(|source| ExperimentError::Invalid {
+        .map_err(|error| ExperimentError::Invalid {
             path: experiment_path.clone(),
-            source,
+            error,
         })?;
     write_atomic(&experiment_path, experiment.to_toml().as_bytes())
         .map_err(io_err(&experiment_path))?;
