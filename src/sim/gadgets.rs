@@ -518,20 +518,18 @@ impl Actor {
         }
     }
 
-    /// Steers towards `target` at full speed: straight on when it is ahead, turning on the
-    /// spot when it is 90° or more to a side, in between proportionally.
+    /// Steers towards `target`: the wheel difference that turns the heading onto it in one
+    /// tick (a spin turns by 2π(L − R) rad, eq. 28–33), limited to ±`max_rpt` per wheel,
+    /// with the rest of the speed budget going forward.
     pub fn steer(&self, target: Vec2) -> (f64, f64) {
         let to = target - self.pose.position;
         let h = self.pose.heading;
         // y points down: a positive cross product means the target is clockwise (right).
         let angle = libm::atan2(h.x * to.y - h.y * to.x, h.x * to.x + h.y * to.y);
-        let turn = (angle / std::f64::consts::FRAC_PI_2).clamp(-1.0, 1.0);
         let m = self.max_rpt;
-        if turn >= 0.0 {
-            (m, m * (1.0 - 2.0 * turn))
-        } else {
-            (m * (1.0 + 2.0 * turn), m)
-        }
+        let half = (angle / (4.0 * std::f64::consts::PI)).clamp(-m, m);
+        let ahead = m - half.abs();
+        (ahead + half, ahead - half)
     }
 }
 

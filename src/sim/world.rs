@@ -909,6 +909,49 @@ impl World {
         };
     }
 
+    /// Is locked door `door` (index in `[[world.doors]]`) open now?
+    ///
+    /// # Panics
+    /// When `door` is out of range.
+    pub fn door_open(&self, door: usize) -> bool {
+        self.walls.door_open(door)
+    }
+
+    /// Wanderers then ground predators, in file order.
+    pub fn actors(&self) -> &[Actor] {
+        &self.actors
+    }
+
+    /// Air predators, in file order.
+    pub fn flyers(&self) -> &[Flyer] {
+        &self.flyers
+    }
+
+    /// Door triggers, teleporter entries, wanderers, ground and air predators, in that
+    /// order, as the senses meet them.
+    pub fn things(&self) -> &[Thing] {
+        &self.things
+    }
+
+    /// Puts wanderer or ground predator `actor` at `pose` (for tests and demos).
+    pub fn set_actor_pose(&mut self, actor: usize, pose: Pose) {
+        let a = &mut self.actors[actor];
+        a.pose = Pose {
+            position: pose.position,
+            heading: pose.heading.normalize_or(Vec2::X),
+        };
+        self.things[a.thing].position = pose.position;
+    }
+
+    /// Puts air predator `flyer` at `position` flying `velocity` LU per tick (for tests and
+    /// demos).
+    pub fn set_flyer(&mut self, flyer: usize, position: Vec2, velocity: Vec2) {
+        let f = &mut self.flyers[flyer];
+        f.position = position;
+        f.velocity = velocity;
+        self.things[f.thing].position = position;
+    }
+
     /// Ends creature `creature`'s life now: it no longer senses, moves, eats, blocks, or is
     /// felt or smelled by others. Its last state stays readable.
     pub fn kill(&mut self, creature: usize) {
