@@ -72,3 +72,23 @@ fn gadget_experiments_simulate_and_evolve_reproducibly() {
         );
     }
 }
+
+#[test]
+fn bench_runs_both_benchmark_worlds() {
+    let out = run_ok(&[
+        "bench",
+        "--world",
+        &experiment("bench/foraging-world.toml"),
+        "--world",
+        &experiment("bench/eye-predators-world.toml"),
+        "--worlds",
+        "2",
+        "--ticks",
+        "50",
+        "--generations",
+        "0",
+    ]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("foraging-world.toml:"), "{text}");
+    assert!(text.contains("eye-predators-world.toml:"), "{text}");
+}
