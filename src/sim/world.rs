@@ -4,20 +4,29 @@
 //!
 //! # One tick ([`World::step`])
 //!
-//! 1. **Food** regenerates, each object in list order (§4.3).
-//! 2. Each **living creature**, in index order, does in turn (§9; it sees the world as left by
+//! 1. **Food** regenerates, each object in list order (§4.3); **doors** whose open time is
+//!    over close (§4.5.2).
+//! 2. **Wanderers** then **ground predators** (file order) feel with their whiskers, pick a
+//!    command and move; a predator attacks every creature its body then touches outside safe
+//!    areas. **Air predators** (file order) fly one tick, re-entering when they left the
+//!    arena, and strike every creature within their strike radius outside safe areas (§4.7,
+//!    §4.8).
+//! 3. Each **living creature**, in index order, does in turn (§9; it sees the world as left by
 //!    the creatures before it in this tick):
 //!    1. *sense*: whiskers, smell, food detectors; the shock sensor carries the creature's
 //!       shock state from the end of its previous tick; the observation is written;
 //!    2. *act*: its controller turns the observation into a motor command;
 //!    3. *move*: the motors are clamped to ±`max_rpt` and the body moves (§8), blocked by
-//!       walls and by the other living creatures' bodies;
+//!       walls, closed doors, wanderers and the other living creatures' bodies;
 //!    4. *contacts*: it eats from every food object its body touches (§4.3, §5.2), and is
 //!       shocked if its body touches an aversive object or, with `wall_shock`, a wall stopped
 //!       its move (§5.2);
 //!    5. *metabolism*: m gains what was eaten, then loses the decay per tick and per LU
-//!       travelled, never dropping below 0 (§5.3).
-//! 3. The tick counter advances.
+//!       travelled, never dropping below 0 (§5.3);
+//!    6. *gadgets*: it jumps to a teleporter's exit when its body touches the entry and the
+//!       exit is free (§4.5.1), opens the doors whose trigger it touches (§4.5.2), and is
+//!       attacked by the predators it touches or is under, outside safe areas (§4.7).
+//! 4. The tick counter advances.
 
 use crate::geometry::{circle_touches_segment, circles_touch, Circle, Segment, Vec2};
 use crate::seed::{uniform, Rng};
