@@ -35,7 +35,6 @@ fn a_creature_killed_at_once_keeps_its_initial_metabolism() {
             TrialIndex(0),
         )
         .unwrap()[0]
-            .clone()
     };
     let dead = run(&killed);
     let alive = run(&free);
