@@ -499,3 +499,103 @@ fn bad_values_are_rejected_with_their_key() {
         assert!(parsed.is_err(), "{bad}");
     }
 }
+
+// ---------------------------------------------------------------- what senses meet
+
+#[test]
+fn a_closed_door_is_seen_and_hides_smell_an_open_one_neither() {
+    let text = r#"
+[[world.doors]]
+from = [150, 0]
+to = [150, 300]
+colour = [0.6, 0.3, 0.1]
+trigger = [100, 250]
+trigger_radius = 5
+open_ticks = 100
+
+[world.kinds.rose]
+class = "food"
+radius = 1
+odour = [1, 0, 0, 0, 0, 0, 0, 0]
+intensity = 1
+
+[[world.objects]]
+kind = "rose"
+position = [200, 150]
+
+[creature.inputs]
+eye = true
+
+[creature.eye]
+width = 3
+fov = 10
+"#;
+    let mut w = world(text, 1, 1);
+    w.set_full_sensing(true);
+    let n = 3 * 3;
+    let mut pixels = vec![0.0; n];
+    put(&mut w, 0, 120.0, 150.0, 0.0);
+    w.step(&mut [Still]);
+    assert_eq!(
+        w.creatures()[0].smell,
+        [[0.0; 8]; 2],
+        "the door hides the rose"
+    );
+    assert!(w.render_eye(0, &mut pixels));
+    let door_colour = |p: &[f64]| p.contains(&0.6) && p.contains(&0.1);
+    assert!(door_colour(&pixels), "{pixels:?}");
+    put(&mut w, 0, 108.0, 250.0, 0.0); // touch the trigger
+    w.step(&mut [Still]);
+    assert!(w.door_open(0));
+    put(&mut w, 0, 120.0, 150.0, 0.0);
+    w.step(&mut [Still]);
+    assert!(w.creatures()[0].smell[0][0] > 0.0, "the rose is smelled");
+    assert!(w.render_eye(0, &mut pixels));
+    assert!(!door_colour(&pixels), "{pixels:?}");
+}
+
+#[test]
+fn triggers_entries_and_wanderers_are_felt_predators_seen() {
+    let text = r#"
+[[world.doors]]
+from = [290, 0]
+to = [290, 20]
+trigger = [103.5, 95.5]
+trigger_radius = 1
+
+[[world.teleporters]]
+entry = [103.5, 204.5]
+radius = 1
+exit = [250, 250]
+
+[[world.predators]]
+strategy = "wander"
+max_rpt = 0
+start = [60, 60]
+colour = [0.9, 0.1, 0.2]
+
+[creature.inputs]
+eye = true
+
+[creature.eye]
+width = 3
+fov = 10
+"#;
+    let mut w = world(text, 1, 1);
+    // Whiskers of length 5 at ±45° from (100, y) facing east end at (103.54, y ∓ 3.54):
+    // the trigger lies on the left one, the entry on the right one, both out of the body's
+    // reach (5.7 LU > 3 + 1).
+    put(&mut w, 0, 100.0, 100.0, 0.0);
+    w.step(&mut [Still]);
+    assert_eq!(w.creatures()[0].whiskers, [true, false]);
+    assert!(!w.door_open(0));
+    put(&mut w, 0, 100.0, 200.0, 0.0);
+    w.step(&mut [Still]);
+    assert_eq!(w.creatures()[0].whiskers, [false, true]);
+    assert_eq!(w.creatures()[0].pose.position, Vec2::new(100.0, 200.0));
+    put(&mut w, 0, 30.0, 60.0, 0.0);
+    let mut pixels = vec![0.0; 9];
+    w.step(&mut [Still]);
+    assert!(w.render_eye(0, &mut pixels));
+    assert!(pixels.contains(&0.9) && pixels.contains(&0.2), "{pixels:?}");
+}
