@@ -494,6 +494,8 @@ fn bad_values_are_rejected_with_their_key() {
         "[[world.predators]]\nstrategy = \"hunt\"",
         "[[world.air_predators]]\neffect = \"stun\"",
         "[[world.teleporters]]\nentry = [5, 5, 5]\nexit = [5, 5]",
+        "[[world.predators]]\nstrategy = \"patrol\"\nwaypoints = [[5, 5, 5]]",
+        "[world.wanderers]\nhold_ticks = [1, 2, 3]",
     ] {
         let parsed: Result<sim_common::Setup, _> = toml::from_str(bad);
         assert!(parsed.is_err(), "{bad}");

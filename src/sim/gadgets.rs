@@ -101,6 +101,7 @@ pub struct WanderersSpec {
     pub max_rpt: f64,
     /// Each random motor command is held for a number of ticks drawn uniformly from
     /// `[min, max]` (default: `[5, 30]`, min >= 1).
+    #[serde(deserialize_with = "exact_lists::pair")]
     pub hold_ticks: [u64; 2],
     /// Odour of their bodies (default: zeros).
     #[serde(deserialize_with = "crate::sim::spec::exact::array")]
@@ -162,6 +163,7 @@ pub struct PredatorSpec {
     /// `"wander"`, `"chase"` or `"patrol"` (default: `"wander"`).
     pub strategy: Strategy,
     /// Points `[x, y]` in LU visited in order by `patrol` (required for patrol, default: none).
+    #[serde(deserialize_with = "exact_lists::points")]
     pub waypoints: Vec<Point>,
     /// `"lethal"` or `"shock"` (default: `"lethal"`).
     pub effect: Effect,
@@ -174,6 +176,7 @@ pub struct PredatorSpec {
     )]
     pub start: Option<Point>,
     /// `wander` holds each random command for `[min, max]` ticks (default: `[5, 30]`).
+    #[serde(deserialize_with = "exact_lists::pair")]
     pub hold_ticks: [u64; 2],
     /// Odour of its body (default: zeros).
     #[serde(deserialize_with = "crate::sim::spec::exact::array")]
@@ -239,6 +242,31 @@ impl Default for AirPredatorSpec {
             intensity: 0.0,
             range: None,
         }
+    }
+}
+
+/// Lists of points and pairs of counts read exactly (the `toml` crate silently drops extra
+/// array elements when it fills a Rust array, see `spec::exact`).
+mod exact_lists {
+    use serde::de::Error;
+    use serde::{Deserialize, Deserializer};
+
+    pub fn points<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<[f64; 2]>, D::Error> {
+        Vec::<Vec<f64>>::deserialize(d)?
+            .into_iter()
+            .map(|p| {
+                let n = p.len();
+                p.try_into()
+                    .map_err(|_| D::Error::invalid_length(n, &"a point [x, y]"))
+            })
+            .collect()
+    }
+
+    pub fn pair<'de, D: Deserializer<'de>>(d: D) -> Result<[u64; 2], D::Error> {
+        let v = Vec::<u64>::deserialize(d)?;
+        let n = v.len();
+        v.try_into()
+            .map_err(|_| D::Error::invalid_length(n, &"[min, max]"))
     }
 }
 
