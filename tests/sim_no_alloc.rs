@@ -92,6 +92,43 @@ kind = "safe"
 odour = [0, 0, 0, 1, 0, 0, 0, 0]
 intensity = 1
 
+[[world.doors]]
+from = [150, 280]
+to = [150, 300]
+trigger = [100, 100]
+trigger_radius = 40
+open_ticks = 5
+
+[[world.teleporters]]
+entry = [250, 100]
+radius = 20
+exit = [60, 60]
+odour = [0, 0, 0, 0, 1, 0, 0, 0]
+intensity = 1
+
+[world.wanderers]
+count = 4
+odour = [0, 0, 0, 0, 0, 1, 0, 0]
+intensity = 1
+
+[[world.predators]]
+strategy = "chase"
+effect = "shock"
+odour = [0, 0, 0, 0, 0, 0, 1, 0]
+intensity = 1
+
+[[world.predators]]
+strategy = "patrol"
+waypoints = [[30, 30], [270, 30]]
+effect = "shock"
+
+[[world.air_predators]]
+speed = 5
+effect = "shock"
+strike_radius = 20
+odour = [0, 0, 0, 0, 0, 0, 0, 1]
+intensity = 1
+
 [creature.inputs]
 metabolism = true
 landmarks = true

@@ -16,7 +16,10 @@ use std::time::Instant;
 pub struct BenchArgs {
     /// Simulator benchmark world(s): experiment files whose [world], [creature] and [brain]
     /// are used, one creature per world driven by a random genome.
-    #[arg(long, default_values_os_t = vec![PathBuf::from("experiments/bench/foraging-world.toml")])]
+    #[arg(long, default_values_os_t = vec![
+        PathBuf::from("experiments/bench/foraging-world.toml"),
+        PathBuf::from("experiments/bench/eye-predators-world.toml"),
+    ])]
     pub world: Vec<PathBuf>,
     /// Worlds per simulator measurement.
     #[arg(long, default_value_t = 16)]

@@ -19,6 +19,7 @@
 
 use crate::geometry::{ray_circle, ray_segment, Vec2};
 use crate::sim::food::{Aversive, Food};
+use crate::sim::gadgets::Thing;
 use crate::sim::spec::EyeSpec;
 use crate::sim::wall::Wall;
 use crate::sim::world::Creature;
@@ -39,6 +40,8 @@ pub struct Scene<'a> {
     pub creature_colour: [f64; 3],
     /// Body height of every creature in LU.
     pub creature_height: f64,
+    /// Wanderers, predators and gadgets; those marked `seen` with radius > 0 are cylinders.
+    pub things: &'a [Thing],
 }
 
 /// An eye with its precomputed ray directions and its scratch depth buffer.
@@ -187,6 +190,11 @@ impl Eye {
                     scene.creature_height,
                     &scene.creature_colour,
                 );
+            }
+        }
+        for t in scene.things {
+            if t.seen && t.radius > 0.0 {
+                self.cylinder(out, &look, t.position, t.radius, t.height, &t.colour);
             }
         }
     }
@@ -352,6 +360,7 @@ mod tests {
                 food: &food,
                 aversives: &aversives,
                 creatures: &[],
+                things: &[],
                 creature_radius: 3.0,
                 creature_colour: [0.0, 0.0, 1.0],
                 creature_height: 6.0,

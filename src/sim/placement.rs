@@ -60,6 +60,17 @@ pub enum PlacementError {
         /// Attempts made for this creature.
         attempts: u32,
     },
+    /// No free start position for a wanderer or ground predator.
+    #[error(
+        "cannot place {what}: no position touching no wall, creature or wanderer found in \
+         {attempts} attempts"
+    )]
+    Actor {
+        /// Which one failed.
+        what: String,
+        /// Attempts made.
+        attempts: u32,
+    },
     /// More creatures than the simulator supports.
     #[error("cannot place {count} creatures: at most {max} creatures per world")]
     TooManyCreatures {

@@ -6,6 +6,7 @@ use crate::geometry::{circles_touch, segment_touches_circle, segments_intersect,
 use crate::sim::area::Area;
 use crate::sim::controller::{ObservationLayout, SensorGroup};
 use crate::sim::food::{Aversive, Food};
+use crate::sim::gadgets::Thing;
 use crate::sim::smell::{accumulate, saturate, Smell};
 use crate::sim::wall::BoxedSegment;
 use crate::sim::world::Creature;
@@ -56,6 +57,11 @@ pub struct Surroundings<'a> {
     pub areas: &'a [Area],
     /// Every creature, the sensing one included (skipped by index).
     pub creatures: &'a [Creature],
+    /// Door triggers, teleporter entries, wanderers and predators.
+    pub things: &'a [Thing],
+    /// Index in `things` of the sensing body itself when it is a wanderer or predator
+    /// (`usize::MAX` for a creature).
+    pub skip_thing: usize,
     /// The constant c of eq. 25.
     pub smell_c: f64,
 }
@@ -92,11 +98,17 @@ impl Surroundings<'_> {
                 .food
                 .iter()
                 .any(|f| f.radius > 0.0 && segment_touches_circle(&whisker, f.position, f.radius))
+            || self.things.iter().enumerate().any(|(k, t)| {
+                k != self.skip_thing
+                    && t.felt
+                    && t.radius > 0.0
+                    && segment_touches_circle(&whisker, t.position, t.radius)
+            })
     }
 
     /// §7.1: one smell sensor at `receptor`: receptor k = min(1, Σ I(d) o_k) over the smelly
-    /// things it can see: food, aversive objects, areas (from their centre, §4.6) and every
-    /// other living creature.
+    /// things it can see: food, aversive objects, areas (from their centre, §4.6), gadgets,
+    /// wanderers, predators and every other living creature.
     pub fn smell_at(&self, me: usize, body: &Body, receptor: Vec2) -> [f64; 8] {
         let mut acc = [0.0; 8];
         let (c, opaque) = (self.smell_c, self.opaque);
@@ -116,6 +128,11 @@ impl Surroundings<'_> {
         }
         for a in self.areas {
             accumulate(&mut acc, receptor, a.centre(), &a.smell, 1.0, c, opaque);
+        }
+        for (k, t) in self.things.iter().enumerate() {
+            if k != self.skip_thing && !t.smell.silent {
+                accumulate(&mut acc, receptor, t.position, &t.smell, 1.0, c, opaque);
+            }
         }
         if !body.smell.silent {
             for (j, other) in self.creatures.iter().enumerate() {

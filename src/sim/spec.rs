@@ -9,6 +9,7 @@
 //! creature's right), so heading 0° points along +x and 90° along +y (down the screen).
 
 use crate::sim::controller::{GroupSizes, InputsSpec, ObservationLayout};
+use crate::sim::gadgets::{AirPredatorSpec, DoorSpec, PredatorSpec, TeleporterSpec, WanderersSpec};
 use crate::validate::{
     all_finite, all_non_negative, count_within, finite, non_negative, positive, within,
     InvalidValue, Valid,
@@ -38,7 +39,7 @@ pub const MAX_RETINA_PIXELS: u64 = 65_536;
 /// Fixed-length arrays read exactly: the `toml` crate silently drops extra elements when it
 /// fills a Rust array (`arena = [300, 300, 300]` would read as `[300, 300]`), so every
 /// array field goes through a `Vec` and its length is checked.
-mod exact {
+pub(crate) mod exact {
     use serde::de::Error;
     use serde::{Deserialize, Deserializer};
 
@@ -102,6 +103,20 @@ pub struct WorldSpec {
     /// Areas (`[[world.areas]]`, §4.6): rectangles a creature can be inside (default: none).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub areas: Vec<AreaSpec>,
+    /// Locked doors (`[[world.doors]]`, §4.5.2; default: none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub doors: Vec<DoorSpec>,
+    /// Teleporters (`[[world.teleporters]]`, §4.5.1; default: none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub teleporters: Vec<TeleporterSpec>,
+    /// Irrelevant creatures (`[world.wanderers]`, §4.8; default: none).
+    pub wanderers: WanderersSpec,
+    /// Ground predators (`[[world.predators]]`, §4.7; default: none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub predators: Vec<PredatorSpec>,
+    /// Air predators (`[[world.air_predators]]`, §4.7; default: none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub air_predators: Vec<AirPredatorSpec>,
 }
 
 /// A distal landmark (`[[world.landmarks]]`, §4.5.3): a point with no body, not felt, not
@@ -166,6 +181,11 @@ impl Default for WorldSpec {
             start: StartSpec::default(),
             landmarks: Vec::new(),
             areas: Vec::new(),
+            doors: Vec::new(),
+            teleporters: Vec::new(),
+            wanderers: WanderersSpec::default(),
+            predators: Vec::new(),
+            air_predators: Vec::new(),
         }
     }
 }
@@ -978,7 +998,14 @@ impl WorldSpec {
             self.region_in_arena(&format!("{key}.region"), area.region)?;
             validate_smell(&key, &area.odour, area.intensity, area.range)?;
         }
-        Ok(())
+        crate::sim::gadgets::validate(
+            self.arena,
+            &self.doors,
+            &self.teleporters,
+            &self.wanderers,
+            &self.predators,
+            &self.air_predators,
+        )
     }
 
     /// The whole arena as a region.

@@ -62,6 +62,14 @@ impl BoxedSegment {
 /// The walls of a world and the lists the tick loop reads, built once per world.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Walls {
+    /// Boundary and interior walls, which never change.
+    fixed: Vec<Wall>,
+    /// Locked doors (§4.5.2), in file order, and whether each is open.
+    doors: Vec<Wall>,
+    open: Vec<bool>,
+    /// The walls standing now: `fixed` then the closed doors. The lists below follow it; they
+    /// are rebuilt (within their reserved capacity, so without allocating) only when a door
+    /// opens or closes.
     walls: Vec<Wall>,
     /// Every wall's segment: what blocks motion.
     blocking: Vec<Segment>,
@@ -95,22 +103,67 @@ impl Walls {
             }
         }
         walls.extend(spec.walls.iter().map(Wall::from_spec));
-        let blocking: Vec<Segment> = walls.iter().map(|w| w.segment).collect();
-        let felt = blocking.iter().copied().map(BoxedSegment::new).collect();
-        let opaque = walls
+        let doors: Vec<Wall> = spec
+            .doors
             .iter()
-            .filter(|w| w.opaque)
-            .map(|w| BoxedSegment::new(w.segment))
+            .map(|d| Wall {
+                segment: Segment::new(Vec2::from(d.from), Vec2::from(d.to)),
+                opaque: d.opaque,
+                colour: d.colour,
+                height: d.height,
+            })
             .collect();
-        Walls {
-            walls,
-            blocking,
-            felt,
-            opaque,
+        let n = walls.len() + doors.len();
+        let mut built = Walls {
+            open: vec![false; doors.len()],
+            fixed: walls,
+            doors,
+            walls: Vec::with_capacity(n),
+            blocking: Vec::with_capacity(n),
+            felt: Vec::with_capacity(n),
+            opaque: Vec::with_capacity(n),
+        };
+        built.refresh();
+        built
+    }
+
+    /// Rebuilds the standing walls and their lists from `fixed`, `doors` and `open`.
+    fn refresh(&mut self) {
+        self.walls.clear();
+        self.walls.extend_from_slice(&self.fixed);
+        for (door, &open) in self.doors.iter().zip(&self.open) {
+            if !open {
+                self.walls.push(*door);
+            }
+        }
+        self.blocking.clear();
+        self.blocking.extend(self.walls.iter().map(|w| w.segment));
+        self.felt.clear();
+        self.felt
+            .extend(self.blocking.iter().copied().map(BoxedSegment::new));
+        self.opaque.clear();
+        self.opaque.extend(
+            self.walls
+                .iter()
+                .filter(|w| w.opaque)
+                .map(|w| BoxedSegment::new(w.segment)),
+        );
+    }
+
+    /// Opens or closes door `door` (index in `[[world.doors]]`).
+    pub fn set_door_open(&mut self, door: usize, open: bool) {
+        if self.open[door] != open {
+            self.open[door] = open;
+            self.refresh();
         }
     }
 
-    /// Every wall, boundary walls first.
+    /// Is door `door` open?
+    pub fn door_open(&self, door: usize) -> bool {
+        self.open[door]
+    }
+
+    /// Every wall standing now: boundary walls first, then interior walls, then closed doors.
     pub fn all(&self) -> &[Wall] {
         &self.walls
     }

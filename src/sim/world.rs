@@ -4,8 +4,14 @@
 //!
 //! # One tick ([`World::step`])
 //!
-//! 1. **Food** regenerates, each object in list order (§4.3).
-//! 2. Each **living creature**, in index order, does in turn (§9; it sees the world as left by
+//! 1. **Food** regenerates, each object in list order (§4.3); **doors** whose open time is
+//!    over close (§4.5.2).
+//! 2. **Wanderers** then **ground predators** (file order) feel with their whiskers, pick a
+//!    command and move; a predator attacks every creature its body then touches outside safe
+//!    areas. **Air predators** (file order) fly one tick, re-entering when they left the
+//!    arena, and strike every creature within their strike radius outside safe areas (§4.7,
+//!    §4.8).
+//! 3. Each **living creature**, in index order, does in turn (§9; it sees the world as left by
 //!    the creatures before it in this tick):
 //!    1. *sense*: whiskers, smell (food, aversive objects, areas, other creatures), food
 //!       detectors; the shock sensor carries the creature's shock state from the end of its
@@ -14,20 +20,24 @@
 //!       applied to it with draws from the trial's generator (see [`crate::sim::noise`]);
 //!    2. *act*: its controller turns the observation into a motor command;
 //!    3. *move*: the motors are clamped to ±`max_rpt` and the body moves (§8), blocked by
-//!       walls and by the other living creatures' bodies;
+//!       walls, closed doors, wanderers and the other living creatures' bodies;
 //!    4. *contacts*: it eats from every food object its body touches (§4.3, §5.2), and is
 //!       shocked if its body touches an aversive object or, with `wall_shock`, a wall stopped
 //!       its move (§5.2);
 //!    5. *metabolism*: m gains what was eaten, then loses the decay per tick and per LU
-//!       travelled, never dropping below 0 (§5.3).
-//! 3. The tick counter advances.
+//!       travelled, never dropping below 0 (§5.3);
+//!    6. *gadgets*: it jumps to a teleporter's exit when its body touches the entry and the
+//!       exit is free (§4.5.1), opens the doors whose trigger it touches (§4.5.2), and is
+//!       attacked by the predators it touches or is under, outside safe areas (§4.7).
+//! 4. The tick counter advances.
 
-use crate::geometry::{circles_touch, Circle, Segment, Vec2};
-use crate::seed::Rng;
+use crate::geometry::{circle_touches_segment, circles_touch, Circle, Segment, Vec2};
+use crate::seed::{uniform, Rng};
 use crate::sim::area::{bearing, Area};
 use crate::sim::controller::{Controller, MotorCommand, ObservationLayout, SensorGroup};
 use crate::sim::eye::{Eye, Scene};
 use crate::sim::food::{Aversive, Food};
+use crate::sim::gadgets::{Actor, Door, Effect, Flyer, Role, Strategy, Teleporter, Thing};
 use crate::sim::metabolism::Decay;
 use crate::sim::motion::{plan_move, Blockers, MotionParams, MoveOutcome, Pose};
 use crate::sim::noise::Noise;
@@ -133,9 +143,24 @@ pub struct World {
     creature_height: f64,
     /// Sensor noise on the groups that have it (§7.5).
     noise: Noise,
-    /// The trial's generator, kept for what is random during a trial: sensor noise (drawn
-    /// in the order [`crate::sim::noise`] documents), and later wanderers and predators.
+    /// The trial's generator, kept for what is random during a trial. Draw order within a
+    /// tick follows the tick order: wanderers' and wandering predators' new commands (actor
+    /// order), air predators' new flights (file order), then each creature's sensor noise
+    /// (in the order [`crate::sim::noise`] documents).
     rng: Rng,
+    /// Door triggers, teleporter entries, wanderers, ground predators and air predators, in
+    /// that order: what senses meet besides food, aversive objects and creatures.
+    things: Vec<Thing>,
+    /// Locked doors (§4.5.2), in file order.
+    doors: Vec<Door>,
+    /// Teleporters (§4.5.1), in file order.
+    teleporters: Vec<Teleporter>,
+    /// Wanderers then ground predators, in file order.
+    actors: Vec<Actor>,
+    /// Each ground predator's patrol waypoints.
+    waypoints: Vec<Vec<Vec2>>,
+    /// Air predators, in file order.
+    flyers: Vec<Flyer>,
 }
 
 impl World {
@@ -170,6 +195,155 @@ impl World {
             .range(SensorGroup::Eye)
             .map(|_| Eye::new(&creature.eye));
         let noise = Noise::new(&creature.noise, &layout);
+        let n_actors = world.wanderers.count as usize + world.predators.len();
+        let mut things = Vec::with_capacity(
+            world.doors.len() + world.teleporters.len() + n_actors + world.air_predators.len(),
+        );
+        let mut doors = Vec::with_capacity(world.doors.len());
+        for d in &world.doors {
+            doors.push(Door {
+                trigger: things.len(),
+                open_ticks: d.open_ticks,
+                open_until: None,
+            });
+            things.push(Thing {
+                position: Vec2::from(d.trigger),
+                radius: d.trigger_radius,
+                smell: Smell::NONE,
+                felt: true,
+                blocks: false,
+                seen: false,
+                colour: d.colour,
+                height: 0.0,
+            });
+        }
+        let mut teleporters = Vec::with_capacity(world.teleporters.len());
+        for t in &world.teleporters {
+            teleporters.push(Teleporter {
+                entry: Vec2::from(t.entry),
+                radius: t.radius,
+                exit: Vec2::from(t.exit),
+                exit_heading: t.exit_heading.map(|deg| {
+                    let a = deg.to_radians();
+                    Vec2::new(libm::cos(a), libm::sin(a))
+                }),
+            });
+            things.push(Thing {
+                position: Vec2::from(t.entry),
+                radius: t.radius,
+                smell: Smell::new(&t.odour, t.intensity, t.range),
+                felt: true,
+                blocks: false,
+                seen: false,
+                colour: [0.0; 3],
+                height: 0.0,
+            });
+        }
+        let mut actors = Vec::with_capacity(n_actors);
+        let w = &world.wanderers;
+        let arena_region = world.arena_region();
+        for k in 0..w.count as usize {
+            let pose = free_pose(
+                world.wanderers.region.unwrap_or(arena_region),
+                None,
+                radius,
+                walls.blocking(),
+                &poses,
+                &things,
+                &mut rng,
+            )
+            .ok_or(PlacementError::Actor {
+                what: format!("wanderer {}", k + 1),
+                attempts: ACTOR_ATTEMPTS,
+            })?;
+            actors.push(Actor {
+                thing: things.len(),
+                role: Role::Wanderer,
+                pose,
+                max_rpt: w.max_rpt,
+                hold_ticks: w.hold_ticks,
+                held: (0.0, 0.0),
+                hold_left: 0,
+                waypoint: 0,
+            });
+            things.push(Thing {
+                position: pose.position,
+                radius,
+                smell: Smell::new(&w.odour, w.intensity, w.range),
+                felt: true,
+                blocks: true,
+                seen: true,
+                colour: w.colour,
+                height: creature.body_height(),
+            });
+        }
+        for (k, p) in world.predators.iter().enumerate() {
+            let pose = free_pose(
+                arena_region,
+                p.start.map(Vec2::from),
+                radius,
+                walls.blocking(),
+                &poses,
+                &things,
+                &mut rng,
+            )
+            .ok_or(PlacementError::Actor {
+                what: format!("world.predators[{k}]"),
+                attempts: ACTOR_ATTEMPTS,
+            })?;
+            actors.push(Actor {
+                thing: things.len(),
+                role: Role::Predator {
+                    predator: k,
+                    strategy: p.strategy,
+                    effect: p.effect,
+                },
+                pose,
+                max_rpt: p.max_rpt,
+                hold_ticks: p.hold_ticks,
+                held: (0.0, 0.0),
+                hold_left: 0,
+                waypoint: 0,
+            });
+            things.push(Thing {
+                position: pose.position,
+                radius,
+                smell: Smell::new(&p.odour, p.intensity, p.range),
+                felt: true,
+                blocks: false,
+                seen: true,
+                colour: p.colour,
+                height: creature.body_height(),
+            });
+        }
+        let waypoints = world
+            .predators
+            .iter()
+            .map(|p| p.waypoints.iter().map(|&w| Vec2::from(w)).collect())
+            .collect();
+        let mut flyers = Vec::with_capacity(world.air_predators.len());
+        for a in &world.air_predators {
+            let mut f = Flyer {
+                thing: things.len(),
+                position: Vec2::new(0.0, 0.0),
+                velocity: Vec2::new(0.0, 0.0),
+                speed: a.speed,
+                strike_radius: a.strike_radius,
+                effect: a.effect,
+            };
+            f.enter(world.arena, &mut rng);
+            things.push(Thing {
+                position: f.position,
+                radius: 0.0,
+                smell: Smell::new(&a.odour, a.intensity, a.range),
+                felt: false,
+                blocks: false,
+                seen: false,
+                colour: [0.0; 3],
+                height: 0.0,
+            });
+            flyers.push(f);
+        }
         Ok(World {
             tick: 0,
             arena: world.arena,
@@ -207,7 +381,7 @@ impl World {
             observations: vec![0.0; layout.len() * creatures],
             layout,
             full_sensing: false,
-            blockers: Vec::with_capacity(creatures),
+            blockers: Vec::with_capacity(creatures + n_actors),
             landmarks: world
                 .landmarks
                 .iter()
@@ -219,6 +393,12 @@ impl World {
             creature_height: creature.body_height(),
             noise,
             rng,
+            things,
+            doors,
+            teleporters,
+            actors,
+            waypoints,
+            flyers,
         })
     }
 
@@ -235,6 +415,13 @@ impl World {
             "World::step needs one controller per creature"
         );
         self.regenerate_food();
+        self.close_doors();
+        for a in 0..self.actors.len() {
+            self.act_actor(a);
+        }
+        for f in 0..self.flyers.len() {
+            self.fly(f);
+        }
         let width = self.layout.len();
         for (i, controller) in controllers.iter_mut().enumerate() {
             if !self.creatures[i].alive {
@@ -264,6 +451,8 @@ impl World {
             aversives: &self.aversives,
             areas: &self.areas,
             creatures: &self.creatures,
+            things: &self.things,
+            skip_thing: usize::MAX,
             smell_c: self.smell_c,
         };
         let smell = self.full_sensing || self.offsets.has_smell();
@@ -298,6 +487,7 @@ impl World {
                 creature_radius: self.body.radius,
                 creature_colour: self.creature_colour,
                 creature_height: self.creature_height,
+                things: &self.things,
             };
             let n = eye.len();
             eye.render(&scene, pose.position, pose.heading, i, &mut out[o..o + n]);
@@ -320,6 +510,11 @@ impl World {
             if j != i && other.alive {
                 self.blockers
                     .push(Circle::new(other.pose.position, self.body.radius));
+            }
+        }
+        for t in &self.things {
+            if t.blocks {
+                self.blockers.push(Circle::new(t.position, t.radius));
             }
         }
         let blockers = Blockers {
@@ -369,12 +564,234 @@ impl World {
             .iter()
             .any(|a| circles_touch(position, radius, a.position, a.radius))
             || (self.wall_shock && outcome.blocked_by_wall);
-        if c.shocked {
-            c.shock_ticks += 1;
-        }
         self.decay
             .apply(&mut c.metabolism, &received, outcome.travelled);
         c.age += 1;
+        if !self.teleporters.is_empty() {
+            self.teleport(i);
+        }
+        if !self.doors.is_empty() {
+            self.trigger_doors(i);
+        }
+        if !self.actors.is_empty() || !self.flyers.is_empty() {
+            self.predator_contacts(i);
+        }
+        let c = &mut self.creatures[i];
+        if c.shocked {
+            c.shock_ticks += 1;
+        }
+    }
+
+    /// Phase 1 (gadgets): doors whose time is up close.
+    fn close_doors(&mut self) {
+        for k in 0..self.doors.len() {
+            if self.walls.door_open(k) && self.doors[k].open_until.is_some_and(|u| self.tick > u) {
+                self.walls.set_door_open(k, false);
+            }
+        }
+    }
+
+    /// Contacts: creature `i`'s body touching a door's trigger opens the door until tick
+    /// `now + open_ticks` (included).
+    fn trigger_doors(&mut self, i: usize) {
+        let position = self.creatures[i].pose.position;
+        for k in 0..self.doors.len() {
+            let t = &self.things[self.doors[k].trigger];
+            if circles_touch(position, self.body.radius, t.position, t.radius) {
+                self.doors[k].open_until = Some(self.tick + self.doors[k].open_ticks);
+                self.walls.set_door_open(k, true);
+            }
+        }
+    }
+
+    /// Contacts: creature `i`'s body touching a teleporter's entry (the first in file order)
+    /// jumps to its exit, unless a body there would touch a wall, another living creature or
+    /// a wanderer.
+    fn teleport(&mut self, i: usize) {
+        let r = self.body.radius;
+        let position = self.creatures[i].pose.position;
+        let Some(t) = self
+            .teleporters
+            .iter()
+            .find(|t| circles_touch(position, r, t.entry, t.radius))
+            .copied()
+        else {
+            return;
+        };
+        let walls_free = !self
+            .walls
+            .blocking()
+            .iter()
+            .any(|s| circle_touches_segment(t.exit, r, s));
+        let bodies_free = !self
+            .creatures
+            .iter()
+            .enumerate()
+            .any(|(j, c)| j != i && c.alive && circles_touch(t.exit, r, c.pose.position, r))
+            && !self
+                .things
+                .iter()
+                .any(|b| b.blocks && circles_touch(t.exit, r, b.position, b.radius));
+        if walls_free && bodies_free {
+            let c = &mut self.creatures[i];
+            c.pose.position = t.exit;
+            if let Some(h) = t.exit_heading {
+                c.pose.heading = h;
+            }
+        }
+    }
+
+    /// Contacts: ground predators touching creature `i` and air predators within their strike
+    /// radius of it attack it, unless its centre is in a safe area.
+    fn predator_contacts(&mut self, i: usize) {
+        let position = self.creatures[i].pose.position;
+        if self.in_safe_area(position) {
+            return;
+        }
+        let r = self.body.radius;
+        for a in 0..self.actors.len() {
+            if let Role::Predator { effect, .. } = self.actors[a].role {
+                if circles_touch(position, r, self.actors[a].pose.position, r) {
+                    self.attack(i, effect);
+                }
+            }
+        }
+        for f in 0..self.flyers.len() {
+            let fl = self.flyers[f];
+            if circles_touch(position, 0.0, fl.position, fl.strike_radius) {
+                self.attack(i, fl.effect);
+            }
+        }
+    }
+
+    /// A predator's attack on creature `i` (outside safe areas, checked by the caller).
+    fn attack(&mut self, i: usize, effect: Effect) {
+        let c = &mut self.creatures[i];
+        match effect {
+            Effect::Lethal => c.alive = false,
+            Effect::Shock => c.shocked = true,
+        }
+    }
+
+    /// Attacks by a predator at `position` (ground: body contact; air: `reach` = strike
+    /// radius, `radius` = 0) on every living creature outside safe areas.
+    fn strike_all(&mut self, position: Vec2, reach: f64, own: f64, effect: Effect) {
+        for i in 0..self.creatures.len() {
+            let c = &self.creatures[i];
+            if c.alive
+                && circles_touch(c.pose.position, own, position, reach)
+                && !self.in_safe_area(c.pose.position)
+            {
+                self.attack(i, effect);
+            }
+        }
+    }
+
+    /// Phase 2 (predators and wanderers): actor `a` feels with its whiskers, picks its
+    /// command, moves, and (a predator) attacks what it touches. Wanderers are blocked by
+    /// walls, creatures and each other; ground predators by walls and wanderers only (they
+    /// reach their prey: contact is the attack).
+    fn act_actor(&mut self, a: usize) {
+        let actor = self.actors[a];
+        let r = self.body.radius;
+        let tips = self
+            .body
+            .whisker_tips(actor.pose.position, actor.pose.heading);
+        let surroundings = Surroundings {
+            walls: self.walls.felt(),
+            opaque: self.walls.opaque(),
+            food: &self.food,
+            aversives: &self.aversives,
+            areas: &self.areas,
+            creatures: &self.creatures,
+            things: &self.things,
+            skip_thing: actor.thing,
+            smell_c: self.smell_c,
+        };
+        let whiskers = [
+            surroundings.whisker_touches(usize::MAX, &self.body, actor.pose.position, tips[0]),
+            surroundings.whisker_touches(usize::MAX, &self.body, actor.pose.position, tips[1]),
+        ];
+        let (left, right, predator) = match actor.role {
+            Role::Wanderer => {
+                let (l, rr) = self.actors[a].wander(whiskers, &mut self.rng);
+                (l, rr, None)
+            }
+            Role::Predator {
+                predator,
+                strategy,
+                effect,
+            } => {
+                let target = match strategy {
+                    Strategy::Wander => None,
+                    Strategy::Chase => self.nearest_prey(actor.pose.position),
+                    Strategy::Patrol => {
+                        let points = &self.waypoints[predator];
+                        let mut k = actor.waypoint % points.len();
+                        if actor.pose.position.distance_squared(points[k]) <= r * r {
+                            k = (k + 1) % points.len();
+                            self.actors[a].waypoint = k;
+                        }
+                        Some(points[k])
+                    }
+                };
+                let (l, rr) = match target {
+                    Some(t) => actor.steer(t),
+                    None => self.actors[a].wander(whiskers, &mut self.rng),
+                };
+                (l, rr, Some(effect))
+            }
+        };
+        self.blockers.clear();
+        if predator.is_none() {
+            for c in &self.creatures {
+                if c.alive {
+                    self.blockers.push(Circle::new(c.pose.position, r));
+                }
+            }
+        }
+        for (k, t) in self.things.iter().enumerate() {
+            if t.blocks && k != actor.thing {
+                self.blockers.push(Circle::new(t.position, t.radius));
+            }
+        }
+        let blockers = Blockers {
+            segments: self.walls.blocking(),
+            circles: &self.blockers,
+        };
+        let params = MotionParams {
+            max_rpt: actor.max_rpt,
+            ..self.motion
+        };
+        let outcome = plan_move(actor.pose, left, right, r, &params, &blockers);
+        self.actors[a].pose = outcome.pose;
+        self.things[actor.thing].position = outcome.pose.position;
+        if let Some(effect) = predator {
+            self.strike_all(outcome.pose.position, r, r, effect);
+        }
+    }
+
+    /// The centre of the nearest living creature outside safe areas (lowest index on ties).
+    fn nearest_prey(&self, from: Vec2) -> Option<Vec2> {
+        let mut best: Option<(f64, Vec2)> = None;
+        for c in &self.creatures {
+            if c.alive && !self.in_safe_area(c.pose.position) {
+                let d = from.distance_squared(c.pose.position);
+                if best.is_none_or(|(b, _)| d < b) {
+                    best = Some((d, c.pose.position));
+                }
+            }
+        }
+        best.map(|(_, p)| p)
+    }
+
+    /// Phase 2 (air predators): flyer `f` flies one tick, entering anew when it left the
+    /// arena, and strikes every creature within its strike radius.
+    fn fly(&mut self, f: usize) {
+        self.flyers[f].fly(self.arena, &mut self.rng);
+        let fl = self.flyers[f];
+        self.things[fl.thing].position = fl.position;
+        self.strike_all(fl.position, fl.strike_radius, 0.0, fl.effect);
     }
 
     /// Ticks done so far.
@@ -484,6 +901,7 @@ impl World {
             creature_radius: self.body.radius,
             creature_colour: self.creature_colour,
             creature_height: self.creature_height,
+            things: &self.things,
         };
         eye.render(&scene, pose.position, pose.heading, creature, out);
         true
@@ -504,11 +922,94 @@ impl World {
         };
     }
 
+    /// Is locked door `door` (index in `[[world.doors]]`) open now?
+    ///
+    /// # Panics
+    /// When `door` is out of range.
+    pub fn door_open(&self, door: usize) -> bool {
+        self.walls.door_open(door)
+    }
+
+    /// Wanderers then ground predators, in file order.
+    pub fn actors(&self) -> &[Actor] {
+        &self.actors
+    }
+
+    /// Air predators, in file order.
+    pub fn flyers(&self) -> &[Flyer] {
+        &self.flyers
+    }
+
+    /// Door triggers, teleporter entries, wanderers, ground and air predators, in that
+    /// order, as the senses meet them.
+    pub fn things(&self) -> &[Thing] {
+        &self.things
+    }
+
+    /// Puts wanderer or ground predator `actor` at `pose` (for tests and demos).
+    pub fn set_actor_pose(&mut self, actor: usize, pose: Pose) {
+        let a = &mut self.actors[actor];
+        a.pose = Pose {
+            position: pose.position,
+            heading: pose.heading.normalize_or(Vec2::X),
+        };
+        self.things[a.thing].position = pose.position;
+    }
+
+    /// Puts air predator `flyer` at `position` flying `velocity` LU per tick (for tests and
+    /// demos).
+    pub fn set_flyer(&mut self, flyer: usize, position: Vec2, velocity: Vec2) {
+        let f = &mut self.flyers[flyer];
+        f.position = position;
+        f.velocity = velocity;
+        self.things[f.thing].position = position;
+    }
+
     /// Ends creature `creature`'s life now: it no longer senses, moves, eats, blocks, or is
     /// felt or smelled by others. Its last state stays readable.
     pub fn kill(&mut self, creature: usize) {
         self.creatures[creature].alive = false;
     }
+}
+
+/// Placement attempts for one wanderer or predator.
+const ACTOR_ATTEMPTS: u32 = 10_000;
+
+/// A start pose for a wanderer or predator: at `at` when given, else a uniform point of
+/// `region` (draws x, then y, repeated until free) whose body touches no wall, creature or
+/// blocking thing; then a uniform heading (one draw). None when no free spot was found.
+fn free_pose(
+    region: [f64; 4],
+    at: Option<Vec2>,
+    radius: f64,
+    walls: &[Segment],
+    creatures: &[Pose],
+    things: &[Thing],
+    rng: &mut Rng,
+) -> Option<Pose> {
+    let position = match at {
+        Some(p) => p,
+        None => (0..ACTOR_ATTEMPTS)
+            .map(|_| {
+                let x = uniform(rng, region[0], region[2]);
+                let y = uniform(rng, region[1], region[3]);
+                Vec2::new(x, y)
+            })
+            .find(|&p| {
+                !walls.iter().any(|s| circle_touches_segment(p, radius, s))
+                    && !creatures
+                        .iter()
+                        .any(|c| circles_touch(p, radius, c.position, radius))
+                    && !things
+                        .iter()
+                        .any(|t| t.blocks && circles_touch(p, radius, t.position, t.radius))
+            })?,
+    };
+    let angle = uniform(rng, 0.0, std::f64::consts::TAU);
+    Some(Pose {
+        position,
+        heading: Vec2::new(libm::cos(angle), libm::sin(angle)),
+    })
 }
 
 /// Motor clamping: to ±`max_rpt`; NaN (a broken controller) counts as 0 so that the world

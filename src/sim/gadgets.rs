@@ -1,0 +1,607 @@
+//! Gadgets and other actors of a world (§4.5.1, §4.5.2, §4.7, §4.8): locked doors and their
+//! triggers, teleporters, irrelevant creatures ("wanderers"), ground and air predators. This
+//! module owns their `[world]` tables, their validation and their running state; the world
+//! runs them in the tick order of §9.
+
+use crate::geometry::Vec2;
+use crate::seed::{below, uniform, Rng};
+use crate::sim::smell::Smell;
+use crate::sim::spec::{Point, Region, DEFAULT_WALL_COLOUR, DEFAULT_WALL_HEIGHT};
+use crate::validate::{
+    all_finite, count_within, finite, non_negative, positive, InvalidValue, Valid,
+};
+use serde::{Deserialize, Serialize};
+
+/// Most wanderers, predators, air predators, doors or teleporters of one kind in a world.
+pub const MAX_ACTORS: u64 = 1000;
+/// Longest hold or open time in ticks (far beyond any trial).
+pub const MAX_TICKS: u64 = 1_000_000_000;
+
+/// A locked door (`[[world.doors]]`, §4.5.2): a wall segment that opens for `open_ticks` ticks
+/// when an evolving creature's body touches its trigger circle. Closed, it is a wall (blocks,
+/// felt, seen, occludes smell when opaque); open, it is nothing.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DoorSpec {
+    /// First end point `[x, y]` of the door segment in LU (required; inside the arena).
+    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    pub from: Point,
+    /// Second end point `[x, y]` in LU (required; inside the arena, not equal to `from`).
+    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    pub to: Point,
+    /// A closed door stops smells (default: true).
+    #[serde(default = "yes")]
+    pub opaque: bool,
+    /// Colour `[r, g, b]` in [0, 1] for the eye (default: grey 0.5).
+    #[serde(default = "grey", deserialize_with = "crate::sim::spec::exact::array")]
+    pub colour: [f64; 3],
+    /// Height in LU for the eye (default: 10).
+    #[serde(default = "wall_height")]
+    pub height: f64,
+    /// Centre `[x, y]` of the trigger circle in LU (required; inside the arena). The trigger
+    /// does not block and is not seen; whiskers feel it when its radius is > 0.
+    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    pub trigger: Point,
+    /// Radius of the trigger circle in LU (default: 5; 0 = a point, touched by the body).
+    #[serde(default = "five")]
+    pub trigger_radius: f64,
+    /// Ticks the door stays open after the last contact with the trigger (default: 100, at
+    /// least 1). Contact during tick t opens it at once; it closes at the start of tick
+    /// t + open_ticks + 1 unless touched again.
+    #[serde(default = "hundred")]
+    pub open_ticks: u64,
+}
+
+/// A teleporter (`[[world.teleporters]]`, §4.5.1): body contact with the entry circle moves an
+/// evolving creature to the exit at the end of its move, unless the body would touch a wall
+/// or another body there.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TeleporterSpec {
+    /// Centre `[x, y]` of the entry circle in LU (required; inside the arena).
+    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    pub entry: Point,
+    /// Radius of the entry circle in LU (default: 5). Felt by whiskers when > 0; not seen,
+    /// does not block.
+    #[serde(default = "five")]
+    pub radius: f64,
+    /// Exit point `[x, y]` in LU (required; inside the arena): the new body centre.
+    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    pub exit: Point,
+    /// Heading after the jump in degrees, 0 = facing +x, positive clockwise on screen
+    /// (default: absent = keep the heading).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub exit_heading: Option<f64>,
+    /// Odour given off at the entry's centre (default: zeros).
+    #[serde(default, deserialize_with = "crate::sim::spec::exact::array")]
+    pub odour: [f64; 8],
+    /// Smell intensity at the entry (default: 0).
+    #[serde(default)]
+    pub intensity: f64,
+    /// Smell range θ in LU (default: absent = unlimited).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub range: Option<f64>,
+}
+
+/// Irrelevant creatures (`[world.wanderers]`, §4.8): bodies like the creatures' driven by
+/// random motor signals held for a random number of ticks, spinning away from whatever a
+/// whisker touches. They block movement, smell, are felt and seen.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WanderersSpec {
+    /// How many (default: 0).
+    pub count: u64,
+    /// Where they start, `[x0, y0, x1, y1]` in LU (default: absent = the whole arena).
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::sim::spec::exact::option_array"
+    )]
+    pub region: Option<Region>,
+    /// Largest motor signal in rotations per tick (default: 0.25).
+    pub max_rpt: f64,
+    /// Each random motor command is held for a number of ticks drawn uniformly from
+    /// `[min, max]` (default: `[5, 30]`, min >= 1).
+    #[serde(deserialize_with = "exact_lists::pair")]
+    pub hold_ticks: [u64; 2],
+    /// Odour of their bodies (default: zeros).
+    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    pub odour: [f64; 8],
+    /// Smell intensity (default: 0).
+    pub intensity: f64,
+    /// Smell range θ in LU (default: absent = unlimited).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub range: Option<f64>,
+    /// Body colour for the eye (default: `[0.6, 0.4, 0.8]`).
+    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    pub colour: [f64; 3],
+}
+
+impl Default for WanderersSpec {
+    fn default() -> Self {
+        WanderersSpec {
+            count: 0,
+            region: None,
+            max_rpt: 0.25,
+            hold_ticks: [5, 30],
+            odour: [0.0; 8],
+            intensity: 0.0,
+            range: None,
+            colour: [0.6, 0.4, 0.8],
+        }
+    }
+}
+
+/// How a ground predator moves (§4.7).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Strategy {
+    /// Like a wanderer (default).
+    #[default]
+    Wander,
+    /// Steers towards the nearest living creature whose centre is outside safe areas;
+    /// wanders when there is none.
+    Chase,
+    /// Visits `waypoints` in order, cyclically.
+    Patrol,
+}
+
+/// What a predator does to a creature it attacks (§4.7).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Effect {
+    /// The creature dies (default).
+    #[default]
+    Lethal,
+    /// The creature's shock sensor turns on.
+    Shock,
+}
+
+/// A ground predator (`[[world.predators]]`, §4.7): a creature body with a fixed strategy.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PredatorSpec {
+    /// `"wander"`, `"chase"` or `"patrol"` (default: `"wander"`).
+    pub strategy: Strategy,
+    /// Points `[x, y]` in LU visited in order by `patrol` (required for patrol, default: none).
+    #[serde(deserialize_with = "exact_lists::points")]
+    pub waypoints: Vec<Point>,
+    /// `"lethal"` or `"shock"` (default: `"lethal"`).
+    pub effect: Effect,
+    /// Largest motor signal in rotations per tick: its speed (default: 0.15).
+    pub max_rpt: f64,
+    /// Start position `[x, y]` in LU (default: absent = a random free spot in the arena).
+    #[serde(
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::sim::spec::exact::option_array"
+    )]
+    pub start: Option<Point>,
+    /// `wander` holds each random command for `[min, max]` ticks (default: `[5, 30]`).
+    #[serde(deserialize_with = "exact_lists::pair")]
+    pub hold_ticks: [u64; 2],
+    /// Odour of its body (default: zeros).
+    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    pub odour: [f64; 8],
+    /// Smell intensity (default: 0).
+    pub intensity: f64,
+    /// Smell range θ in LU (default: absent = unlimited).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub range: Option<f64>,
+    /// Body colour for the eye (default: red `[0.9, 0.1, 0.1]`).
+    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    pub colour: [f64; 3],
+}
+
+impl Default for PredatorSpec {
+    fn default() -> Self {
+        PredatorSpec {
+            strategy: Strategy::Wander,
+            waypoints: Vec::new(),
+            effect: Effect::Lethal,
+            max_rpt: 0.15,
+            start: None,
+            hold_ticks: [5, 30],
+            odour: [0.0; 8],
+            intensity: 0.0,
+            range: None,
+            colour: [0.9, 0.1, 0.1],
+        }
+    }
+}
+
+/// Air predators (`[[world.air_predators]]`, §4.7): each entry is one predator in the air at
+/// a time. It enters at a random point of a random side, flies straight towards a random
+/// point of the opposite side at constant speed, ignoring walls, and attacks creatures whose
+/// centre is within `strike_radius` of its ground position and outside safe areas. When it
+/// leaves the arena a new one enters.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AirPredatorSpec {
+    /// Ground speed in LU per tick (default: 2).
+    pub speed: f64,
+    /// Attack radius around its ground position in LU (default: 10).
+    pub strike_radius: f64,
+    /// `"lethal"` or `"shock"` (default: `"lethal"`).
+    pub effect: Effect,
+    /// Odour at its ground position (default: zeros).
+    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    pub odour: [f64; 8],
+    /// Smell intensity (default: 0).
+    pub intensity: f64,
+    /// Smell range θ in LU (default: absent = unlimited).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub range: Option<f64>,
+}
+
+impl Default for AirPredatorSpec {
+    fn default() -> Self {
+        AirPredatorSpec {
+            speed: 2.0,
+            strike_radius: 10.0,
+            effect: Effect::Lethal,
+            odour: [0.0; 8],
+            intensity: 0.0,
+            range: None,
+        }
+    }
+}
+
+/// Lists of points and pairs of counts read exactly (the `toml` crate silently drops extra
+/// array elements when it fills a Rust array, see `spec::exact`).
+mod exact_lists {
+    use serde::de::Error;
+    use serde::{Deserialize, Deserializer};
+
+    pub fn points<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<[f64; 2]>, D::Error> {
+        Vec::<Vec<f64>>::deserialize(d)?
+            .into_iter()
+            .map(|p| {
+                let n = p.len();
+                p.try_into()
+                    .map_err(|_| D::Error::invalid_length(n, &"a point [x, y]"))
+            })
+            .collect()
+    }
+
+    pub fn pair<'de, D: Deserializer<'de>>(d: D) -> Result<[u64; 2], D::Error> {
+        let v = Vec::<u64>::deserialize(d)?;
+        let n = v.len();
+        v.try_into()
+            .map_err(|_| D::Error::invalid_length(n, &"[min, max]"))
+    }
+}
+
+fn yes() -> bool {
+    true
+}
+fn grey() -> [f64; 3] {
+    DEFAULT_WALL_COLOUR
+}
+fn wall_height() -> f64 {
+    DEFAULT_WALL_HEIGHT
+}
+fn five() -> f64 {
+    5.0
+}
+fn hundred() -> u64 {
+    100
+}
+
+fn inside(key: &str, p: Point, arena: [f64; 2]) -> Valid {
+    all_finite(key, &p)?;
+    if p[0] < 0.0 || p[0] > arena[0] || p[1] < 0.0 || p[1] > arena[1] {
+        return Err(InvalidValue::new(
+            key,
+            format!(
+                "{p:?} lies outside the arena [0, {}] x [0, {}]",
+                arena[0], arena[1]
+            ),
+        ));
+    }
+    Ok(())
+}
+
+fn smell(key: &str, odour: &[f64; 8], intensity: f64, range: Option<f64>) -> Valid {
+    for (k, o) in odour.iter().enumerate() {
+        non_negative(&format!("{key}.odour[{k}]"), *o)?;
+    }
+    non_negative(&format!("{key}.intensity"), intensity)?;
+    if let Some(r) = range {
+        positive(&format!("{key}.range"), r)?;
+    }
+    Ok(())
+}
+
+fn colour(key: &str, c: &[f64; 3]) -> Valid {
+    for (k, v) in c.iter().enumerate() {
+        crate::validate::within(&format!("{key}[{k}]"), *v, 0.0, 1.0)?;
+    }
+    Ok(())
+}
+
+fn hold(key: &str, h: [u64; 2]) -> Valid {
+    count_within(&format!("{key}[0]"), h[0], 1, MAX_TICKS, "ticks")?;
+    count_within(
+        &format!("{key}[1]"),
+        h[1],
+        h[0],
+        MAX_TICKS,
+        "ticks, at least min",
+    )
+}
+
+/// Validates every gadget and actor table of a world with arena `arena`; keys start with
+/// `world.`.
+pub fn validate(
+    arena: [f64; 2],
+    doors: &[DoorSpec],
+    teleporters: &[TeleporterSpec],
+    wanderers: &WanderersSpec,
+    predators: &[PredatorSpec],
+    air: &[AirPredatorSpec],
+) -> Valid {
+    count_within("world.doors", doors.len() as u64, 0, MAX_ACTORS, "doors")?;
+    for (i, d) in doors.iter().enumerate() {
+        let key = format!("world.doors[{i}]");
+        inside(&format!("{key}.from"), d.from, arena)?;
+        inside(&format!("{key}.to"), d.to, arena)?;
+        if d.from == d.to {
+            return Err(InvalidValue::new(
+                format!("{key}.to"),
+                "a door must have a length, but `to` equals `from`",
+            ));
+        }
+        colour(&format!("{key}.colour"), &d.colour)?;
+        non_negative(&format!("{key}.height"), d.height)?;
+        inside(&format!("{key}.trigger"), d.trigger, arena)?;
+        non_negative(&format!("{key}.trigger_radius"), d.trigger_radius)?;
+        count_within(
+            &format!("{key}.open_ticks"),
+            d.open_ticks,
+            1,
+            MAX_TICKS,
+            "ticks",
+        )?;
+    }
+    count_within(
+        "world.teleporters",
+        teleporters.len() as u64,
+        0,
+        MAX_ACTORS,
+        "teleporters",
+    )?;
+    for (i, t) in teleporters.iter().enumerate() {
+        let key = format!("world.teleporters[{i}]");
+        inside(&format!("{key}.entry"), t.entry, arena)?;
+        non_negative(&format!("{key}.radius"), t.radius)?;
+        inside(&format!("{key}.exit"), t.exit, arena)?;
+        if let Some(h) = t.exit_heading {
+            finite(&format!("{key}.exit_heading"), h)?;
+        }
+        smell(&key, &t.odour, t.intensity, t.range)?;
+    }
+    let key = "world.wanderers";
+    count_within(
+        &format!("{key}.count"),
+        wanderers.count,
+        0,
+        MAX_ACTORS,
+        "wanderers",
+    )?;
+    if let Some(r) = wanderers.region {
+        inside(&format!("{key}.region"), [r[0], r[1]], arena)?;
+        inside(&format!("{key}.region"), [r[2], r[3]], arena)?;
+        if r[0] > r[2] || r[1] > r[3] {
+            return Err(InvalidValue::new(
+                format!("{key}.region"),
+                format!("must be [x0, y0, x1, y1] with x0 <= x1 and y0 <= y1, got {r:?}"),
+            ));
+        }
+    }
+    non_negative(&format!("{key}.max_rpt"), wanderers.max_rpt)?;
+    hold(&format!("{key}.hold_ticks"), wanderers.hold_ticks)?;
+    smell(key, &wanderers.odour, wanderers.intensity, wanderers.range)?;
+    colour(&format!("{key}.colour"), &wanderers.colour)?;
+    count_within(
+        "world.predators",
+        predators.len() as u64,
+        0,
+        MAX_ACTORS,
+        "predators",
+    )?;
+    for (i, p) in predators.iter().enumerate() {
+        let key = format!("world.predators[{i}]");
+        if p.strategy == Strategy::Patrol && p.waypoints.is_empty() {
+            return Err(InvalidValue::new(
+                format!("{key}.waypoints"),
+                "a patrol needs at least one waypoint",
+            ));
+        }
+        for (k, w) in p.waypoints.iter().enumerate() {
+            inside(&format!("{key}.waypoints[{k}]"), *w, arena)?;
+        }
+        non_negative(&format!("{key}.max_rpt"), p.max_rpt)?;
+        if let Some(s) = p.start {
+            inside(&format!("{key}.start"), s, arena)?;
+        }
+        hold(&format!("{key}.hold_ticks"), p.hold_ticks)?;
+        smell(&key, &p.odour, p.intensity, p.range)?;
+        colour(&format!("{key}.colour"), &p.colour)?;
+    }
+    count_within(
+        "world.air_predators",
+        air.len() as u64,
+        0,
+        MAX_ACTORS,
+        "air predators",
+    )?;
+    for (i, a) in air.iter().enumerate() {
+        let key = format!("world.air_predators[{i}]");
+        positive(&format!("{key}.speed"), a.speed)?;
+        non_negative(&format!("{key}.strike_radius"), a.strike_radius)?;
+        smell(&key, &a.odour, a.intensity, a.range)?;
+    }
+    Ok(())
+}
+
+/// Something round other than food, aversive objects and creatures that senses may meet:
+/// door triggers, teleporter entries, wanderers, predators (their ground position).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Thing {
+    /// Centre in LU.
+    pub position: Vec2,
+    /// Radius in LU (0 = a point, never felt nor seen).
+    pub radius: f64,
+    /// Its smell.
+    pub smell: Smell,
+    /// Felt by whiskers (when radius > 0).
+    pub felt: bool,
+    /// Blocks the movement of bodies.
+    pub blocks: bool,
+    /// Seen by eyes as a cylinder (when radius > 0).
+    pub seen: bool,
+    /// Colour for the eye.
+    pub colour: [f64; 3],
+    /// Height for the eye in LU.
+    pub height: f64,
+}
+
+/// The running state of a locked door.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Door {
+    /// Index of its trigger in the world's things.
+    pub trigger: usize,
+    /// Ticks it stays open after a contact.
+    pub open_ticks: u64,
+    /// Last tick it is open, when it was opened at all.
+    pub open_until: Option<u64>,
+}
+
+/// The running state of a teleporter.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Teleporter {
+    /// Entry centre.
+    pub entry: Vec2,
+    /// Entry radius.
+    pub radius: f64,
+    /// Exit point.
+    pub exit: Vec2,
+    /// Heading after the jump, unit (None = keep).
+    pub exit_heading: Option<Vec2>,
+}
+
+/// What drives a ground actor.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Role {
+    /// An irrelevant creature.
+    Wanderer,
+    /// A ground predator with its strategy and effect; `predator` indexes
+    /// `[[world.predators]]` (for its waypoints).
+    Predator {
+        /// Index in `[[world.predators]]`.
+        predator: usize,
+        /// Its strategy.
+        strategy: Strategy,
+        /// Its effect.
+        effect: Effect,
+    },
+}
+
+/// A wanderer or ground predator while running.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Actor {
+    /// Index of its body in the world's things.
+    pub thing: usize,
+    /// What drives it.
+    pub role: Role,
+    /// Its pose.
+    pub pose: crate::sim::motion::Pose,
+    /// Its largest motor signal.
+    pub max_rpt: f64,
+    /// Hold range of random commands.
+    pub hold_ticks: [u64; 2],
+    /// The random command being held (left, right).
+    pub held: (f64, f64),
+    /// Ticks left on the held command.
+    pub hold_left: u64,
+    /// Next waypoint of a patrol.
+    pub waypoint: usize,
+}
+
+impl Actor {
+    /// The wanderer's command: a fresh random one when the held one ran out (draws: left,
+    /// right, then the hold length), spinning away from a touching whisker (left touch →
+    /// spin right, right or both → spin left), which does not consume the held one.
+    pub fn wander(&mut self, whiskers: [bool; 2], rng: &mut Rng) -> (f64, f64) {
+        if self.hold_left == 0 {
+            let m = self.max_rpt;
+            self.held = (uniform(rng, -m, m), uniform(rng, -m, m));
+            let [lo, hi] = self.hold_ticks;
+            self.hold_left = lo + below(rng, hi - lo + 1);
+        }
+        self.hold_left -= 1;
+        match whiskers {
+            [true, false] => (self.max_rpt, -self.max_rpt),
+            [_, true] => (-self.max_rpt, self.max_rpt),
+            _ => self.held,
+        }
+    }
+
+    /// Steers towards `target`: the wheel difference that turns the heading onto it in one
+    /// tick (a spin turns by 2π(L − R) rad, eq. 28–33), limited to ±`max_rpt` per wheel,
+    /// with the rest of the speed budget going forward.
+    pub fn steer(&self, target: Vec2) -> (f64, f64) {
+        let to = target - self.pose.position;
+        let h = self.pose.heading;
+        // y points down: a positive cross product means the target is clockwise (right).
+        let angle = libm::atan2(h.x * to.y - h.y * to.x, h.x * to.x + h.y * to.y);
+        let m = self.max_rpt;
+        let half = (angle / (4.0 * std::f64::consts::PI)).clamp(-m, m);
+        let ahead = m - half.abs();
+        (ahead + half, ahead - half)
+    }
+}
+
+/// An air predator in flight.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Flyer {
+    /// Index of its smell in the world's things.
+    pub thing: usize,
+    /// Ground position in LU.
+    pub position: Vec2,
+    /// Displacement per tick in LU.
+    pub velocity: Vec2,
+    /// Speed in LU per tick.
+    pub speed: f64,
+    /// Attack radius in LU.
+    pub strike_radius: f64,
+    /// Its effect.
+    pub effect: Effect,
+}
+
+impl Flyer {
+    /// A new flight across an arena of size `arena`: draws the side (0 top, 1 right, 2
+    /// bottom, 3 left), the entry point along it, then the exit point along the opposite side.
+    pub fn enter(&mut self, arena: [f64; 2], rng: &mut Rng) {
+        let [w, h] = arena;
+        let side = below(rng, 4);
+        let a = crate::seed::unit(rng);
+        let b = crate::seed::unit(rng);
+        let (from, to) = match side {
+            0 => (Vec2::new(a * w, 0.0), Vec2::new(b * w, h)),
+            1 => (Vec2::new(w, a * h), Vec2::new(0.0, b * h)),
+            2 => (Vec2::new(a * w, h), Vec2::new(b * w, 0.0)),
+            _ => (Vec2::new(0.0, a * h), Vec2::new(w, b * h)),
+        };
+        self.position = from;
+        self.velocity = (to - from).normalize_or(Vec2::X) * self.speed;
+    }
+
+    /// Flies one tick; enters anew when it left the arena.
+    pub fn fly(&mut self, arena: [f64; 2], rng: &mut Rng) {
+        self.position += self.velocity;
+        let p = self.position;
+        if p.x < 0.0 || p.y < 0.0 || p.x > arena[0] || p.y > arena[1] {
+            self.enter(arena, rng);
+        }
+    }
+}

@@ -1,0 +1,94 @@
+//! End-to-end runs of the experiments with doors, teleporters, predators and wanderers:
+//! `simulate` writes the same trace twice, and evolution runs and reproduces its fitness file
+//! byte for byte.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn run_ok(args: &[&str]) -> Output {
+    let out = Command::new(env!("CARGO_BIN_EXE_berry-evolve"))
+        .args(args)
+        .output()
+        .expect("binary runs");
+    assert!(
+        out.status.success(),
+        "berry-evolve {args:?} failed:\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
+fn experiment(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("experiments")
+        .join(name)
+        .to_str()
+        .unwrap()
+        .to_string()
+}
+
+#[test]
+fn gadget_experiments_simulate_and_evolve_reproducibly() {
+    let tmp = tempfile::tempdir().unwrap();
+    for name in [
+        "t-maze.toml",
+        "locked-room.toml",
+        "predator-arena.toml",
+        "air-raid.toml",
+        "crowded-arena.toml",
+    ] {
+        let file = experiment(name);
+        let traces: Vec<Vec<u8>> = ["a.csv", "b.csv"]
+            .iter()
+            .map(|t| {
+                let path = tmp.path().join(format!("{name}-{t}"));
+                run_ok(&[
+                    "simulate",
+                    &file,
+                    "--ticks",
+                    "500",
+                    "--trace",
+                    path.to_str().unwrap(),
+                ]);
+                std::fs::read(path).unwrap()
+            })
+            .collect();
+        assert!(!traces[0].is_empty(), "{name}: empty trace");
+        assert!(traces[0] == traces[1], "{name}: traces differ");
+
+        let fitness: Vec<Vec<u8>> = ["run-a", "run-b"]
+            .iter()
+            .map(|run| {
+                let dir = tmp.path().join(format!("{name}-{run}"));
+                run_ok(&[&file, "--generations", "2", "--out", dir.to_str().unwrap()]);
+                std::fs::read(dir.join("fitness.csv")).unwrap()
+            })
+            .collect();
+        assert!(fitness[0] == fitness[1], "{name}: fitness files differ");
+        assert_eq!(
+            String::from_utf8_lossy(&fitness[0]).lines().count(),
+            3,
+            "{name}: header and two generations"
+        );
+    }
+}
+
+#[test]
+fn bench_runs_both_benchmark_worlds() {
+    let out = run_ok(&[
+        "bench",
+        "--world",
+        &experiment("bench/foraging-world.toml"),
+        "--world",
+        &experiment("bench/eye-predators-world.toml"),
+        "--worlds",
+        "2",
+        "--ticks",
+        "50",
+        "--generations",
+        "0",
+    ]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("foraging-world.toml:"), "{text}");
+    assert!(text.contains("eye-predators-world.toml:"), "{text}");
+}
