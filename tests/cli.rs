@@ -410,3 +410,36 @@ fn hand_designed_forager_replays_and_eats() {
         "the hand-designed forager should eat something:\n{text}"
     );
 }
+
+#[test]
+fn kept_champion_replays_to_its_recorded_fitness() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let genome = root.join("genomes/foraging-champion-seed2.json");
+    let recorded: serde_json::Value = serde_json::from_slice(&read(&genome)).unwrap();
+    let recorded = recorded["origin"]["fitness"].as_f64().unwrap();
+    let experiment = root.join("experiments/foraging.toml");
+    let replay = |extra: &[&str]| {
+        let mut args = vec![
+            "replay",
+            genome.to_str().unwrap(),
+            "--experiment",
+            experiment.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        bin().args(&args).output().unwrap()
+    };
+    // With its own seed the worlds are the ones it was scored in: the same fitness.
+    let out = replay(&["--seed", "2"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let line = text.lines().find(|l| l.starts_with("fitness ")).unwrap();
+    let fitness: f64 = line.split_whitespace().nth(1).unwrap().parse().unwrap();
+    assert!(
+        (fitness - recorded).abs() < 1e-6,
+        "replayed {fitness}, recorded {recorded}"
+    );
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("note:"));
+    // With another seed the user is told why the numbers differ.
+    let out = replay(&["--trial", "0"]);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("another seed"));
+}

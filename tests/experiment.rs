@@ -148,10 +148,21 @@ fn genome_files_refuse_non_finite_and_wrong_sizes() {
 }
 
 #[test]
-fn hand_designed_forager_fits_the_main_experiment() {
+fn every_shipped_genome_fits_the_main_experiment() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let experiment = Experiment::load(&root.join("experiments/foraging.toml")).unwrap();
-    let path = root.join("genomes/braitenberg-forager.json");
-    let file = GenomeFile::load(&path).unwrap();
-    file.topology_for(&experiment, &path).unwrap();
+    let mut count = 0;
+    for entry in std::fs::read_dir(root.join("genomes")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "json") {
+            let file = GenomeFile::load(&path).unwrap_or_else(|e| panic!("{e}"));
+            file.topology_for(&experiment, &path)
+                .unwrap_or_else(|e| panic!("{e}"));
+            count += 1;
+        }
+    }
+    assert!(
+        count >= 2,
+        "expected the hand-designed forager and a kept champion"
+    );
 }

@@ -26,6 +26,9 @@ pub struct ReplayArgs {
     /// Replay only this trial (default: all of the experiment's trials).
     #[arg(long)]
     pub trial: Option<u64>,
+    /// Override the experiment's seed (use the seed the genome was evolved with).
+    #[arg(long)]
+    pub seed: Option<u64>,
     /// Write the per-tick trace of the replayed trial(s) to this CSV file.
     #[arg(long)]
     pub trace: Option<PathBuf>,
@@ -33,9 +36,26 @@ pub struct ReplayArgs {
 
 /// Runs the subcommand.
 pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
-    let experiment = Experiment::load(&args.experiment)?;
+    let mut experiment = Experiment::load(&args.experiment)?;
+    if let Some(seed) = args.seed {
+        experiment.seed = seed;
+        experiment.validate()?;
+    }
     let file = GenomeFile::load(&args.genome)?;
     let topology = file.topology_for(&experiment, &args.genome)?;
+    if let Some(recorded) = &file.origin.config_hash {
+        let here = experiment.config_hash();
+        if *recorded != here {
+            eprintln!(
+                "note: {} was evolved under config hash {}, this experiment's is {} (another seed \
+                 or other settings), so its worlds and fitness differ from the recorded ones; \
+                 replay with the run folder's experiment.toml (or the right --seed) to reproduce them",
+                args.genome.display(),
+                &recorded[..recorded.len().min(12)],
+                &here[..12]
+            );
+        }
+    }
     let genome = file.genome();
     let generation = Generation(args.generation.or(file.origin.generation).unwrap_or(0));
     // Without common random numbers the worlds depend on the individual's index too.
