@@ -1,48 +1,10 @@
 //! End-to-end tests of the `berry-evolve` binary: the reproducibility contract (same seed,
 //! same bytes; any thread count; resumed or not) and clear errors for every class of bad input.
 
+mod cli_common;
+use cli_common::{bin, fixture, read, run_err, run_ok};
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_berry-evolve"))
-}
-
-fn fixture(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/fixtures")
-        .join(name)
-}
-
-fn run_ok(args: &[&str]) -> Output {
-    let out = bin().args(args).output().expect("binary runs");
-    assert!(
-        out.status.success(),
-        "berry-evolve {args:?} failed:\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
-}
-
-/// Runs and expects failure; returns stderr after checking it is a clean error.
-fn run_err(args: &[&str]) -> String {
-    let out = bin().args(args).output().expect("binary runs");
-    let stderr = String::from_utf8_lossy(&out.stderr).to_string();
-    assert!(!out.status.success(), "berry-evolve {args:?} should fail");
-    assert!(
-        !stderr.contains("panicked") && !stderr.contains("RUST_BACKTRACE"),
-        "panic instead of an error:\n{stderr}"
-    );
-    assert!(
-        stderr.starts_with("error: "),
-        "unexpected stderr:\n{stderr}"
-    );
-    stderr
-}
-
-fn read(path: &Path) -> Vec<u8> {
-    std::fs::read(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()))
-}
 
 fn checkpoints(dir: &Path) -> Vec<PathBuf> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(dir.join("checkpoints"))

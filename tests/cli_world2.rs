@@ -2,30 +2,8 @@
 //! names the new inputs, `simulate` writes the same trace twice, and evolution runs and
 //! reproduces its fitness file byte for byte.
 
-use std::path::Path;
-use std::process::{Command, Output};
-
-fn run_ok(args: &[&str]) -> Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_berry-evolve"))
-        .args(args)
-        .output()
-        .expect("binary runs");
-    assert!(
-        out.status.success(),
-        "berry-evolve {args:?} failed:\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
-}
-
-fn experiment(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("experiments")
-        .join(name)
-        .to_str()
-        .unwrap()
-        .to_string()
-}
+mod cli_common;
+use cli_common::{experiment, run_ok};
 
 #[test]
 fn new_experiments_inspect_simulate_and_evolve_reproducibly() {

@@ -80,7 +80,7 @@ const LANES: usize = 8;
 /// s_k accumulate the products at indices ≡ k (mod 8) over the whole blocks of eight, they are
 /// combined as ((s0 + s1) + (s2 + s3)) + ((s4 + s5) + (s6 + s7)), and the remaining (fewer than
 /// eight) products are added one by one in index order. The independent partial sums let the
-/// compiler use SIMD registers without reassociating anything (no fast-math). For fewer than
+/// compiler use SIMD registers without reassociating anything (no relaxed floating-point flags). For fewer than
 /// eight elements this is the plain left-to-right sum 0 + w0 x0 + w1 x1 + ….
 #[inline]
 pub fn dot(w: &[f64], x: &[f64]) -> f64 {
