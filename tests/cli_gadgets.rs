@@ -65,8 +65,22 @@ fn bench_runs_both_benchmark_worlds() {
         "50",
         "--generations",
         "0",
+        "--scaling",
+        "1,10",
+        "--scaling-world",
+        &experiment("bench/foraging-world.toml"),
     ]);
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("foraging-world.toml:"), "{text}");
     assert!(text.contains("eye-predators-world.toml:"), "{text}");
+    // The scaling series of the performance issue: 40 food and 12 walls in 300 x 300, then
+    // 100 times as much of both in 3000 x 3000.
+    assert!(
+        text.contains("x1: 300 x 300 arena, 12 walls, 40 objects:"),
+        "{text}"
+    );
+    assert!(
+        text.contains("x10: 3000 x 3000 arena, 1200 walls, 4000 objects:"),
+        "{text}"
+    );
 }

@@ -13,11 +13,12 @@
 //! objects, creatures wins.
 //!
 //! Cylinders are ray-tested only against the columns near their angular extent (one atan2
-//! and one asin per object instead of a ray test per column); the exact ray test still
-//! decides, and a test checks that culling never changes a pixel. Everything is allocated
+//! and one asin per object instead of a ray test per column), and walls farther than the
+//! eye's range are not ray-tested at all; the exact ray test still decides, and a test checks
+//! that culling never changes a pixel. Everything is allocated
 //! when the eye is built; rendering allocates nothing.
 
-use crate::geometry::{ray_circle, ray_segment, Vec2};
+use crate::geometry::{point_segment_distance_squared, ray_circle, ray_segment, Vec2};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::Thing;
 use crate::sim::spec::EyeSpec;
@@ -162,7 +163,15 @@ impl Eye {
         for pixel in out[..3 * w * self.height].chunks_exact_mut(3) {
             pixel.copy_from_slice(&self.background);
         }
+        // With culling, a wall farther than the eye's range (plus a margin far above the
+        // rounding of a ray's distance) is skipped: every ray would meet it beyond the range,
+        // where `paint` shows nothing. In a large arena most walls are that far.
+        let reach = self.range * (1.0 + 1e-9) + 1e-9;
+        let reach_squared = reach * reach;
         for wall in scene.walls {
+            if cull && point_segment_distance_squared(position, &wall.segment) > reach_squared {
+                continue;
+            }
             for i in 0..w {
                 if let Some(t) = ray_segment(position, self.dirs[i], &wall.segment) {
                     self.paint(out, i, t, wall.height, &wall.colour);
