@@ -38,6 +38,9 @@ pub struct BenchArgs {
     /// same density (comma-separated; 0 alone skips the series).
     #[arg(long, value_delimiter = ',', default_values_t = vec![1u32, 2, 5, 10])]
     pub scaling: Vec<u32>,
+    /// Runs of every measurement; each figure printed is their median.
+    #[arg(long, default_value_t = 1)]
+    pub repeat: u32,
     /// Base world of the scaling series.
     #[arg(long, default_value = "experiments/bench/foraging-world.toml")]
     pub scaling_world: PathBuf,
@@ -208,11 +211,68 @@ fn wall_count(spec: &WorldSpec) -> usize {
     spec.walls.len() + if spec.boundary_walls { 4 } else { 0 }
 }
 
+/// The median of `values` (the mean of the middle two for an even count).
+fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    if n == 0 {
+        f64::NAN
+    } else if n % 2 == 1 {
+        values[n / 2]
+    } else {
+        0.5 * (values[n / 2 - 1] + values[n / 2])
+    }
+}
+
+/// `measure` run `repeat` times; the median.
+fn median_of(repeat: u32, mut measure: impl FnMut() -> anyhow::Result<f64>) -> anyhow::Result<f64> {
+    let mut values = Vec::with_capacity(repeat as usize);
+    for _ in 0..repeat.max(1) {
+        values.push(measure()?);
+    }
+    Ok(median(values))
+}
+
+/// One timed evolution: `generations` generations of `experiment` on `threads` threads.
+struct EvolutionTiming {
+    eval_seconds: f64,
+    ga_seconds: f64,
+    /// Best fitness of each generation, as bits (to compare thread counts).
+    bests: Vec<u64>,
+}
+
+fn time_evolution(
+    experiment: &Experiment,
+    generations: u64,
+    threads: usize,
+) -> anyhow::Result<EvolutionTiming> {
+    let topology = experiment.topology();
+    let pool = pool(threads)?;
+    let mut population = first_population(experiment, &topology);
+    let mut timing = EvolutionTiming {
+        eval_seconds: 0.0,
+        ga_seconds: 0.0,
+        bests: Vec::new(),
+    };
+    for g in 0..generations {
+        let t = Instant::now();
+        let evaluated = pool.install(|| evaluate(experiment, &topology, g, population))?;
+        timing.eval_seconds += t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let summary = evaluated.summary();
+        timing.bests.push(summary.stats.best.to_bits());
+        population = offspring(experiment, &evaluated);
+        timing.ga_seconds += t.elapsed().as_secs_f64();
+    }
+    Ok(timing)
+}
+
 /// Runs the subcommand.
 pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let repeat = args.repeat.max(1);
     println!(
-        "berry-evolve {} bench; {cores} cores available",
+        "berry-evolve {} bench; {cores} cores available; every figure is the median of {repeat} run(s)",
         env!("CARGO_PKG_VERSION")
     );
     for path in &args.world {
@@ -220,8 +280,12 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         let spec = &experiment.world;
         // Warm up caches and the allocator once.
         sim_rate(&experiment, spec, 2, args.ticks.min(500), 1)?;
-        let one = sim_rate(&experiment, spec, args.worlds, args.ticks, 1)?;
-        let two = sim_rate(&experiment, spec, args.worlds, args.ticks, 2)?;
+        let one = median_of(repeat, || {
+            sim_rate(&experiment, spec, args.worlds, args.ticks, 1)
+        })?;
+        let two = median_of(repeat, || {
+            sim_rate(&experiment, spec, args.worlds, args.ticks, 2)
+        })?;
         println!(
             "simulator {}: {:.0} creature-ticks/s on 1 thread, {:.0} on 2 threads ({:.2}x)",
             path.display(),
@@ -235,7 +299,9 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         let mut first = None;
         for &k in args.scaling.iter().filter(|&&k| k > 0) {
             let spec = tiled_world(&experiment.world, k)?;
-            let rate = sim_rate(&experiment, &spec, args.worlds, args.ticks, 1)?;
+            let rate = median_of(repeat, || {
+                sim_rate(&experiment, &spec, args.worlds, args.ticks, 1)
+            })?;
             let base = *first.get_or_insert(rate);
             println!(
                 "scaling {} x{k}: {:.0} x {:.0} arena, {} walls, {} objects: {:.0} creature-ticks/s on 1 thread, cost per creature-tick {:.2}x the first",
@@ -251,41 +317,43 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     }
     if args.generations > 0 {
         let experiment = Experiment::load(&args.evolution)?;
-        let topology = experiment.topology();
         let per_generation = experiment.evolution.population as f64
             * experiment.evaluation.trials as f64
             * experiment.evaluation.ticks as f64;
+        let gens = args.generations as f64;
         let mut rates = Vec::new();
+        let mut bests = Vec::new();
         for threads in [1usize, 2] {
-            let pool = pool(threads)?;
-            let mut population = first_population(&experiment, &topology);
-            let (mut eval_time, mut ga_time) = (0.0, 0.0);
-            let mut bests = Vec::new();
-            for g in 0..args.generations {
-                let t = Instant::now();
-                let evaluated = pool.install(|| evaluate(&experiment, &topology, g, population))?;
-                eval_time += t.elapsed().as_secs_f64();
-                let t = Instant::now();
-                let summary = evaluated.summary();
-                bests.push(summary.stats.best.to_bits());
-                population = offspring(&experiment, &evaluated);
-                ga_time += t.elapsed().as_secs_f64();
+            let mut timings = Vec::new();
+            for _ in 0..repeat {
+                timings.push(time_evolution(&experiment, args.generations, threads)?);
             }
-            let total = eval_time + ga_time;
-            let gens = args.generations as f64;
-            println!(
-                "evolution {} on {threads} thread(s): {:.3} generations/s, {:.0} creature-ticks/s, GA share {:.2}%",
-                args.evolution.display(),
-                gens / total,
-                per_generation * gens / total,
-                100.0 * ga_time / total
+            let rate = median(
+                timings
+                    .iter()
+                    .map(|t| gens / (t.eval_seconds + t.ga_seconds))
+                    .collect(),
             );
-            rates.push((gens / total, bests));
+            let ga_share = median(
+                timings
+                    .iter()
+                    .map(|t| 100.0 * t.ga_seconds / (t.eval_seconds + t.ga_seconds))
+                    .collect(),
+            );
+            println!(
+                "evolution {} on {threads} thread(s): {:.3} generations/s, {:.0} creature-ticks/s (agent-steps/s), GA share {:.2}%",
+                args.evolution.display(),
+                rate,
+                per_generation * rate,
+                ga_share
+            );
+            rates.push(rate);
+            bests.extend(timings.into_iter().map(|t| t.bests));
         }
         println!(
-            "evolution speed-up 2 vs 1 thread: {:.2}x; best fitness per generation identical: {}",
-            rates[1].0 / rates[0].0,
-            if rates[0].1 == rates[1].1 {
+            "evolution speed-up 2 vs 1 thread: {:.2}x; best fitness per generation identical in every run: {}",
+            rates[1] / rates[0],
+            if bests.windows(2).all(|w| w[0] == w[1]) {
                 "yes"
             } else {
                 "NO"

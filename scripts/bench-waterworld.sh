@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Reproduces the README's WaterWorld comparison (performance issue, target 2): whole
+# generations of experiments/bench/waterworld.toml (population 256, 32 trials x 500 ticks,
+# 30-pixel 360° eye, 50 items, MLP 98 -> 100 -> 2) with 1 and 2 threads, median of 3, and
+# the ratio to EvoJAX 0.2.17's WaterWorld on the same machine class (44,000 agent-steps/s for
+# whole generations, measured with EvoJAX's own code and settings; see the issue).
+#
+#   bash scripts/bench-waterworld.sh      # about 2 minutes on 2 cores
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo build --release --quiet
+uname -m; nproc
+grep -m1 'model name' /proc/cpuinfo || true
+out=$(target/release/berry-evolve bench --repeat 3 --world experiments/bench/waterworld.toml \
+    --ticks 2000 --scaling 0 --evolution experiments/bench/waterworld.toml --generations 1 "$@")
+echo "$out"
+echo "$out" | awk '/^evolution .* on 2 thread/ {
+    for (i = 1; i <= NF; i++) if ($(i + 1) == "creature-ticks/s") rate = $i
+    printf "whole generations on 2 threads: %d agent-steps/s = %.1fx EvoJAX WaterWorld (44,000)\n", rate, rate / 44000
+}'
