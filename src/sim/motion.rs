@@ -253,23 +253,135 @@ fn circle_blocks(p0: Vec2, p1: Vec2, r: f64, body: &Circle) -> bool {
 
 /// §8.2 with walls tested first, so a path blocked by both reports a wall.
 fn verdict(p0: Vec2, p1: Vec2, radius: f64, blockers: &Blockers) -> Verdict {
+    verdict_over(
+        p0,
+        p1,
+        radius,
+        blockers.segments.iter(),
+        blockers.circles.iter(),
+    )
+}
+
+/// [`verdict`] over the given walls and bodies (all of them, or a shortlist).
+#[inline]
+fn verdict_over<'w, 'c>(
+    p0: Vec2,
+    p1: Vec2,
+    radius: f64,
+    mut walls: impl Iterator<Item = &'w Segment>,
+    mut circles: impl Iterator<Item = &'c Circle>,
+) -> Verdict {
     let path = Segment::new(p0, p1);
     let path_box = path.bounds();
-    if blockers
-        .segments
-        .iter()
-        .any(|w| wall_blocks(p0, p1, &path, path_box, radius, w))
-    {
+    if walls.any(|w| wall_blocks(p0, p1, &path, path_box, radius, w)) {
         return Verdict::Wall;
     }
-    if blockers
-        .circles
-        .iter()
-        .any(|c| circle_blocks(p0, p1, radius, c))
-    {
+    if circles.any(|c| circle_blocks(p0, p1, radius, c)) {
         return Verdict::Body;
     }
     Verdict::Free
+}
+
+/// Most blockers a [`Shortlist`] holds; with more candidates the full list is used.
+const SHORTLIST_LEN: usize = 32;
+
+/// The blockers of one kind that may block some path of one move's search (see
+/// [`plan_move`]): their indices into `all` in the original order, or all of them when there
+/// are more than [`SHORTLIST_LEN`] (or the move's box is not safe to reason about). Lives on
+/// the stack: `plan_move` does not allocate.
+struct Shortlist<'a, T> {
+    all: &'a [T],
+    index: [u32; SHORTLIST_LEN],
+    /// `None`: use `all`.
+    len: Option<usize>,
+}
+
+impl<'a, T> Shortlist<'a, T> {
+    /// Every item of `all` for which `may_block` holds (or all of them, see above).
+    #[inline]
+    fn new(all: &'a [T], use_all: bool, may_block: impl Fn(&T) -> bool) -> Self {
+        let mut list = Shortlist {
+            all,
+            index: [0; SHORTLIST_LEN],
+            len: None,
+        };
+        if use_all || all.len() > u32::MAX as usize {
+            return list;
+        }
+        let mut len = 0;
+        for (i, item) in all.iter().enumerate() {
+            if may_block(item) {
+                if len == SHORTLIST_LEN {
+                    return list;
+                }
+                list.index[len] = i as u32;
+                len += 1;
+            }
+        }
+        list.len = Some(len);
+        list
+    }
+
+    /// Nothing on the list.
+    #[inline]
+    fn is_empty(&self) -> bool {
+        match self.len {
+            Some(n) => n == 0,
+            None => self.all.is_empty(),
+        }
+    }
+
+    /// The listed items in their original order.
+    #[inline]
+    fn iter(&self) -> ShortlistIter<'_, 'a, T> {
+        match self.len {
+            Some(n) => ShortlistIter::Listed(self.all, self.index[..n].iter()),
+            None => ShortlistIter::All(self.all.iter()),
+        }
+    }
+}
+
+/// Iterator over a [`Shortlist`].
+enum ShortlistIter<'s, 'a, T> {
+    Listed(&'a [T], std::slice::Iter<'s, u32>),
+    All(std::slice::Iter<'a, T>),
+}
+
+impl<'a, T> Iterator for ShortlistIter<'_, 'a, T> {
+    type Item = &'a T;
+
+    #[inline]
+    fn next(&mut self) -> Option<&'a T> {
+        match self {
+            ShortlistIter::Listed(all, idx) => idx.next().map(|&i| &all[i as usize]),
+            ShortlistIter::All(it) => it.next(),
+        }
+    }
+}
+
+/// Can `wall` block any path p0 → p1 of a body of radius `r` whose box and end point p1 lie
+/// in the box (`lo`, `hi`)? `false` only when [`wall_blocks`]'s own first rejection holds for
+/// every such path: its box misses the wall's box (the path box lies inside (`lo`, `hi`)) and
+/// p1 is outside the wall's box grown by `r`, compared with the same float expressions.
+#[inline]
+fn wall_may_block(lo: Vec2, hi: Vec2, r: f64, wall: &Segment) -> bool {
+    let (wlo, whi) = wall.bounds();
+    let box_misses = hi.x < wlo.x || whi.x < lo.x || hi.y < wlo.y || whi.y < lo.y;
+    let end_misses = hi.x < wlo.x - r || lo.x > whi.x + r || hi.y < wlo.y - r || lo.y > whi.y + r;
+    !(box_misses && end_misses)
+}
+
+/// Can `body` block a body of radius `r` ending anywhere in the box (`lo`, `hi`)? `false` only
+/// when the body at the box's point nearest to the centre does not touch it: every float step
+/// of [`circles_touch`] (difference, square, sum) is monotone in the coordinate distances, so
+/// no point of the box is computed closer than that one.
+#[inline]
+fn circle_may_block(lo: Vec2, hi: Vec2, r: f64, body: &Circle) -> bool {
+    let nearest = Vec2::new(
+        body.centre.x.max(lo.x).min(hi.x),
+        body.centre.y.max(lo.y).min(hi.y),
+    );
+    circles_touch(nearest, r, body.centre, body.radius)
 }
 
 /// §8.2: may a body of `radius` move along the straight path `p0 → p1`? Yes when the segment
@@ -322,7 +434,27 @@ pub fn plan_move(
     }
     // eq. 31.
     let target = start + chord_dir * d.chord;
-    let mut cause = verdict(start, target, radius, blockers);
+    // Every path the search tests runs from `start` to a point of the box of start → target
+    // (a midpoint of two points of the box is in the box), so a blocker that cannot block
+    // any path within that box is left out of every test. The box must be finite and far from
+    // overflow for the midpoints to stay inside it; otherwise every blocker is tested.
+    let (lo, hi) = Segment::new(start, target).bounds();
+    const SAFE: f64 = 1e300;
+    let use_all = !(lo.x >= -SAFE && lo.y >= -SAFE && hi.x <= SAFE && hi.y <= SAFE);
+    let walls = Shortlist::new(blockers.segments, use_all, |w| {
+        wall_may_block(lo, hi, radius, w)
+    });
+    let circles = Shortlist::new(blockers.circles, use_all, |c| {
+        circle_may_block(lo, hi, radius, c)
+    });
+    let test = |p1: Vec2| {
+        if walls.is_empty() && circles.is_empty() {
+            Verdict::Free
+        } else {
+            verdict_over(start, p1, radius, walls.iter(), circles.iter())
+        }
+    };
+    let mut cause = test(target);
     if cause == Verdict::Free {
         return MoveOutcome {
             pose: Pose {
@@ -339,7 +471,7 @@ pub fn plan_move(
     let mut hi = target;
     for _ in 0..params.search_steps {
         let mid = (lo + hi) * 0.5;
-        match verdict(start, mid, radius, blockers) {
+        match test(mid) {
             Verdict::Free => lo = mid,
             v => {
                 hi = mid;
