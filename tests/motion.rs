@@ -1078,9 +1078,12 @@ fn prefiltered_search_matches_the_reference_bit_for_bit() {
     let mut r = ChaCha8Rng::seed_from_u64(0x8e55_2024);
     let (mut blocked, mut by_wall, mut by_body) = (0, 0, 0);
     for case in 0..12_000 {
-        let rad = match below(&mut r, 5) {
-            0 => 0.0,
-            1 => uniform(&mut r, 0.5, 6.0),
+        let rad = match below(&mut r, 40) {
+            0..=7 => 0.0,
+            8..=15 => uniform(&mut r, 0.5, 6.0),
+            // Not a body radius, but the shortlist must not assume r >= 0.
+            16 => -uniform(&mut r, 0.5, 3.0),
+            17 => f64::NAN,
             _ => R,
         };
         // Mostly moderate coordinates; some huge ones (the search falls back to every blocker).

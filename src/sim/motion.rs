@@ -380,9 +380,14 @@ impl<'a, T> Iterator for ShortlistIter<'_, 'a, T> {
 #[inline]
 fn wall_may_block(lo: Vec2, hi: Vec2, r: f64, wall: &Segment) -> bool {
     let (wlo, whi) = wall.bounds();
-    let box_misses = hi.x < wlo.x || whi.x < lo.x || hi.y < wlo.y || whi.y < lo.y;
     let end_misses = hi.x < wlo.x - r || lo.x > whi.x + r || hi.y < wlo.y - r || lo.y > whi.y + r;
-    !(box_misses && end_misses)
+    if !end_misses {
+        return true;
+    }
+    // For r >= 0 the grown box contains the wall's box (wlo.x - r <= wlo.x in floats too), so
+    // `end_misses` already implies that the box misses.
+    let box_misses = r >= 0.0 || hi.x < wlo.x || whi.x < lo.x || hi.y < wlo.y || whi.y < lo.y;
+    !box_misses
 }
 
 /// Can `body` block a body of radius `r` ending anywhere in the box (`lo`, `hi`)? `false` only
