@@ -13,6 +13,9 @@ use berry_evolve::geometry::{
 use berry_evolve::seed::{
     below, chance, stream, uniform, Generation, IndividualId, Purpose, Rng, Seed, TrialIndex,
 };
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
 use berry_evolve::sim::motion::{
     admissible, drive, plan_move, rotate, Blockers, MotionParams, MoveOutcome, Pose,
 };
@@ -813,4 +816,344 @@ fn randomized_free_moves_match_the_arc() {
         close_v(o.pose.position, expected, 1e-9);
         close_v(o.pose.heading, rotate(h, phi), 1e-12);
     }
+}
+
+// ---------------------------------------------------------------- reference search
+
+/// The straightforward §8.2 move (the algorithm before the search was pre-filtered): every
+/// path test runs over every wall and every body. `plan_move` must give the same bits.
+mod reference {
+    use berry_evolve::geometry::{
+        circle_touches_segment, circles_touch, point_segment_distance_squared, segments_intersect,
+        Circle, Segment, Vec2,
+    };
+    use berry_evolve::sim::motion::{Blockers, MotionParams, MoveOutcome, Pose};
+
+    #[derive(Clone, Copy, PartialEq)]
+    enum Verdict {
+        Free,
+        Wall,
+        Body,
+    }
+
+    fn rotate_sc(v: Vec2, sin: f64, cos: f64) -> Vec2 {
+        Vec2::new(v.x * cos - v.y * sin, v.x * sin + v.y * cos)
+    }
+
+    fn normalise(v: Vec2) -> Vec2 {
+        let len = v.length();
+        if len > 0.0 {
+            v / len
+        } else {
+            v
+        }
+    }
+
+    fn sinc(x: f64) -> f64 {
+        if x.abs() < 1e-4 {
+            1.0 - x * x / 6.0
+        } else {
+            libm::sin(x) / x
+        }
+    }
+
+    fn clamp_rpt(x: f64, max: f64) -> f64 {
+        if x.is_nan() {
+            0.0
+        } else {
+            let m = max.abs();
+            x.min(m).max(-m)
+        }
+    }
+
+    fn wall_blocks(p0: Vec2, p1: Vec2, r: f64, wall: &Segment) -> bool {
+        let path = Segment::new(p0, p1);
+        let crosses = segments_intersect(&path, wall);
+        if !crosses && !circle_touches_segment(p1, r, wall) {
+            return false;
+        }
+        if !circle_touches_segment(p0, r, wall) {
+            return true;
+        }
+        let d0 = point_segment_distance_squared(p0, wall);
+        let d1 = point_segment_distance_squared(p1, wall);
+        d1 < d0 || (crosses && d0 > 0.0)
+    }
+
+    fn circle_blocks(p0: Vec2, p1: Vec2, r: f64, body: &Circle) -> bool {
+        if !circles_touch(p1, r, body.centre, body.radius) {
+            return false;
+        }
+        if !circles_touch(p0, r, body.centre, body.radius) {
+            return true;
+        }
+        p1.distance_squared(body.centre) < p0.distance_squared(body.centre)
+    }
+
+    fn verdict(p0: Vec2, p1: Vec2, r: f64, b: &Blockers) -> Verdict {
+        if b.segments.iter().any(|w| wall_blocks(p0, p1, r, w)) {
+            Verdict::Wall
+        } else if b.circles.iter().any(|c| circle_blocks(p0, p1, r, c)) {
+            Verdict::Body
+        } else {
+            Verdict::Free
+        }
+    }
+
+    pub fn plan_move(
+        pose: Pose,
+        left_rpt: f64,
+        right_rpt: f64,
+        radius: f64,
+        params: &MotionParams,
+        blockers: &Blockers,
+    ) -> MoveOutcome {
+        let stay = MoveOutcome {
+            pose,
+            travelled: 0.0,
+            blocked: false,
+            blocked_by_wall: false,
+        };
+        let left = clamp_rpt(left_rpt, params.max_rpt);
+        let right = clamp_rpt(right_rpt, params.max_rpt);
+        let w = params.wheel;
+        let d_left = std::f64::consts::TAU * w * left;
+        let d_right = std::f64::consts::TAU * w * right;
+        let (phi, chord) = if w == 0.0 {
+            (0.0, 0.0)
+        } else {
+            let phi = (d_left - d_right) / w;
+            (phi, 0.5 * (d_left + d_right) * sinc(0.5 * phi))
+        };
+        if !phi.is_finite() || !chord.is_finite() {
+            return stay;
+        }
+        let half = 0.5 * phi;
+        let (s, c) = (libm::sin(half), libm::cos(half));
+        let chord_dir = normalise(rotate_sc(pose.heading, s, c));
+        let free_heading = normalise(rotate_sc(chord_dir, s, c));
+        let start = pose.position;
+        if chord == 0.0 {
+            return MoveOutcome {
+                pose: Pose {
+                    position: start,
+                    heading: free_heading,
+                },
+                ..stay
+            };
+        }
+        let target = start + chord_dir * chord;
+        let mut cause = verdict(start, target, radius, blockers);
+        if cause == Verdict::Free {
+            return MoveOutcome {
+                pose: Pose {
+                    position: target,
+                    heading: free_heading,
+                },
+                travelled: chord.abs(),
+                ..stay
+            };
+        }
+        let mut lo = start;
+        let mut hi = target;
+        for _ in 0..params.search_steps {
+            let mid = (lo + hi) * 0.5;
+            match verdict(start, mid, radius, blockers) {
+                Verdict::Free => lo = mid,
+                v => {
+                    hi = mid;
+                    cause = v;
+                }
+            }
+        }
+        let travelled = start.distance(lo);
+        let heading = if params.slippery_walls {
+            free_heading
+        } else {
+            let fraction = (travelled / chord.abs()).min(1.0);
+            let angle = fraction * phi;
+            normalise(rotate_sc(pose.heading, libm::sin(angle), libm::cos(angle)))
+        };
+        MoveOutcome {
+            pose: Pose {
+                position: lo,
+                heading,
+            },
+            travelled,
+            blocked: true,
+            blocked_by_wall: cause == Verdict::Wall,
+        }
+    }
+}
+
+fn same_bits(a: &MoveOutcome, b: &MoveOutcome) -> bool {
+    let bits = |o: &MoveOutcome| {
+        [
+            o.pose.position.x.to_bits(),
+            o.pose.position.y.to_bits(),
+            o.pose.heading.x.to_bits(),
+            o.pose.heading.y.to_bits(),
+            o.travelled.to_bits(),
+        ]
+    };
+    bits(a) == bits(b) && a.blocked == b.blocked && a.blocked_by_wall == b.blocked_by_wall
+}
+
+/// A random point within `spread` of `c`.
+fn near(r: &mut ChaCha8Rng, c: Vec2, spread: f64) -> Vec2 {
+    c + v(uniform(r, -spread, spread), uniform(r, -spread, spread))
+}
+
+/// A random wall of one of several kinds around the start `p` of a body of radius `rad`.
+fn random_wall(r: &mut ChaCha8Rng, p: Vec2, rad: f64) -> Segment {
+    match below(r, 9) {
+        // Near: within a few move lengths.
+        0 | 1 => {
+            let a = near(r, p, 20.0);
+            Segment::new(a, near(r, a, 15.0))
+        }
+        // Far away.
+        2 => {
+            let a = near(r, p, 300.0);
+            Segment::new(a, near(r, a, 40.0))
+        }
+        // Zero length, near.
+        3 => {
+            let a = near(r, p, 12.0);
+            Segment::new(a, a)
+        }
+        // Through the start centre.
+        4 => {
+            let d = random_heading(r) * uniform(r, 0.0, 10.0);
+            Segment::new(p - d * uniform(r, 0.0, 1.0), p + d)
+        }
+        // Touching the body at the start: passing through a point at distance <= rad.
+        5 => {
+            let q = p + random_heading(r) * uniform(r, 0.0, rad);
+            let d = random_heading(r) * uniform(r, 0.0, 8.0);
+            Segment::new(q - d * uniform(r, 0.0, 1.0), q + d)
+        }
+        // Exactly tangent to the body at the start, axis-aligned.
+        6 => {
+            let y = p.y + if chance(r, 0.5) { rad } else { -rad };
+            Segment::new(v(p.x - 10.0, y), v(p.x + uniform(r, -5.0, 10.0), y))
+        }
+        // Long axis-aligned walls (arena borders).
+        7 => {
+            let off = uniform(r, -15.0, 15.0);
+            if chance(r, 0.5) {
+                Segment::new(v(p.x - 500.0, p.y + off), v(p.x + 500.0, p.y + off))
+            } else {
+                Segment::new(v(p.x + off, p.y - 500.0), v(p.x + off, p.y + 500.0))
+            }
+        }
+        // An end point on the start circle.
+        _ => {
+            let q = p + random_heading(r) * rad;
+            Segment::new(q, near(r, q, 10.0))
+        }
+    }
+}
+
+/// A random body around the start `p` of a body of radius `rad`.
+fn random_body(r: &mut ChaCha8Rng, p: Vec2, rad: f64) -> Circle {
+    let radius = match below(r, 4) {
+        0 => 0.0,
+        1 => rad,
+        _ => uniform(r, 0.0, 8.0),
+    };
+    let centre = match below(r, 4) {
+        0 => near(r, p, 200.0),
+        // Exactly touching at the start.
+        1 => p + random_heading(r) * (rad + radius),
+        // Overlapping at the start.
+        2 => p + random_heading(r) * uniform(r, 0.0, rad + radius),
+        _ => near(r, p, 20.0),
+    };
+    Circle::new(centre, radius)
+}
+
+#[test]
+fn prefiltered_search_matches_the_reference_bit_for_bit() {
+    let mut r = ChaCha8Rng::seed_from_u64(0x8e55_2024);
+    let (mut blocked, mut by_wall, mut by_body) = (0, 0, 0);
+    for case in 0..12_000 {
+        let rad = match below(&mut r, 40) {
+            0..=7 => 0.0,
+            8..=15 => uniform(&mut r, 0.5, 6.0),
+            // Not a body radius, but the shortlist must not assume r >= 0.
+            16 => -uniform(&mut r, 0.5, 3.0),
+            17 => f64::NAN,
+            _ => R,
+        };
+        // Mostly moderate coordinates; some huge ones (the search falls back to every blocker).
+        let scale = match below(&mut r, 40) {
+            0 => 1e301,
+            1 => 1e-300,
+            _ => 1.0,
+        };
+        let start = near(&mut r, v(0.0, 0.0), 400.0) * scale;
+        let mut walls = Vec::new();
+        // Sometimes more candidates than the shortlist holds.
+        let n_walls = if case % 25 == 0 {
+            40 + below(&mut r, 20)
+        } else {
+            below(&mut r, 14)
+        };
+        for _ in 0..n_walls {
+            walls.push(random_wall(&mut r, start, rad));
+        }
+        let n_bodies = if case % 31 == 0 {
+            40 + below(&mut r, 10)
+        } else {
+            below(&mut r, 6)
+        };
+        let bodies: Vec<Circle> = (0..n_bodies)
+            .map(|_| random_body(&mut r, start, rad))
+            .collect();
+        let signal = |r: &mut ChaCha8Rng| match below(r, 12) {
+            0 => 1.0,
+            1 => -1.0,
+            2 => 0.0,
+            3 => f64::NAN,
+            4 => uniform(r, -3.0, 3.0),
+            _ => uniform(r, -1.0, 1.0),
+        };
+        let (left, right) = (signal(&mut r), signal(&mut r));
+        let params = MotionParams {
+            wheel: if chance(&mut r, 0.9) {
+                2.0
+            } else {
+                uniform(&mut r, 0.0, 6.0)
+            },
+            max_rpt: if chance(&mut r, 0.8) { 1.0 } else { 2.5 },
+            search_steps: if chance(&mut r, 0.8) {
+                20
+            } else {
+                below(&mut r, 40) as u32
+            },
+            slippery_walls: chance(&mut r, 0.5),
+        };
+        let p = Pose {
+            position: start,
+            heading: random_heading(&mut r),
+        };
+        let b = Blockers {
+            segments: &walls,
+            circles: &bodies,
+        };
+        let got = plan_move(p, left, right, rad, &params, &b);
+        let want = reference::plan_move(p, left, right, rad, &params, &b);
+        assert!(
+            same_bits(&got, &want),
+            "case {case}: {got:?} vs reference {want:?}"
+        );
+        blocked += usize::from(want.blocked);
+        by_wall += usize::from(want.blocked_by_wall);
+        by_body += usize::from(want.blocked && !want.blocked_by_wall);
+    }
+    // The situations exercise the search, both causes.
+    assert!(blocked > 3000, "{blocked}");
+    assert!(by_wall > 1500, "{by_wall}");
+    assert!(by_body > 300, "{by_body}");
 }

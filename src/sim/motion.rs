@@ -15,6 +15,20 @@
 //!    φ' = φ). Every rotation is followed by re-normalisation (eq. 36).
 //! 5. Spinning in place (M = 0) needs no path test: a circular body occupies the same place.
 //!
+//! # A cheaper search, same results
+//!
+//! Every path the search tests runs from the start to a point in the box of start → target
+//! (a float midpoint of two points of a box lies in the box), so before the first test the
+//! walls and bodies are shortlisted: a blocker is left out only when the very box and distance
+//! rejections that `wall_blocks` / `circle_blocks` begin with, evaluated with the same float
+//! expressions, reject it for every path and end point within that box. Left out, it could not
+//! have blocked any tested path, so no verdict, end point or cause changes. The few
+//! shortlisted blockers (at most 8 of each kind) are then prepared once per search (their boxes, squared lengths and
+//! contact at the start), and each step repeats `wall_blocks` / `circle_blocks` with the same
+//! float operations on those stored values. Walls are still tested before bodies. A box that
+//! is not finite or reaches beyond ±1e300 (where a midpoint could overflow), or more than 32
+//! candidates, falls back to testing every blocker; nothing is allocated.
+//!
 //! # M near d_L = d_R
 //!
 //! eq. 30 divides by d_L − d_R. It is rewritten as M = (d_L + d_R)/2 · sinc(φ/2), with
@@ -253,23 +267,317 @@ fn circle_blocks(p0: Vec2, p1: Vec2, r: f64, body: &Circle) -> bool {
 
 /// §8.2 with walls tested first, so a path blocked by both reports a wall.
 fn verdict(p0: Vec2, p1: Vec2, radius: f64, blockers: &Blockers) -> Verdict {
+    verdict_over(
+        p0,
+        p1,
+        radius,
+        blockers.segments.iter(),
+        blockers.circles.iter(),
+    )
+}
+
+/// [`verdict`] over the given walls and bodies (all of them, or a shortlist).
+#[inline]
+fn verdict_over<'w, 'c>(
+    p0: Vec2,
+    p1: Vec2,
+    radius: f64,
+    mut walls: impl Iterator<Item = &'w Segment>,
+    mut circles: impl Iterator<Item = &'c Circle>,
+) -> Verdict {
     let path = Segment::new(p0, p1);
     let path_box = path.bounds();
-    if blockers
-        .segments
-        .iter()
-        .any(|w| wall_blocks(p0, p1, &path, path_box, radius, w))
-    {
+    if walls.any(|w| wall_blocks(p0, p1, &path, path_box, radius, w)) {
         return Verdict::Wall;
     }
-    if blockers
-        .circles
-        .iter()
-        .any(|c| circle_blocks(p0, p1, radius, c))
-    {
+    if circles.any(|c| circle_blocks(p0, p1, radius, c)) {
         return Verdict::Body;
     }
     Verdict::Free
+}
+
+/// Most blockers a [`Shortlist`] holds; with more candidates the full list is used.
+const SHORTLIST_LEN: usize = 32;
+
+/// The blockers of one kind that may block some path of one move's search (see
+/// [`plan_move`]): their indices into `all` in the original order, or all of them when there
+/// are more than [`SHORTLIST_LEN`] (or the move's box is not safe to reason about). Lives on
+/// the stack: `plan_move` does not allocate.
+struct Shortlist<'a, T> {
+    all: &'a [T],
+    index: [u32; SHORTLIST_LEN],
+    /// `None`: use `all`.
+    len: Option<usize>,
+}
+
+impl<'a, T> Shortlist<'a, T> {
+    /// Every item of `all` for which `may_block` holds (or all of them, see above).
+    #[inline]
+    fn new(all: &'a [T], use_all: bool, may_block: impl Fn(&T) -> bool) -> Self {
+        let mut list = Shortlist {
+            all,
+            index: [0; SHORTLIST_LEN],
+            len: None,
+        };
+        if use_all || all.len() > u32::MAX as usize {
+            return list;
+        }
+        let mut len = 0;
+        for (i, item) in all.iter().enumerate() {
+            if may_block(item) {
+                if len == SHORTLIST_LEN {
+                    return list;
+                }
+                list.index[len] = i as u32;
+                len += 1;
+            }
+        }
+        list.len = Some(len);
+        list
+    }
+
+    /// Nothing on the list.
+    #[inline]
+    fn is_empty(&self) -> bool {
+        match self.len {
+            Some(n) => n == 0,
+            None => self.all.is_empty(),
+        }
+    }
+
+    /// The listed items in their original order.
+    #[inline]
+    fn iter(&self) -> ShortlistIter<'_, 'a, T> {
+        match self.len {
+            Some(n) => ShortlistIter::Listed(self.all, self.index[..n].iter()),
+            None => ShortlistIter::All(self.all.iter()),
+        }
+    }
+}
+
+/// Iterator over a [`Shortlist`].
+enum ShortlistIter<'s, 'a, T> {
+    Listed(&'a [T], std::slice::Iter<'s, u32>),
+    All(std::slice::Iter<'a, T>),
+}
+
+impl<'a, T> Iterator for ShortlistIter<'_, 'a, T> {
+    type Item = &'a T;
+
+    #[inline]
+    fn next(&mut self) -> Option<&'a T> {
+        match self {
+            ShortlistIter::Listed(all, idx) => idx.next().map(|&i| &all[i as usize]),
+            ShortlistIter::All(it) => it.next(),
+        }
+    }
+}
+
+/// Can `wall` block any path p0 → p1 of a body of radius `r` whose box and end point p1 lie
+/// in the box (`lo`, `hi`)? `false` only when [`wall_blocks`]'s own first rejection holds for
+/// every such path: its box misses the wall's box (the path box lies inside (`lo`, `hi`)) and
+/// p1 is outside the wall's box grown by `r`, compared with the same float expressions.
+#[inline]
+fn wall_may_block(lo: Vec2, hi: Vec2, r: f64, wall: &Segment) -> bool {
+    let (wlo, whi) = wall.bounds();
+    let end_misses = hi.x < wlo.x - r || lo.x > whi.x + r || hi.y < wlo.y - r || lo.y > whi.y + r;
+    if !end_misses {
+        return true;
+    }
+    // For r >= 0 the grown box contains the wall's box (wlo.x - r <= wlo.x in floats too), so
+    // `end_misses` already implies that the box misses.
+    let box_misses = r >= 0.0 || hi.x < wlo.x || whi.x < lo.x || hi.y < wlo.y || whi.y < lo.y;
+    !box_misses
+}
+
+/// Can `body` block a body of radius `r` ending anywhere in the box (`lo`, `hi`)? `false` only
+/// when the body at the box's point nearest to the centre does not touch it: every float step
+/// of [`circles_touch`] (difference, square, sum) is monotone in the coordinate distances, so
+/// no point of the box is computed closer than that one.
+#[inline]
+fn circle_may_block(lo: Vec2, hi: Vec2, r: f64, body: &Circle) -> bool {
+    let nearest = Vec2::new(
+        body.centre.x.max(lo.x).min(hi.x),
+        body.centre.y.max(lo.y).min(hi.y),
+    );
+    circles_touch(nearest, r, body.centre, body.radius)
+}
+
+/// Most walls, and separately most bodies, the search prepares (see [`PreparedWall`]); with
+/// more candidates it tests the shortlists.
+const PREPARED_LEN: usize = 8;
+
+/// A shortlisted wall with what [`wall_blocks`] computes the same way on every step of one
+/// move's search: its box, the box grown by the body radius, its direction and squared
+/// length, and how the body touches it at the start. [`PreparedWall::blocks`] repeats
+/// `wall_blocks` with the same float operations on the same values, so it gives the same
+/// answer.
+#[derive(Clone, Copy)]
+struct PreparedWall {
+    wall: Segment,
+    lo: Vec2,
+    hi: Vec2,
+    /// `lo - r`, `hi + r`: the box of eq. 2–3 in `circle_touches_segment`.
+    grown_lo: Vec2,
+    grown_hi: Vec2,
+    ab: Vec2,
+    len2: f64,
+    /// `circle_touches_segment(start, r, wall)`.
+    touching: bool,
+    /// `point_segment_distance_squared(start, wall)` when `touching` (else unused).
+    d0: f64,
+}
+
+impl PreparedWall {
+    const EMPTY: PreparedWall = PreparedWall {
+        wall: Segment::new(Vec2::ZERO, Vec2::ZERO),
+        lo: Vec2::ZERO,
+        hi: Vec2::ZERO,
+        grown_lo: Vec2::ZERO,
+        grown_hi: Vec2::ZERO,
+        ab: Vec2::ZERO,
+        len2: 0.0,
+        touching: false,
+        d0: 0.0,
+    };
+
+    #[inline]
+    fn new(wall: &Segment, start: Vec2, r: f64) -> Self {
+        let (lo, hi) = wall.bounds();
+        let ab = wall.b - wall.a;
+        let touching = circle_touches_segment(start, r, wall);
+        PreparedWall {
+            wall: *wall,
+            lo,
+            hi,
+            grown_lo: Vec2::new(lo.x - r, lo.y - r),
+            grown_hi: Vec2::new(hi.x + r, hi.y + r),
+            ab,
+            len2: ab.length_squared(),
+            touching,
+            d0: if touching {
+                point_segment_distance_squared(start, wall)
+            } else {
+                0.0
+            },
+        }
+    }
+
+    /// `point_segment_distance_squared(p, wall)`, step by step.
+    #[inline]
+    fn distance_squared(&self, p: Vec2) -> f64 {
+        let closest = if self.len2 == 0.0 {
+            self.wall.a
+        } else {
+            let t = ((p - self.wall.a).dot(self.ab) / self.len2).clamp(0.0, 1.0);
+            self.wall.a + self.ab * t
+        };
+        p.distance_squared(closest)
+    }
+
+    /// `wall_blocks(start, p1, path, path_box, r, wall)` for the start the wall was prepared
+    /// with.
+    #[inline]
+    fn blocks(&self, p1: Vec2, path: &Segment, path_box: (Vec2, Vec2), r: f64) -> bool {
+        let (plo, phh) = path_box;
+        let path_misses =
+            phh.x < self.lo.x || self.hi.x < plo.x || phh.y < self.lo.y || self.hi.y < plo.y;
+        let end_misses = p1.x < self.grown_lo.x
+            || p1.x > self.grown_hi.x
+            || p1.y < self.grown_lo.y
+            || p1.y > self.grown_hi.y;
+        if path_misses && end_misses {
+            return false;
+        }
+        // segments_intersect begins with exactly the `path_misses` rejection (eq. 5–8), and
+        // circle_touches_segment with the `end_misses` one (eq. 2–3).
+        let crosses = !path_misses && segments_intersect(path, &self.wall);
+        let mut d1 = f64::NAN;
+        if !crosses {
+            if end_misses {
+                return false;
+            }
+            d1 = self.distance_squared(p1);
+            let touches_end = d1 <= r * r;
+            if !touches_end {
+                return false;
+            }
+        }
+        if !self.touching {
+            return true;
+        }
+        if crosses {
+            d1 = self.distance_squared(p1);
+        }
+        d1 < self.d0 || (crosses && self.d0 > 0.0)
+    }
+}
+
+/// A shortlisted body with what [`circle_blocks`] computes the same way on every step.
+#[derive(Clone, Copy)]
+struct PreparedCircle {
+    centre: Vec2,
+    /// `(r + radius)²` as `circles_touch` computes it.
+    reach2: f64,
+    /// `circles_touch(start, r, centre, radius)`.
+    touching: bool,
+    /// `start.distance_squared(centre)`.
+    d0: f64,
+}
+
+impl PreparedCircle {
+    const EMPTY: PreparedCircle = PreparedCircle {
+        centre: Vec2::ZERO,
+        reach2: 0.0,
+        touching: false,
+        d0: 0.0,
+    };
+
+    #[inline]
+    fn new(body: &Circle, start: Vec2, r: f64) -> Self {
+        let reach = r + body.radius;
+        PreparedCircle {
+            centre: body.centre,
+            reach2: reach * reach,
+            touching: circles_touch(start, r, body.centre, body.radius),
+            d0: start.distance_squared(body.centre),
+        }
+    }
+
+    /// `circle_blocks(start, p1, r, body)` for the start the body was prepared with.
+    #[inline]
+    fn blocks(&self, p1: Vec2) -> bool {
+        let d1 = p1.distance_squared(self.centre);
+        let touches_end = d1 <= self.reach2;
+        touches_end && (!self.touching || d1 < self.d0)
+    }
+}
+
+/// The binary search of eq. 37 from `start` towards `target`, always testing the path from the
+/// start, so the end point is one that was itself tested admissible (or the start). `test`
+/// judges the path start → p1 and `cause` is the verdict of start → target. Returns the end
+/// point and the verdict of the tightest inadmissible candidate.
+#[inline]
+fn search(
+    start: Vec2,
+    target: Vec2,
+    steps: u32,
+    mut cause: Verdict,
+    mut test: impl FnMut(Vec2) -> Verdict,
+) -> (Vec2, Verdict) {
+    let mut lo = start;
+    let mut hi = target;
+    for _ in 0..steps {
+        let mid = (lo + hi) * 0.5;
+        match test(mid) {
+            Verdict::Free => lo = mid,
+            v => {
+                hi = mid;
+                cause = v;
+            }
+        }
+    }
+    (lo, cause)
 }
 
 /// §8.2: may a body of `radius` move along the straight path `p0 → p1`? Yes when the segment
@@ -322,7 +630,27 @@ pub fn plan_move(
     }
     // eq. 31.
     let target = start + chord_dir * d.chord;
-    let mut cause = verdict(start, target, radius, blockers);
+    // Every path the search tests runs from `start` to a point of the box of start → target
+    // (a midpoint of two points of the box is in the box), so a blocker that cannot block
+    // any path within that box is left out of every test. The box must be finite and far from
+    // overflow for the midpoints to stay inside it; otherwise every blocker is tested.
+    let (lo, hi) = Segment::new(start, target).bounds();
+    const SAFE: f64 = 1e300;
+    let use_all = !(lo.x >= -SAFE && lo.y >= -SAFE && hi.x <= SAFE && hi.y <= SAFE);
+    let walls = Shortlist::new(blockers.segments, use_all, |w| {
+        wall_may_block(lo, hi, radius, w)
+    });
+    let circles = Shortlist::new(blockers.circles, use_all, |c| {
+        circle_may_block(lo, hi, radius, c)
+    });
+    let test = |p1: Vec2| {
+        if walls.is_empty() && circles.is_empty() {
+            Verdict::Free
+        } else {
+            verdict_over(start, p1, radius, walls.iter(), circles.iter())
+        }
+    };
+    let cause = test(target);
     if cause == Verdict::Free {
         return MoveOutcome {
             pose: Pose {
@@ -333,20 +661,32 @@ pub fn plan_move(
             ..stay
         };
     }
-    // Binary search (eq. 37), always testing the path from the start, so the end point is one
-    // that was itself tested admissible (or the start).
-    let mut lo = start;
-    let mut hi = target;
-    for _ in 0..params.search_steps {
-        let mid = (lo + hi) * 0.5;
-        match verdict(start, mid, radius, blockers) {
-            Verdict::Free => lo = mid,
-            v => {
-                hi = mid;
-                cause = v;
+    // Binary search (eq. 37) over the shortlists, with the few candidates prepared.
+    let (lo, cause) = match (walls.len, circles.len) {
+        (Some(nw), Some(nc)) if nw <= PREPARED_LEN && nc <= PREPARED_LEN => {
+            let mut pw = [PreparedWall::EMPTY; PREPARED_LEN];
+            for (p, &i) in pw.iter_mut().zip(&walls.index[..nw]) {
+                *p = PreparedWall::new(&blockers.segments[i as usize], start, radius);
             }
+            let mut pc = [PreparedCircle::EMPTY; PREPARED_LEN];
+            for (p, &i) in pc.iter_mut().zip(&circles.index[..nc]) {
+                *p = PreparedCircle::new(&blockers.circles[i as usize], start, radius);
+            }
+            let (pw, pc) = (&pw[..nw], &pc[..nc]);
+            search(start, target, params.search_steps, cause, |p1| {
+                let path = Segment::new(start, p1);
+                let path_box = path.bounds();
+                if pw.iter().any(|w| w.blocks(p1, &path, path_box, radius)) {
+                    Verdict::Wall
+                } else if pc.iter().any(|c| c.blocks(p1)) {
+                    Verdict::Body
+                } else {
+                    Verdict::Free
+                }
+            })
         }
-    }
+        _ => search(start, target, params.search_steps, cause, test),
+    };
     // eq. 38.
     let travelled = start.distance(lo);
     let heading = if params.slippery_walls {
