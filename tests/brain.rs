@@ -218,6 +218,104 @@ fn mlp_has_no_state() {
     assert_eq!(run(&mut b, &x), first);
 }
 
+/// One layer the plain way, from the genome's row-major weights: y_j = b_j + w_j0 x_0 +
+/// w_j1 x_1 + … left to right (the documented order), then `act`. `p` starts at the layer's
+/// weights (units × inputs), followed by its biases.
+fn reference_layer(p: &[f64], x: &[f64], units: usize, act: impl Fn(f64) -> f64) -> Vec<f64> {
+    let n = x.len();
+    (0..units)
+        .map(|j| {
+            let mut sum = p[units * n + j];
+            for (i, xi) in x.iter().enumerate() {
+                sum += p[j * n + i] * xi;
+            }
+            act(sum)
+        })
+        .collect()
+}
+
+/// The fast output kernel: tanh, and NaN → 0.
+fn output_unit(a: f64) -> f64 {
+    let o = tanh(a);
+    if o.is_nan() {
+        0.0
+    } else {
+        o
+    }
+}
+
+#[test]
+fn mlp_matches_the_documented_formula_bit_for_bit_at_every_size() {
+    // Sizes that exercise every block width of the kernel (8, 4, 2, 1 units at a time).
+    let mut rng = rng(6);
+    for (hidden, inputs, outputs, act) in [
+        (vec![16], 24, 2, "tanh"),
+        (vec![16], 24, 3, "sigmoid"),
+        (vec![15, 7], 5, 3, "relu"),
+        (vec![1, 9], 13, 2, "tanh"),
+        (vec![], 6, 3, "tanh"),
+    ] {
+        let text = format!("hidden = {hidden:?}\nactivation = \"{act}\"");
+        let t = topology(&text, inputs, outputs);
+        let p: Vec<f64> = (0..t.parameter_count())
+            .map(|_| gaussian(&mut rng))
+            .collect();
+        let mut b = Brain::new(&t, &p).expect("valid");
+        let f = |a: f64| match act {
+            "tanh" => tanh(a),
+            "sigmoid" => sigma(a),
+            _ => a.max(0.0),
+        };
+        for _ in 0..20 {
+            let x: Vec<f64> = (0..inputs).map(|_| gaussian(&mut rng) * 2.0).collect();
+            let mut v = x.clone();
+            let mut offset = 0;
+            for &units in &hidden {
+                let next = reference_layer(&p[offset..], &v, units, f);
+                offset += units * (v.len() + 1);
+                v = next;
+            }
+            let expected = reference_layer(&p[offset..], &v, outputs, output_unit);
+            let got = run(&mut b, &x);
+            assert!(
+                got.iter()
+                    .zip(&expected)
+                    .all(|(g, e)| g.to_bits() == e.to_bits()),
+                "{text}: {got:?} != {expected:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn recurrent_matches_the_documented_formula_bit_for_bit() {
+    // h = act(b_h + W_h [x, c]), o = tanh(b_out + W_out h), c = h; 11 hidden units use the
+    // kernel's 8-, 2- and 1-unit blocks.
+    let mut rng = rng(7);
+    let (inputs, hidden, outputs) = (6, 11, 3);
+    let t = topology("kind = \"recurrent\"\nhidden = [11]", inputs, outputs);
+    let p: Vec<f64> = (0..t.parameter_count())
+        .map(|_| gaussian(&mut rng) * 0.5)
+        .collect();
+    let mut b = Brain::new(&t, &p).expect("valid");
+    let mut context = vec![0.0; hidden];
+    let output_start = hidden * (inputs + hidden + 1);
+    for tick in 0..20 {
+        let x: Vec<f64> = (0..inputs).map(|_| gaussian(&mut rng)).collect();
+        let extended: Vec<f64> = x.iter().chain(&context).copied().collect();
+        let h = reference_layer(&p, &extended, hidden, tanh);
+        let expected = reference_layer(&p[output_start..], &h, outputs, output_unit);
+        let got = run(&mut b, &x);
+        assert!(
+            got.iter()
+                .zip(&expected)
+                .all(|(g, e)| g.to_bits() == e.to_bits()),
+            "tick {tick}: {got:?} != {expected:?}"
+        );
+        context = h;
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Elman recurrent network
 
