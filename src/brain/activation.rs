@@ -20,8 +20,9 @@
 //! * [`logistic`] σ(x) = 0.5 + 0.5·tanh(x/2): max error ≤ 2.8e-10 ([`LOGISTIC_MAX_ERROR`]),
 //!   in [0, 1], exactly 0 and 1 far out and at ∓∞, exactly 0.5 at 0, NaN for NaN.
 //!
-//! The unit tests measure both bounds against `libm` on a grid of step 1e-4 over [-20, 20]
-//! plus edge cases. These errors are far below anything evolution can select for, but they are
+//! The unit tests measure both bounds against `libm` (tanh: every 1e-4 on [-20, 20] and every
+//! 1e-6 where it reaches 1; σ: every 2e-4 on [-40, 40]) plus edge cases (±0, ±∞, NaN, huge and
+//! subnormal inputs); the measured maxima are 5.33e-10 and 2.67e-10. These errors are far below anything evolution can select for, but they are
 //! not zero: a brain's outputs differ from the `libm` ones in the ninth or tenth decimal.
 //!
 //! # Summation order
@@ -81,10 +82,12 @@ impl Activation {
     }
 }
 
-/// Upper bound of |[`tanh`](x) − tanh(x)| over all x, as measured by this module's tests.
+/// Upper bound of |fast tanh(x) − tanh(x)| over all x ([`tanh`]); this module's tests measure
+/// 5.33e-10.
 pub const TANH_MAX_ERROR: f64 = 5.4e-10;
 
-/// Upper bound of |[`logistic`](x) − σ(x)| over all x, as measured by this module's tests.
+/// Upper bound of |fast σ(x) − σ(x)| over all x ([`logistic`]); this module's tests measure
+/// 2.67e-10.
 pub const LOGISTIC_MAX_ERROR: f64 = 2.8e-10;
 
 /// [`tanh`] clamps its argument into [-TANH_CLAMP, TANH_CLAMP] (tanh(12) = 1 − 7.6e-11); the
@@ -154,7 +157,7 @@ pub fn tanh_slice(y: &mut [f64]) {
     }
 }
 
-/// [`nan_to_zero`]`(`[`tanh`]`(y))` for every element, in place: output units (vectorised).
+/// [`nan_to_zero`] of [`tanh`] for every element, in place: output units (vectorised).
 #[inline]
 pub fn tanh_outputs(y: &mut [f64]) {
     for v in y {
@@ -162,9 +165,9 @@ pub fn tanh_outputs(y: &mut [f64]) {
     }
 }
 
-/// The logistic function σ(x) = 1 / (1 + e^(-x)), computed as 0.5 + 0.5·[`tanh`](0.5·x) (an
-/// identity), so max absolute error ≤ [`LOGISTIC_MAX_ERROR`] (2.8e-10: half of tanh's, plus
-/// rounding). Total: in [0, 1] for every input, exactly 0 and 1 for x ≤ −22.06 and
+/// The logistic function σ(x) = 1 / (1 + e^(-x)), computed as 0.5 + 0.5·tanh(0.5·x) (an
+/// identity) with the fast [`tanh`], so max absolute error ≤ [`LOGISTIC_MAX_ERROR`] (2.8e-10:
+/// half of tanh's, plus rounding). Total: in [0, 1] for every input, exactly 0 and 1 for x ≤ −22.06 and
 /// x ≥ 22.06 (±∞ included), exactly 0.5 at 0; NaN gives NaN.
 #[inline(always)]
 pub fn logistic(x: f64) -> f64 {

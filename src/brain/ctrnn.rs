@@ -18,8 +18,8 @@
 //! ```
 //!
 //! Both sums run across neurons with [`accumulate`] over input-major copies of the weight
-//! matrices made once at construction: I_i = 0 + w_in[i][0] x_0 + w_in[i][1] x_1 + … and
-//! Σ_j w_ij s_j = 0 + w_i0 s_0 + w_i1 s_1 + …, each the plain left-to-right sum. σ is the fast
+//! matrices made once at construction: `I_i = 0 + w_in[i][0] x_0 + w_in[i][1] x_1 + …` and
+//! `Σ_j w_ij s_j = 0 + w_i0 s_0 + w_i1 s_1 + …`, each the plain left-to-right sum. σ is the fast
 //! [`logistic`] (max error 2.8e-10, see [`super::activation`]), for firing rates, outputs and
 //! the gene mappings below alike.
 //!
