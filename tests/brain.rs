@@ -1,7 +1,9 @@
-//! Brains: hand-computed forward passes for every kind, the CTRNN's Euler integration and gene
+//! Brains: hand-computed forward passes for every kind (bit for bit against the documented
+//! summation order and fast activation kernels, and within a tolerance of the libm values), the CTRNN's Euler integration and gene
 //! mappings, parameter layouts, the bit-exact genome ↔ brain round trip, parameter and
 //! `[brain]` table errors, the motor mapping of `BrainController`, and no allocation per tick.
 
+use berry_evolve::brain::activation::{logistic as sigma, tanh, TANH_MAX_ERROR};
 use berry_evolve::brain::ctrnn::{gain, time_constant};
 use berry_evolve::brain::spec::{MAX_PARAMETERS, MAX_UNITS};
 use berry_evolve::brain::{
@@ -78,13 +80,29 @@ fn run(brain: &mut Brain, inputs: &[f64]) -> Vec<f64> {
     out
 }
 
-fn assert_close(got: &[f64], expected: &[f64], what: &str) {
-    assert_eq!(got.len(), expected.len(), "{what}: length");
-    for (i, (g, e)) in got.iter().zip(expected).enumerate() {
+/// How far a small network's outputs may be from the same network computed with libm's tanh
+/// and exp: each fast activation is within [`TANH_MAX_ERROR`] (5.4e-10) of the exact value,
+/// and in these hand-computed networks (weights ≤ 2, two layers) the errors add up to less
+/// than 10 of those.
+const LIBM_TOLERANCE: f64 = 10.0 * TANH_MAX_ERROR;
+
+/// Checks a forward pass twice: bit for bit against `formula` (the same network written out
+/// with the documented summation order b + w0 x0 + w1 x1 + … and the fast [`tanh`] and
+/// [`sigma`] kernels), and within [`LIBM_TOLERANCE`] of `by_hand` (the values computed by hand
+/// with exact tanh and σ), which shows the network still means the same thing.
+fn assert_forward(got: &[f64], formula: &[f64], by_hand: &[f64], what: &str) {
+    assert_eq!(got.len(), formula.len(), "{what}: length");
+    assert_eq!(got.len(), by_hand.len(), "{what}: length");
+    for (i, ((g, f), h)) in got.iter().zip(formula).zip(by_hand).enumerate() {
+        assert_eq!(
+            g.to_bits(),
+            f.to_bits(),
+            "{what}: output {i} is {g}, the documented formula gives {f}"
+        );
         assert!(
-            (g - e).abs() <= 1e-14,
-            "{what}: output {i} is {g}, expected {e} (difference {})",
-            g - e
+            (g - h).abs() <= LIBM_TOLERANCE,
+            "{what}: output {i} is {g}, {h} by hand with exact tanh (difference {})",
+            g - h
         );
     }
 }
@@ -103,9 +121,24 @@ const MLP_2_2_2: [f64; 12] = [
 ];
 
 // With inputs x = [1, 1] the hidden pre-activations are
-//   a0 = 0.5·1 + (-1)·1 + 0.0 = -0.5
-//   a1 = 0.25·1 + 0.5·1 - 0.25 = 0.5
-// and the outputs are tanh(1·h0 + 2·h1 + 0.5) and tanh(-1·h0 + 0.5·h1 + 0).
+//   a0 = 0.0 + 0.5·1 + (-1)·1 = -0.5
+//   a1 = -0.25 + 0.25·1 + 0.5·1 = 0.5
+// and the outputs are tanh(0.5 + 1·h0 + 2·h1) and tanh(0 + (-1)·h0 + 0.5·h1), each sum taken
+// left to right from the bias (the documented order).
+
+/// The 2 → 2 → 2 network's outputs for x = [1, 1], written out in the documented order with
+/// the fast kernels: hidden activation `act`, tanh outputs.
+// Every weight is written as it is in the genome (-1.0 · x included), term by term.
+#[allow(clippy::neg_multiply)]
+fn mlp_2_2_2_formula(act: impl Fn(f64) -> f64) -> [f64; 2] {
+    let (x0, x1) = (1.0, 1.0);
+    let h0 = act(0.0 + 0.5 * x0 + -1.0 * x1);
+    let h1 = act(-0.25 + 0.25 * x0 + 0.5 * x1);
+    [
+        tanh(0.5 + 1.0 * h0 + 2.0 * h1),
+        tanh(0.0 + -1.0 * h0 + 0.5 * h1),
+    ]
+}
 
 #[test]
 fn mlp_2_2_2_tanh_by_hand() {
@@ -115,8 +148,9 @@ fn mlp_2_2_2_tanh_by_hand() {
     // o1 = tanh(0.46211715726000974 + 0.23105857863000487) = tanh(0.6931757358900146)
     //    = 0.6000182750981286
     let mut b = brain("hidden = [2]", 2, 2, &MLP_2_2_2);
-    assert_close(
+    assert_forward(
         &run(&mut b, &[1.0, 1.0]),
+        &mlp_2_2_2_formula(tanh),
         &[0.7452197423298184, 0.6000182750981286],
         "tanh",
     );
@@ -130,8 +164,9 @@ fn mlp_2_2_2_sigmoid_by_hand() {
     // o1 = tanh(-0.3775406687981454 + 0.3112296656009273) = tanh(-0.0663110031972181)
     //    = -0.06621398071889728
     let mut b = brain("hidden = [2]\nactivation = \"sigmoid\"", 2, 2, &MLP_2_2_2);
-    assert_close(
+    assert_forward(
         &run(&mut b, &[1.0, 1.0]),
+        &mlp_2_2_2_formula(sigma),
         &[0.9717314833682242, -0.06621398071889728],
         "sigmoid",
     );
@@ -143,8 +178,9 @@ fn mlp_2_2_2_relu_by_hand() {
     // o0 = tanh(0 + 2·0.5 + 0.5) = tanh(1.5) = 0.9051482536448664
     // o1 = tanh(-0 + 0.5·0.5 + 0) = tanh(0.25) = 0.24491866240370913
     let mut b = brain("hidden = [2]\nactivation = \"relu\"", 2, 2, &MLP_2_2_2);
-    assert_close(
+    assert_forward(
         &run(&mut b, &[1.0, 1.0]),
+        &mlp_2_2_2_formula(|a: f64| a.max(0.0)),
         &[0.9051482536448664, 0.24491866240370913],
         "relu",
     );
@@ -153,11 +189,16 @@ fn mlp_2_2_2_relu_by_hand() {
 #[test]
 fn mlp_without_hidden_layers_wires_inputs_to_outputs() {
     // w_out = [[1, 0.5], [0, -2]], b_out = [0, 0.5]; x = [0.5, 1]
-    // o0 = tanh(0.5 + 0.5 + 0) = tanh(1) = 0.7615941559557649
-    // o1 = tanh(0 - 2 + 0.5) = tanh(-1.5) = -0.9051482536448664
+    // o0 = tanh(0 + 0.5 + 0.5) = tanh(1) = 0.7615941559557649
+    // o1 = tanh(0.5 + 0 - 2) = tanh(-1.5) = -0.9051482536448664
     let mut b = brain("hidden = []", 2, 2, &[1.0, 0.5, 0.0, -2.0, 0.0, 0.5]);
-    assert_close(
-        &run(&mut b, &[0.5, 1.0]),
+    let (x0, x1) = (0.5, 1.0);
+    assert_forward(
+        &run(&mut b, &[x0, x1]),
+        &[
+            tanh(0.0 + 1.0 * x0 + 0.5 * x1),
+            tanh(0.5 + 0.0 * x0 + -2.0 * x1),
+        ],
         &[0.7615941559557649, -0.9051482536448664],
         "direct",
     );
@@ -175,6 +216,104 @@ fn mlp_has_no_state() {
     let first = run(&mut b, &x);
     run(&mut b, &[1.0, 1.0, 1.0, 1.0]);
     assert_eq!(run(&mut b, &x), first);
+}
+
+/// One layer the plain way, from the genome's row-major weights: y_j = b_j + w_j0 x_0 +
+/// w_j1 x_1 + … left to right (the documented order), then `act`. `p` starts at the layer's
+/// weights (units × inputs), followed by its biases.
+fn reference_layer(p: &[f64], x: &[f64], units: usize, act: impl Fn(f64) -> f64) -> Vec<f64> {
+    let n = x.len();
+    (0..units)
+        .map(|j| {
+            let mut sum = p[units * n + j];
+            for (i, xi) in x.iter().enumerate() {
+                sum += p[j * n + i] * xi;
+            }
+            act(sum)
+        })
+        .collect()
+}
+
+/// The fast output kernel: tanh, and NaN → 0.
+fn output_unit(a: f64) -> f64 {
+    let o = tanh(a);
+    if o.is_nan() {
+        0.0
+    } else {
+        o
+    }
+}
+
+#[test]
+fn mlp_matches_the_documented_formula_bit_for_bit_at_every_size() {
+    // Sizes that exercise every block width of the kernel (8, 4, 2, 1 units at a time).
+    let mut rng = rng(6);
+    for (hidden, inputs, outputs, act) in [
+        (vec![16], 24, 2, "tanh"),
+        (vec![16], 24, 3, "sigmoid"),
+        (vec![15, 7], 5, 3, "relu"),
+        (vec![1, 9], 13, 2, "tanh"),
+        (vec![], 6, 3, "tanh"),
+    ] {
+        let text = format!("hidden = {hidden:?}\nactivation = \"{act}\"");
+        let t = topology(&text, inputs, outputs);
+        let p: Vec<f64> = (0..t.parameter_count())
+            .map(|_| gaussian(&mut rng))
+            .collect();
+        let mut b = Brain::new(&t, &p).expect("valid");
+        let f = |a: f64| match act {
+            "tanh" => tanh(a),
+            "sigmoid" => sigma(a),
+            _ => a.max(0.0),
+        };
+        for _ in 0..20 {
+            let x: Vec<f64> = (0..inputs).map(|_| gaussian(&mut rng) * 2.0).collect();
+            let mut v = x.clone();
+            let mut offset = 0;
+            for &units in &hidden {
+                let next = reference_layer(&p[offset..], &v, units, f);
+                offset += units * (v.len() + 1);
+                v = next;
+            }
+            let expected = reference_layer(&p[offset..], &v, outputs, output_unit);
+            let got = run(&mut b, &x);
+            assert!(
+                got.iter()
+                    .zip(&expected)
+                    .all(|(g, e)| g.to_bits() == e.to_bits()),
+                "{text}: {got:?} != {expected:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn recurrent_matches_the_documented_formula_bit_for_bit() {
+    // h = act(b_h + W_h [x, c]), o = tanh(b_out + W_out h), c = h; 11 hidden units use the
+    // kernel's 8-, 2- and 1-unit blocks.
+    let mut rng = rng(7);
+    let (inputs, hidden, outputs) = (6, 11, 3);
+    let t = topology("kind = \"recurrent\"\nhidden = [11]", inputs, outputs);
+    let p: Vec<f64> = (0..t.parameter_count())
+        .map(|_| gaussian(&mut rng) * 0.5)
+        .collect();
+    let mut b = Brain::new(&t, &p).expect("valid");
+    let mut context = vec![0.0; hidden];
+    let output_start = hidden * (inputs + hidden + 1);
+    for tick in 0..20 {
+        let x: Vec<f64> = (0..inputs).map(|_| gaussian(&mut rng)).collect();
+        let extended: Vec<f64> = x.iter().chain(&context).copied().collect();
+        let h = reference_layer(&p, &extended, hidden, tanh);
+        let expected = reference_layer(&p[output_start..], &h, outputs, output_unit);
+        let got = run(&mut b, &x);
+        assert!(
+            got.iter()
+                .zip(&expected)
+                .all(|(g, e)| g.to_bits() == e.to_bits()),
+            "tick {tick}: {got:?} != {expected:?}"
+        );
+        context = h;
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -197,14 +336,31 @@ fn recurrent_context_changes_the_answer_to_the_same_input() {
     // Tick 1, context 0: h = tanh(1·1 + 0.5·0) = tanh(1) = 0.7615941559557649,
     //   o = tanh(0.7615941559557649) = 0.6420149920119997.
     let first = run(&mut b, &[1.0]);
-    assert_close(&first, &[0.6420149920119997], "tick 1");
+    let h1 = tanh(0.0 + 1.0 * 1.0 + 0.5 * 0.0);
+    assert_forward(
+        &first,
+        &[tanh(0.0 + 1.0 * h1)],
+        &[0.6420149920119997],
+        "tick 1",
+    );
     // Tick 2, context 0.7615941559557649: h = tanh(1 + 0.38079707797788245)
     //   = tanh(1.3807970779778824) = 0.8811296283442258, o = tanh(h) = 0.7069847808056537.
     let second = run(&mut b, &[1.0]);
-    assert_close(&second, &[0.7069847808056537], "tick 2");
+    let h2 = tanh(0.0 + 1.0 * 1.0 + 0.5 * h1);
+    assert_forward(
+        &second,
+        &[tanh(0.0 + 1.0 * h2)],
+        &[0.7069847808056537],
+        "tick 2",
+    );
     assert_ne!(first, second);
     if let Brain::Recurrent(e) = &b {
-        assert_close(e.context(), &[0.8811296283442258], "context after tick 2");
+        assert_forward(
+            e.context(),
+            &[h2],
+            &[0.8811296283442258],
+            "context after tick 2",
+        );
     } else {
         panic!("expected a recurrent brain, got {:?}", b.kind());
     }
@@ -249,11 +405,21 @@ fn ctrnn_lone_neuron_decays_by_euler_steps() {
     // Step 1: y = 4 + 0.25·(-4) = 3; output 2σ(3) - 1 = tanh(1.5) = 0.9051482536448664.
     let out = run(&mut b, &[]);
     assert_eq!(ctrnn_mut(&mut b).state(), &[3.0]);
-    assert_close(&out, &[0.9051482536448664], "step 1");
+    assert_forward(
+        &out,
+        &[2.0 * sigma(1.0 * (3.0 + 0.0)) - 1.0],
+        &[0.9051482536448664],
+        "step 1",
+    );
     // Step 2: y = 3 + 0.25·(-3) = 2.25; output 2σ(2.25) - 1 = tanh(1.125) = 0.809301070201781.
     let out = run(&mut b, &[]);
     assert_eq!(ctrnn_mut(&mut b).state(), &[2.25]);
-    assert_close(&out, &[0.809301070201781], "step 2");
+    assert_forward(
+        &out,
+        &[2.0 * sigma(1.0 * (2.25 + 0.0)) - 1.0],
+        &[0.809301070201781],
+        "step 2",
+    );
     // Then y_k = 4·0.75^k: a monotone decay toward the equilibrium.
     for k in 3..40 {
         run(&mut b, &[]);
@@ -272,11 +438,12 @@ fn ctrnn_lone_neuron_decays_by_euler_steps() {
 fn ctrnn_self_connection_enters_through_the_firing_rate() {
     let mut b = lone_neuron(1.0);
     ctrnn_mut(&mut b).set_state(&[4.0]);
-    // y = 4 + 0.25·(-4 + 1·σ(1·(4 + 0))) = 4 + 0.25·(-4 + 0.9820137900379085)
-    //   = 3.245503447509477
+    // y = 4 + 0.25·((-4 + (0 + 1·σ(1·(4 + 0)))) + 0) = 4 + 0.25·(-4 + 0.9820137900379085)
+    //   = 3.245503447509477 (with exact σ)
     run(&mut b, &[]);
     let y = ctrnn_mut(&mut b).state()[0];
-    assert!((y - 3.245503447509477).abs() < 1e-14, "y = {y}");
+    let formula = 4.0 + 0.25 * ((-4.0 + (0.0 + 1.0 * sigma(1.0 * (4.0 + 0.0)))) + 0.0);
+    assert_forward(&[y], &[formula], &[3.245503447509477], "y");
 }
 
 #[test]
@@ -286,14 +453,30 @@ fn ctrnn_input_drives_every_neuron_and_substeps_are_euler_steps() {
     let one = "kind = \"ctrnn\"\nneurons = 1\nstep = 0.5\nsubsteps = 1\ntau = [2.0, 2.0]\ngain = [1.0, 1.0]";
     let mut b = brain(one, 1, 1, &params);
     // Tick 1: y = 0 + 0.25·(-0 + 0 + 2) = 0.5, output 2σ(0.5) - 1 = 0.2449186624037092.
-    assert_close(&run(&mut b, &[1.0]), &[0.2449186624037092], "tick 1");
+    let out = |y: f64| 2.0 * sigma(1.0 * (y + 0.0)) - 1.0;
+    assert_forward(
+        &run(&mut b, &[1.0]),
+        &[out(0.5)],
+        &[0.2449186624037092],
+        "tick 1",
+    );
     // Tick 2: y = 0.5 + 0.25·(-0.5 + 2) = 0.875, output 2σ(0.875) - 1 = 0.4115700556740225.
-    assert_close(&run(&mut b, &[1.0]), &[0.4115700556740225], "tick 2");
+    assert_forward(
+        &run(&mut b, &[1.0]),
+        &[out(0.875)],
+        &[0.4115700556740225],
+        "tick 2",
+    );
     assert_eq!(ctrnn_mut(&mut b).state(), &[0.875]);
     // substeps = 2 does both Euler steps within one tick.
     let two = one.replace("substeps = 1", "substeps = 2");
     let mut b2 = brain(&two, 1, 1, &params);
-    assert_close(&run(&mut b2, &[1.0]), &[0.4115700556740225], "two substeps");
+    assert_forward(
+        &run(&mut b2, &[1.0]),
+        &[out(0.875)],
+        &[0.4115700556740225],
+        "two substeps",
+    );
     assert_eq!(ctrnn_mut(&mut b2).state(), &[0.875]);
 }
 
@@ -310,8 +493,12 @@ fn ctrnn_motors_come_from_the_first_neurons() {
     }
     let mut b = Brain::new(&t, &p).expect("valid");
     // 2σ(1) - 1 = tanh(0.5) = 0.46211715726000974; 2σ(-1) - 1 = -0.46211715726000974.
-    assert_close(
+    assert_forward(
         &run(&mut b, &[]),
+        &[
+            2.0 * sigma(1.0 * (0.0 + 1.0)) - 1.0,
+            2.0 * sigma(1.0 * (0.0 + -1.0)) - 1.0,
+        ],
         &[0.46211715726000974, -0.46211715726000974],
         "outputs",
     );
@@ -916,15 +1103,18 @@ fn biased(biases: &[f64]) -> Brain {
 fn controller_maps_outputs_to_motors_and_eat() {
     assert_eq!(output_count(false), 2);
     assert_eq!(output_count(true), 3);
-    // Outputs tanh(0.5) = 0.46211715726000974, tanh(-0.25) = -0.24491866240370913, tanh(0) = 0.
+    // Outputs tanh(0.5 + 0·1) ≈ 0.46211715726000974, tanh(-0.25 + 0·1) ≈ -0.24491866240370913
+    // (the fast tanh, within TANH_MAX_ERROR of these), tanh(0 + 0·1) = 0.
     let mut c = BrainController::new(biased(&[0.5, -0.25, 0.0]), 4.0, true);
     let cmd = c.act(&[1.0]);
+    assert_eq!(cmd.left, 4.0 * tanh(0.5), "{cmd:?}");
+    assert_eq!(cmd.right, 4.0 * tanh(-0.25), "{cmd:?}");
     assert!(
-        (cmd.left - 4.0 * 0.46211715726000974).abs() < 1e-14,
+        (cmd.left - 4.0 * 0.46211715726000974).abs() < 4.0 * TANH_MAX_ERROR,
         "{cmd:?}"
     );
     assert!(
-        (cmd.right + 4.0 * 0.24491866240370913).abs() < 1e-14,
+        (cmd.right + 4.0 * 0.24491866240370913).abs() < 4.0 * TANH_MAX_ERROR,
         "{cmd:?}"
     );
     // eat = (o2 + 1) / 2 = (0 + 1) / 2.
@@ -932,7 +1122,7 @@ fn controller_maps_outputs_to_motors_and_eat() {
     assert_eq!(c.last_outputs().len(), 3);
     assert_eq!(c.brain().outputs(), 3);
 
-    // Saturated outputs give ±max_rpt and eat 0 or 1: tanh(40) = 1 and tanh(-40) = -1 in f64.
+    // Saturated outputs give ±max_rpt and eat 0 or 1: tanh(40) = 1 and tanh(-40) = -1 exactly.
     let mut c = BrainController::new(biased(&[40.0, -40.0, -40.0]), 0.25, true);
     let cmd = c.act(&[0.0]);
     assert_eq!((cmd.left, cmd.right, cmd.eat), (0.25, -0.25, 0.0));
@@ -942,12 +1132,10 @@ fn controller_maps_outputs_to_motors_and_eat() {
     // Without an eat output, eat is 0 whatever the brain does.
     let mut c = BrainController::new(biased(&[-0.5, 0.5]), 2.0, false);
     let cmd = c.act(&[1.0]);
+    assert_eq!(cmd.left, 2.0 * tanh(-0.5), "{cmd:?}");
+    assert_eq!(cmd.right, 2.0 * tanh(0.5), "{cmd:?}");
     assert!(
-        (cmd.left + 2.0 * 0.46211715726000974).abs() < 1e-14,
-        "{cmd:?}"
-    );
-    assert!(
-        (cmd.right - 2.0 * 0.46211715726000974).abs() < 1e-14,
+        (cmd.left + 2.0 * 0.46211715726000974).abs() < 2.0 * TANH_MAX_ERROR,
         "{cmd:?}"
     );
     assert_eq!(cmd.eat, 0.0);

@@ -1,22 +1,29 @@
 //! The feed-forward multilayer perceptron: hidden layers of a configurable activation, then
 //! tanh output units.
 //!
-//! Each unit computes `act(dot(w_row, x) + b)` with [`dot`]'s fixed summation order; the
-//! weights live in the parameter vector itself (layout in [`crate::brain::Topology`]), so a
-//! row is a contiguous slice and [`Mlp::parameters`] is an exact copy.
+//! Each layer computes `y = act(b + W x)` with [`affine`]: starting from the biases, it adds
+//! each input's contribution to every unit at once, input by input in index order, so unit j's
+//! pre-activation is the plain left-to-right sum `b_j + w_j0 x_0 + w_j1 x_1 + …`. Then the
+//! activation runs over the whole layer ([`Activation::apply_slice`]). Both loops run across
+//! units, which the compiler vectorises without reassociating any sum.
+//!
+//! The genome keeps its layout (units × inputs row-major per layer, see
+//! [`crate::brain::Topology`]) and [`Mlp::parameters`] is an exact copy of it; the forward pass
+//! reads an input-major copy of each weight matrix ([`transpose`]) built once at construction,
+//! so that the weights leaving one input are contiguous.
 
-use super::activation::{dot, nan_to_zero, Activation};
+use super::activation::{affine, tanh_outputs, transpose, Activation};
 use std::ops::Range;
 
-/// One layer's place in the parameter vector and in the activation buffer.
+/// One layer's place in the parameter vector, the transposed weights and the activation
+/// buffer.
 #[derive(Debug, Clone, PartialEq)]
 struct Layer {
-    inputs: usize,
     units: usize,
-    /// Offset of the weight matrix (units × inputs, row-major) in the parameters.
-    weights: usize,
-    /// Offset of the biases in the parameters.
-    biases: usize,
+    /// The layer's input-major weights (inputs × units) in `transposed`.
+    weights: Range<usize>,
+    /// The biases in the parameters.
+    biases: Range<usize>,
     /// Where the layer's activations are kept in `activations` (hidden layers only).
     out: Range<usize>,
 }
@@ -28,6 +35,8 @@ pub struct Mlp {
     outputs: usize,
     activation: Activation,
     parameters: Vec<f64>,
+    /// Every layer's weights, transposed to input-major order (derived from `parameters`).
+    transposed: Vec<f64>,
     hidden: Vec<Layer>,
     output: Layer,
     /// Every hidden layer's activations, one after another (preallocated scratch).
@@ -45,22 +54,24 @@ impl Mlp {
         parameters: &[f64],
     ) -> Mlp {
         let mut offset = 0;
-        let mut buffer = 0;
-        let mut previous = inputs;
+        let mut transposed = Vec::with_capacity(parameters.len());
         let mut layer = |units: usize, previous: usize, buffer: &mut usize| {
-            let weights = offset;
-            let biases = weights + units * previous;
-            offset = biases + units;
+            let weights = offset..offset + units * previous;
+            let biases = weights.end..weights.end + units;
+            offset = biases.end;
+            let start = transposed.len();
+            transposed.extend(transpose(&parameters[weights], units, previous));
             let out = *buffer..*buffer + units;
             *buffer += units;
             Layer {
-                inputs: previous,
                 units,
-                weights,
+                weights: start..transposed.len(),
                 biases,
                 out,
             }
         };
+        let mut buffer = 0;
+        let mut previous = inputs;
         let mut layers = Vec::with_capacity(hidden.len());
         for &units in hidden {
             layers.push(layer(units, previous, &mut buffer));
@@ -73,6 +84,7 @@ impl Mlp {
             outputs,
             activation,
             parameters: parameters.to_vec(),
+            transposed,
             hidden: layers,
             output,
             activations: vec![0.0; buffer],
@@ -101,18 +113,20 @@ impl Mlp {
 
     /// One forward pass. `inputs` and `outputs` must have the network's sizes.
     pub(crate) fn activate(&mut self, inputs: &[f64], outputs: &mut [f64]) {
-        let params = &self.parameters;
+        let (params, weights) = (&self.parameters, &self.transposed);
         let mut previous: Range<usize> = 0..0;
         for (l, layer) in self.hidden.iter().enumerate() {
             // Earlier layers sit before this one in the buffer: split to read and write.
             let (done, rest) = self.activations.split_at_mut(layer.out.start);
             let x = if l == 0 { inputs } else { &done[previous] };
             let y = &mut rest[..layer.units];
-            match self.activation {
-                Activation::Tanh => forward(params, layer, x, y, libm::tanh),
-                Activation::Sigmoid => forward(params, layer, x, y, super::activation::logistic),
-                Activation::Relu => forward(params, layer, x, y, super::activation::relu),
-            }
+            affine(
+                &weights[layer.weights.clone()],
+                &params[layer.biases.clone()],
+                x,
+                y,
+            );
+            self.activation.apply_slice(y);
             previous = layer.out.clone();
         }
         let x = if self.hidden.is_empty() {
@@ -120,27 +134,14 @@ impl Mlp {
         } else {
             &self.activations[previous]
         };
-        forward(params, &self.output, x, outputs, |a| {
-            nan_to_zero(libm::tanh(a))
-        });
-    }
-}
-
-/// y_j = f(dot(W_j, x) + b_j) for every unit j of `layer`.
-#[inline(always)]
-fn forward(params: &[f64], layer: &Layer, x: &[f64], y: &mut [f64], f: impl Fn(f64) -> f64) {
-    let n = layer.inputs;
-    let weights = &params[layer.weights..layer.weights + layer.units * n];
-    let biases = &params[layer.biases..layer.biases + layer.units];
-    let x = &x[..n];
-    if n == 0 {
-        // chunks_exact(0) would panic; a layer without inputs is its biases.
-        for (y, b) in y.iter_mut().zip(biases) {
-            *y = f(0.0 + b);
-        }
-        return;
-    }
-    for ((y, row), b) in y.iter_mut().zip(weights.chunks_exact(n)).zip(biases) {
-        *y = f(dot(row, x) + b);
+        let out = &self.output;
+        let y = &mut outputs[..out.units];
+        affine(
+            &weights[out.weights.clone()],
+            &params[out.biases.clone()],
+            x,
+            y,
+        );
+        tanh_outputs(y);
     }
 }

@@ -8,9 +8,15 @@
 //! always in [-1, 1].
 //!
 //! [`Brain::activate`] runs once per creature per tick, millions of times per second: it
-//! allocates nothing (each brain keeps its scratch buffers), weights are stored row-major per
-//! receiving unit so that each unit is one [`activation::dot`] over contiguous slices, and all
-//! transcendental functions come from `libm`, so a brain gives the same bits on every platform.
+//! allocates nothing (each brain keeps its scratch buffers), and it gives the same bits on
+//! every platform and thread count. The genome stores weights row-major per receiving unit,
+//! but each brain also keeps an input-major copy made at construction, so that a layer is
+//! computed across units ([`activation::affine`]: y = b, then y += x_i · (weights from input
+//! i) for each input in index order, a vectorised axpy that sums every unit plainly left to
+//! right). Activations are the fast rational [`activation::tanh`] (max error 5.4e-10) and
+//! the [`activation::logistic`] built on it, written in plain f64 arithmetic without branches
+//! so that they vectorise too; `libm` is only used where a brain is built (CTRNN time
+//! constants).
 
 pub mod activation;
 pub mod controller;

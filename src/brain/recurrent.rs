@@ -5,15 +5,19 @@
 //! after [`Elman::reset`]):
 //!
 //! ```text
-//! h_j = act(dot(W_h[j], [x, c]) + b_h[j])      for every hidden unit j
-//! o_k = tanh(dot(W_out[k], h) + b_out[k])      for every output k
-//! c   = h
+//! h = act(b_h + W_h [x, c])      (hidden units)
+//! o = tanh(b_out + W_out h)      (outputs)
+//! c = h
 //! ```
 //!
-//! A hidden unit's input and context weights are one contiguous row of the parameter vector
-//! (layout in [`crate::brain::Topology`]), dotted with the buffer `[x, c]`.
+//! with `act` and `tanh` the fast kernels of [`super::activation`]. Both matrix products are
+//! [`affine`]: each unit's sum is the plain left-to-right sum b_j + w_j0 v_0 + w_j1 v_1 + …
+//! over the buffer v = `[x, c]` (inputs first, then context) or v = h, computed across units
+//! from input-major copies of the weights made once at construction. A hidden unit's input and
+//! context weights stay one contiguous row of the parameter vector (layout in
+//! [`crate::brain::Topology`]), so [`Elman::parameters`] is an exact copy.
 
-use super::activation::{dot, logistic, nan_to_zero, relu, Activation};
+use super::activation::{affine, tanh_outputs, transpose, Activation};
 
 /// An Elman network with its parameters, context and scratch buffers.
 #[derive(Debug, Clone, PartialEq)]
@@ -23,6 +27,10 @@ pub struct Elman {
     outputs: usize,
     activation: Activation,
     parameters: Vec<f64>,
+    /// W_h transposed to input-major order ((inputs + hidden) × hidden), from `parameters`.
+    hidden_weights: Vec<f64>,
+    /// W_out transposed to input-major order (hidden × outputs), from `parameters`.
+    output_weights: Vec<f64>,
     /// [inputs of this tick, context = hidden activations of the previous tick].
     extended: Vec<f64>,
     /// Hidden activations of this tick.
@@ -43,12 +51,22 @@ impl Elman {
             parameters.len(),
             hidden * (inputs + hidden + 1) + outputs * (hidden + 1)
         );
+        let row = inputs + hidden;
+        let output_start = hidden * (row + 1);
+        let hidden_weights = transpose(&parameters[..hidden * row], hidden, row);
+        let output_weights = transpose(
+            &parameters[output_start..output_start + outputs * hidden],
+            outputs,
+            hidden,
+        );
         Elman {
             inputs,
             hidden,
             outputs,
             activation,
             parameters: parameters.to_vec(),
+            hidden_weights,
+            output_weights,
             extended: vec![0.0; inputs + hidden],
             current: vec![0.0; hidden],
         }
@@ -91,38 +109,21 @@ impl Elman {
 
     /// One tick. `inputs` and `outputs` must have the network's sizes.
     pub(crate) fn activate(&mut self, inputs: &[f64], outputs: &mut [f64]) {
-        let (n, h) = (self.inputs, self.hidden);
+        let (n, h, m) = (self.inputs, self.hidden, self.outputs);
         self.extended[..n].copy_from_slice(inputs);
         let row = n + h;
-        let (hidden_part, output_part) = self.parameters.split_at(h * (row + 1));
-        let (weights, biases) = hidden_part.split_at(h * row);
-        let x = &self.extended[..];
-        let y = &mut self.current[..];
-        match self.activation {
-            Activation::Tanh => hidden_layer(weights, biases, row, x, y, libm::tanh),
-            Activation::Sigmoid => hidden_layer(weights, biases, row, x, y, logistic),
-            Activation::Relu => hidden_layer(weights, biases, row, x, y, relu),
-        }
-        let (weights, biases) = output_part.split_at(self.outputs * h);
-        for (o, out) in outputs[..self.outputs].iter_mut().enumerate() {
-            let a = dot(&weights[o * h..(o + 1) * h], &self.current) + biases[o];
-            *out = nan_to_zero(libm::tanh(a));
-        }
+        let hidden_biases = &self.parameters[h * row..h * (row + 1)];
+        let output_biases = &self.parameters[h * (row + 1) + m * h..];
+        affine(
+            &self.hidden_weights,
+            hidden_biases,
+            &self.extended,
+            &mut self.current,
+        );
+        self.activation.apply_slice(&mut self.current);
+        let y = &mut outputs[..m];
+        affine(&self.output_weights, output_biases, &self.current, y);
+        tanh_outputs(y);
         self.extended[n..].copy_from_slice(&self.current);
-    }
-}
-
-/// y_j = f(dot(W[j], x) + b_j), rows of length `row`.
-#[inline(always)]
-fn hidden_layer(
-    weights: &[f64],
-    biases: &[f64],
-    row: usize,
-    x: &[f64],
-    y: &mut [f64],
-    f: impl Fn(f64) -> f64,
-) {
-    for (j, (y, b)) in y.iter_mut().zip(biases).enumerate() {
-        *y = f(dot(&weights[j * row..(j + 1) * row], x) + b);
     }
 }
