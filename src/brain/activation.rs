@@ -247,8 +247,35 @@ pub fn affine(transposed: &[f64], biases: &[f64], x: &[f64], y: &mut [f64]) {
 }
 
 /// y_j = start_j + Σ_i w_ij x_i, with start = `biases` or, without biases, y itself.
-#[inline(always)]
+///
+/// On x86-64 CPUs with AVX2 the same code is run compiled for AVX2 (four f64 per register
+/// instead of two): each unit's sum is still the same sequence of separate multiplies and
+/// adds (Rust never fuses them into FMA), so the bits are the same on every CPU; a test
+/// checks both versions against each other.
+#[inline]
 fn kernel(transposed: &[f64], biases: Option<&[f64]>, x: &[f64], y: &mut [f64]) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: `kernel_avx2` only requires the CPU to support AVX2, checked just above.
+        unsafe { kernel_avx2(transposed, biases, x, y) };
+        return;
+    }
+    kernel_portable(transposed, biases, x, y);
+}
+
+/// [`kernel_portable`] compiled for AVX2.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn kernel_avx2(transposed: &[f64], biases: Option<&[f64]>, x: &[f64], y: &mut [f64]) {
+    kernel_portable(transposed, biases, x, y);
+}
+
+/// [`kernel`] for any CPU.
+#[inline(always)]
+fn kernel_portable(transposed: &[f64], biases: Option<&[f64]>, x: &[f64], y: &mut [f64]) {
     debug_assert_eq!(transposed.len(), y.len() * x.len());
     let mut j = 0;
     j = blocks::<8>(transposed, biases, x, y, j);
@@ -386,6 +413,45 @@ mod tests {
             for (k, &x) in xs[start..].iter().enumerate() {
                 assert_eq!(t[k].to_bits(), tanh(x).to_bits(), "tanh({x})");
                 assert_eq!(s[k].to_bits(), logistic(x).to_bits(), "σ({x})");
+            }
+        }
+    }
+
+    #[test]
+    fn avx2_and_portable_kernels_agree_bit_for_bit() {
+        // Awkward sizes exercise every block width; values span many magnitudes.
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let unit = (state >> 11) as f64 / (1u64 << 53) as f64;
+            (unit - 0.5) * libm::exp2(((state % 41) as f64) - 20.0)
+        };
+        for (units, inputs) in [
+            (1, 1),
+            (3, 5),
+            (8, 24),
+            (15, 7),
+            (16, 24),
+            (100, 98),
+            (37, 0),
+        ] {
+            let w: Vec<f64> = (0..units * inputs).map(|_| next()).collect();
+            let b: Vec<f64> = (0..units).map(|_| next()).collect();
+            let x: Vec<f64> = (0..inputs).map(|_| next()).collect();
+            let mut portable = vec![0.0; units];
+            kernel_portable(&w, Some(&b), &x, &mut portable);
+            let mut dispatched = vec![0.0; units];
+            kernel(&w, Some(&b), &x, &mut dispatched);
+            let bits = |v: &[f64]| v.iter().map(|f| f.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&portable), bits(&dispatched), "{units} x {inputs}");
+            #[cfg(target_arch = "x86_64")]
+            if std::arch::is_x86_feature_detected!("avx2") {
+                let mut avx2 = vec![0.0; units];
+                // SAFETY: AVX2 is supported (checked just above).
+                unsafe { kernel_avx2(&w, Some(&b), &x, &mut avx2) };
+                assert_eq!(bits(&portable), bits(&avx2), "{units} x {inputs}");
             }
         }
     }
