@@ -26,6 +26,13 @@ use crate::sim::food::{Aversive, Food};
 use crate::sim::smell::Smell;
 use crate::sim::wall::{BoxedSegment, Walls};
 
+/// Up to this many fixed walls, a box query filters the whole wall list (a few comparisons
+/// per wall) rather than visiting cells and deduplicating: cheaper for small worlds.
+const FEW_WALLS: usize = 32;
+
+/// Cells per largest finite smell range (see the module docs).
+const CELLS_PER_RANGE: f64 = 1.0;
+
 /// Most cells a grid may have (memory per world stays below a few hundred KiB).
 pub const MAX_CELLS: usize = 1 << 16;
 
@@ -52,10 +59,12 @@ struct Geometry {
 
 impl Geometry {
     /// Column (or row) of coordinate `t` measured from the origin, clamped to `0..n`. NaN maps
-    /// to 0 (queries with NaN bounds take every cell, see [`Geometry::cells`]).
+    /// to 0 (queries with NaN bounds take every cell, see [`Geometry::cells`]). Truncation is
+    /// the floor here since negative values map to 0 anyway (and `floor` is a library call
+    /// on baseline x86-64).
     #[inline]
     fn index(t: f64, inv_cell: f64, n: usize) -> usize {
-        let k = (t * inv_cell).floor();
+        let k = t * inv_cell;
         if k >= (n - 1) as f64 {
             n - 1
         } else if k > 0.0 {
@@ -238,7 +247,7 @@ impl StaticIndex {
             (1.0, 1.0)
         };
         let extent = w.max(h);
-        let mut cell = smell_reach.max(reach);
+        let mut cell = (smell_reach / CELLS_PER_RANGE).max(reach);
         if !(cell.is_finite() && cell > 0.0) {
             cell = extent;
         }
@@ -347,18 +356,25 @@ impl StaticIndex {
     ) -> bool {
         let g = &self.geometry;
         let c = g.cells(lo, hi);
-        (c.y0..=c.y1).any(|y| {
-            lists
-                .row(g.nx, y, c.x0, c.x1)
-                .iter()
-                .any(|&k| hit(k as usize))
-        })
+        let mut y = c.y0;
+        while y <= c.y1 {
+            for &k in lists.row(g.nx, y, c.x0, c.x1) {
+                if hit(k as usize) {
+                    return true;
+                }
+            }
+            y += 1;
+        }
+        false
     }
 
     /// Does `hit` hold for a fixed wall that may cross the box `[lo, hi]`? `hit` gets the
     /// wall's index among the standing walls.
     #[inline]
     pub fn any_fixed_wall(&self, lo: Vec2, hi: Vec2, hit: impl FnMut(usize) -> bool) -> bool {
+        if self.fixed_felt <= FEW_WALLS {
+            return (0..self.fixed_felt).any(hit);
+        }
         let s = self.slack;
         self.any(&self.felt, lo - s, hi + s, hit)
     }
@@ -366,6 +382,9 @@ impl StaticIndex {
     /// Does `hit` hold for a food object whose body may meet the box `[lo, hi]`?
     #[inline]
     pub fn any_food(&self, lo: Vec2, hi: Vec2, hit: impl FnMut(usize) -> bool) -> bool {
+        if self.food_count == 0 {
+            return false;
+        }
         let r = self.food_radius + self.slack;
         self.any(&self.food, lo - r, hi + r, hit)
     }
@@ -373,6 +392,9 @@ impl StaticIndex {
     /// Does `hit` hold for an aversive object whose body may meet the box `[lo, hi]`?
     #[inline]
     pub fn any_aversive(&self, lo: Vec2, hi: Vec2, hit: impl FnMut(usize) -> bool) -> bool {
+        if self.aversive_count == 0 {
+            return false;
+        }
         let r = self.aversive_radius + self.slack;
         self.any(&self.aversives, lo - r, hi + r, hit)
     }
@@ -389,6 +411,9 @@ impl StaticIndex {
         out: &mut Vec<u32>,
     ) {
         out.clear();
+        if lists.items.is_empty() {
+            return;
+        }
         let g = &self.geometry;
         let c = g.cells(lo, hi);
         let (mut first, mut last) = (usize::MAX, 0);
@@ -419,18 +444,32 @@ impl StaticIndex {
         }
     }
 
-    /// The food objects whose body may meet the box `[lo, hi]`, in index order, into
-    /// `scratch.food`.
-    pub fn food_near(&self, lo: Vec2, hi: Vec2, scratch: &mut Scratch) {
-        let r = self.food_radius + self.slack;
-        self.collect(
-            &self.food,
-            lo - r,
-            hi + r,
-            &[],
-            &mut scratch.bits,
-            &mut scratch.food,
-        );
+    /// Into `scratch.food`, in index order: the food objects whose body may meet the box
+    /// `[lo, hi]` and for which `keep` holds. Few pass `keep` (a body touches one or two
+    /// objects), so they are sorted directly rather than through the bitset.
+    pub fn food_where(
+        &self,
+        lo: Vec2,
+        hi: Vec2,
+        scratch: &mut Scratch,
+        mut keep: impl FnMut(usize) -> bool,
+    ) {
+        let out = &mut scratch.food;
+        out.clear();
+        self.any_food(lo, hi, |k| {
+            if keep(k) {
+                out.push(k as u32);
+            }
+            false
+        });
+        // Insertion sort: allocation-free, and the list is almost always 0 to 2 long.
+        for n in 1..out.len() {
+            let mut m = n;
+            while m > 0 && out[m - 1] > out[m] {
+                out.swap(m - 1, m);
+                m -= 1;
+            }
+        }
     }
 
     /// The food and aversive objects whose smell may reach a receptor in the box `[lo, hi]`,
@@ -471,6 +510,10 @@ impl StaticIndex {
         let Scratch { bits, near, .. } = bits_from;
         let out = &mut near[which];
         out.clear();
+        if self.fixed_opaque <= FEW_WALLS {
+            out.extend(opaque.iter().filter(|w| w.may_meet(lo, hi)));
+            return SmellBox { lo, hi };
+        }
         self.each_wall(&self.opaque, lo, hi, bits, |k| {
             if opaque[k].may_meet(lo, hi) {
                 out.push(opaque[k]);
@@ -538,6 +581,15 @@ impl StaticIndex {
         blocking.clear();
         if !(lo.is_finite() && hi.is_finite()) {
             blocking.extend(walls.iter().map(|w| w.segment));
+            return;
+        }
+        if self.fixed_felt <= FEW_WALLS {
+            blocking.extend(
+                walls
+                    .iter()
+                    .filter(|w| w.may_meet(lo, hi))
+                    .map(|w| w.segment),
+            );
             return;
         }
         self.each_wall(&self.felt, lo, hi, bits, |k| {

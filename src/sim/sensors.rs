@@ -13,7 +13,7 @@ use crate::sim::controller::{ObservationLayout, SensorGroup};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::Thing;
 use crate::sim::grid::{Scratch, SmellBox, StaticIndex};
-use crate::sim::smell::{accumulate, saturate, Smell};
+use crate::sim::smell::{accumulate, accumulate_near, saturate, Smell};
 use crate::sim::wall::BoxedSegment;
 use crate::sim::world::Creature;
 
@@ -268,54 +268,32 @@ impl Surroundings<'_> {
         scratch: &Scratch,
     ) -> [f64; 8] {
         let mut acc = [0.0; 8];
-        let c = self.smell_c;
-        let walls = |centre: Vec2| {
-            if bx.contains(centre) {
-                near
-            } else {
-                self.opaque
-            }
-        };
+        let (c, all) = (self.smell_c, self.opaque);
+        let near = (bx.lo, bx.hi, near);
         for &k in &scratch.food {
             let f = &self.food[k as usize];
-            let w = walls(f.position);
-            accumulate(
-                &mut acc,
-                receptor,
-                f.position,
-                &f.smell,
-                f.smell_scale(),
-                c,
-                w,
+            let scale = f.smell_scale();
+            accumulate_near(
+                &mut acc, receptor, f.position, &f.smell, scale, c, near, all,
             );
         }
         for &k in &scratch.aversives {
             let a = &self.aversives[k as usize];
-            accumulate(
-                &mut acc,
-                receptor,
-                a.position,
-                &a.smell,
-                1.0,
-                c,
-                walls(a.position),
-            );
+            accumulate_near(&mut acc, receptor, a.position, &a.smell, 1.0, c, near, all);
         }
         for a in self.areas {
-            let centre = a.centre();
-            accumulate(&mut acc, receptor, centre, &a.smell, 1.0, c, walls(centre));
+            accumulate_near(&mut acc, receptor, a.centre(), &a.smell, 1.0, c, near, all);
         }
         for (k, t) in self.things.iter().enumerate() {
             if k != self.skip_thing && !t.smell.silent {
-                let w = walls(t.position);
-                accumulate(&mut acc, receptor, t.position, &t.smell, 1.0, c, w);
+                accumulate_near(&mut acc, receptor, t.position, &t.smell, 1.0, c, near, all);
             }
         }
         if !body.smell.silent {
             for (j, other) in self.creatures.iter().enumerate() {
                 if j != me && other.alive {
                     let p = other.pose.position;
-                    accumulate(&mut acc, receptor, p, &body.smell, 1.0, c, walls(p));
+                    accumulate_near(&mut acc, receptor, p, &body.smell, 1.0, c, near, all);
                 }
             }
         }

@@ -639,7 +639,10 @@ impl World {
                 self.scratch.food.clear();
                 self.scratch.food.extend(0..self.food.len() as u32);
             } else {
-                self.index.food_near(lo, hi, &mut self.scratch);
+                let food = &self.food;
+                self.index.food_where(lo, hi, &mut self.scratch, |k| {
+                    circles_touch(position, radius, food[k].position, food[k].radius)
+                });
             }
             for &k in &self.scratch.food {
                 let f = &mut self.food[k as usize];
