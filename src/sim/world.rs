@@ -4,8 +4,9 @@
 //!
 //! # One tick ([`World::step`])
 //!
-//! 1. **Food** regenerates, each object in list order (§4.3); **doors** whose open time is
-//!    over close (§4.5.2).
+//! 1. **Food** regenerates, each object on its own (§4.3; objects at capacity, which
+//!    regeneration leaves unchanged, are skipped); **doors** whose open time is over close
+//!    (§4.5.2).
 //! 2. **Wanderers** then **ground predators** (file order) feel with their whiskers, pick a
 //!    command and move; a predator attacks every creature its body then touches outside safe
 //!    areas. **Air predators** (file order) fly one tick, re-entering when they left the
@@ -30,6 +31,15 @@
 //!       exit is free (§4.5.1), opens the doors whose trigger it touches (§4.5.2), and is
 //!       attacked by the predators it touches or is under, outside safe areas (§4.7).
 //! 4. The tick counter advances.
+//!
+//! # What a tick costs
+//!
+//! Senses, eating and contacts look food, aversive objects and fixed walls up in a uniform
+//! grid ([`crate::sim::grid`]) instead of looping over every object, and a move is tested
+//! only against the walls it can reach, so a creature-tick costs what is around the creature,
+//! not what is in the world. Regeneration visits only food below capacity. The answers are
+//! the plain loops' to the bit (same tests, same order): [`World::set_brute_force`] runs the
+//! plain loops, and the tests compare the two.
 
 use crate::geometry::{circle_touches_segment, circles_touch, Circle, Segment, Vec2};
 use crate::seed::{uniform, Rng};
