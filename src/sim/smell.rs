@@ -92,7 +92,7 @@ pub fn accumulate(
 /// box, since the segment to it lies in the box too, else `all`. The same bits as
 /// [`accumulate`] with `all`.
 #[allow(clippy::too_many_arguments)]
-#[inline]
+#[inline(always)]
 pub fn accumulate_near(
     acc: &mut [f64; 8],
     receptor: Vec2,
