@@ -76,6 +76,13 @@ impl Food {
         }
     }
 
+    /// Would [`Food::regenerate`] change it now? Only when some substance with r > 0 is
+    /// below capacity; otherwise regeneration leaves every field as it is.
+    #[inline]
+    pub fn regrows_now(&self) -> bool {
+        (0..4).any(|t| self.regen[t] > 0.0 && self.amount[t] < self.capacity[t])
+    }
+
     /// One bite (§4.3, SPEC-NOTES): min(bite, what is left) per type, taken from the object
     /// when it depletes. Returns what the creature receives.
     #[inline]

@@ -6,6 +6,7 @@
 //! - [`world`]: the running world and the tick loop of §9.
 //! - [`wall`], [`food`], [`smell`]: the things in the world.
 //! - [`sensors`]: whiskers, smell sensors, food detectors, observation layout.
+//! - [`grid`]: the spatial index of food, aversive objects and fixed walls the senses query.
 //! - [`gadgets`]: doors, teleporters, wanderers and predators (§4.5.1, §4.5.2, §4.7, §4.8).
 //! - [`area`]: areas and distal landmarks; [`eye`]: the retina; [`noise`]: sensor noise.
 //! - [`motion`]: the body's movement (§8).
@@ -18,6 +19,7 @@ pub mod controller;
 pub mod eye;
 pub mod food;
 pub mod gadgets;
+pub mod grid;
 pub mod metabolism;
 pub mod motion;
 pub mod noise;

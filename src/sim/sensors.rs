@@ -1,13 +1,19 @@
 //! A creature's senses (§5.2, §7.1–7.3): whiskers, the two smell sensors at the whisker tips,
 //! the four food detectors and the shock sensor, and how they are written into the
 //! controller's observation vector.
+//!
+//! Each sense comes twice: the plain loops over every object (`*_all`, the reference the
+//! tests compare against) and the same tests run only on the candidates the world's
+//! [`StaticIndex`] yields (what the tick loop uses). Candidates come in index order and the
+//! tests are the same functions, so both give the same bits.
 
 use crate::geometry::{circles_touch, segment_touches_circle, segments_intersect, Segment, Vec2};
 use crate::sim::area::Area;
 use crate::sim::controller::{ObservationLayout, SensorGroup};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::Thing;
-use crate::sim::smell::{accumulate, saturate, Smell};
+use crate::sim::grid::{Scratch, SmellBox, StaticIndex};
+use crate::sim::smell::{accumulate, accumulate_near, saturate, Smell};
 use crate::sim::wall::BoxedSegment;
 use crate::sim::world::Creature;
 
@@ -64,6 +70,9 @@ pub struct Surroundings<'a> {
     pub skip_thing: usize,
     /// The constant c of eq. 25.
     pub smell_c: f64,
+    /// The grid over `food`, `aversives` and the fixed walls (the first
+    /// [`StaticIndex::fixed_felt`] of `walls` and [`StaticIndex::fixed_opaque`] of `opaque`).
+    pub index: &'a StaticIndex,
 }
 
 /// What one creature senses in one tick (before the shock sensor, which it carries over from
@@ -81,7 +90,7 @@ pub struct Senses {
 impl Surroundings<'_> {
     /// §7.3: does a whisker from `from` to `tip` touch a wall, or a circle of radius > 0 other
     /// than creature `me`'s own body? Point objects (radius 0) are not felt (SPEC-NOTES).
-    pub fn whisker_touches(&self, me: usize, body: &Body, from: Vec2, tip: Vec2) -> bool {
+    pub fn whisker_touches_all(&self, me: usize, body: &Body, from: Vec2, tip: Vec2) -> bool {
         let whisker = Segment::new(from, tip);
         let (lo, hi) = (from.min(tip), from.max(tip));
         self.walls
@@ -109,7 +118,7 @@ impl Surroundings<'_> {
     /// §7.1: one smell sensor at `receptor`: receptor k = min(1, Σ I(d) o_k) over the smelly
     /// things it can see: food, aversive objects, areas (from their centre, §4.6), gadgets,
     /// wanderers, predators and every other living creature.
-    pub fn smell_at(&self, me: usize, body: &Body, receptor: Vec2) -> [f64; 8] {
+    pub fn smell_at_all(&self, me: usize, body: &Body, receptor: Vec2) -> [f64; 8] {
         let mut acc = [0.0; 8];
         let (c, opaque) = (self.smell_c, self.opaque);
         for f in self.food {
@@ -155,7 +164,7 @@ impl Surroundings<'_> {
 
     /// §5.2: food detector X reads 1 while the body (radius `radius` at `position`) is in
     /// contact (eq. 1) with a food object holding substance X > 0.
-    pub fn food_detectors(&self, position: Vec2, radius: f64) -> [bool; 4] {
+    pub fn food_detectors_all(&self, position: Vec2, radius: f64) -> [bool; 4] {
         let mut detected = [false; 4];
         for f in self.food {
             if circles_touch(position, radius, f.position, f.radius) {
@@ -167,10 +176,160 @@ impl Surroundings<'_> {
         detected
     }
 
-    /// Everything creature `me` senses now. Smell is computed only when `smell` is true
+    /// Everything creature `me` senses now, by the plain loops (the reference for
+    /// [`Surroundings::sense`]). Smell is computed only when `smell` is true
     /// (the controller receives it, or a trace wants it), and not at all while a whisker
     /// touches under `inhibit_smell_on_whisker` (§7.3).
-    pub fn sense(&self, me: usize, body: &Body, smell: bool, inhibit_smell: bool) -> Senses {
+    pub fn sense_all(&self, me: usize, body: &Body, smell: bool, inhibit_smell: bool) -> Senses {
+        let pose = self.creatures[me].pose;
+        let tips = body.whisker_tips(pose.position, pose.heading);
+        let whiskers = [
+            self.whisker_touches_all(me, body, pose.position, tips[0]),
+            self.whisker_touches_all(me, body, pose.position, tips[1]),
+        ];
+        let inhibited = inhibit_smell && (whiskers[0] || whiskers[1]);
+        let smell = if smell && !inhibited {
+            [
+                self.smell_at_all(me, body, tips[0]),
+                self.smell_at_all(me, body, tips[1]),
+            ]
+        } else {
+            [[0.0; 8]; 2]
+        };
+        Senses {
+            whiskers,
+            smell,
+            food: self.food_detectors_all(pose.position, body.radius),
+        }
+    }
+
+    /// [`Surroundings::whisker_touches_all`] on the walls, food and aversive objects the grid
+    /// finds around the whisker (the closed doors, creatures and things are few: all of them).
+    pub fn whisker_touches(&self, me: usize, body: &Body, from: Vec2, tip: Vec2) -> bool {
+        let whisker = Segment::new(from, tip);
+        let (lo, hi) = (from.min(tip), from.max(tip));
+        let index = self.index;
+        let wall =
+            |w: &BoxedSegment| w.may_meet(lo, hi) && segments_intersect(&whisker, &w.segment);
+        index.any_fixed_wall(lo, hi, |k| wall(&self.walls[k]))
+            || self.walls[index.fixed_felt()..].iter().any(wall)
+            || self.creatures.iter().enumerate().any(|(j, c)| {
+                j != me && c.alive && segment_touches_circle(&whisker, c.pose.position, body.radius)
+            })
+            || index.any_aversive(lo, hi, |k| {
+                let a = &self.aversives[k];
+                a.radius > 0.0 && segment_touches_circle(&whisker, a.position, a.radius)
+            })
+            || index.any_food(lo, hi, |k| {
+                let f = &self.food[k];
+                f.radius > 0.0 && segment_touches_circle(&whisker, f.position, f.radius)
+            })
+            || self.things.iter().enumerate().any(|(k, t)| {
+                k != self.skip_thing
+                    && t.felt
+                    && t.radius > 0.0
+                    && segment_touches_circle(&whisker, t.position, t.radius)
+            })
+    }
+
+    /// [`Surroundings::smell_at_all`] at both receptors `tips`: the food and aversive objects
+    /// come from the grid (those within the largest finite range of either receptor, and
+    /// those of unlimited range), in index order; a source inside a receptor's smell box is
+    /// tested for occlusion against the opaque walls that meet that box only.
+    pub fn smell_pair(
+        &self,
+        me: usize,
+        body: &Body,
+        tips: [Vec2; 2],
+        scratch: &mut Scratch,
+    ) -> [[f64; 8]; 2] {
+        let index = self.index;
+        index.smell_sources(tips[0].min(tips[1]), tips[0].max(tips[1]), scratch);
+        let boxes = [
+            index.near_opaque(tips[0], self.opaque, scratch, 0),
+            index.near_opaque(tips[1], self.opaque, scratch, 1),
+        ];
+        [
+            self.smell_near(me, body, tips[0], boxes[0], &scratch.near[0], scratch),
+            self.smell_near(me, body, tips[1], boxes[1], &scratch.near[1], scratch),
+        ]
+    }
+
+    /// One receptor of [`Surroundings::smell_pair`]: the sums of
+    /// [`Surroundings::smell_at_all`] in the same order over the candidates of `scratch`,
+    /// with `near` (the opaque walls meeting `bx`) as the occluders of sources inside `bx`.
+    fn smell_near(
+        &self,
+        me: usize,
+        body: &Body,
+        receptor: Vec2,
+        bx: SmellBox,
+        near: &[BoxedSegment],
+        scratch: &Scratch,
+    ) -> [f64; 8] {
+        let mut acc = [0.0; 8];
+        let (c, all) = (self.smell_c, self.opaque);
+        let near = (bx.lo, bx.hi, near);
+        for &k in &scratch.food {
+            let f = &self.food[k as usize];
+            let scale = f.smell_scale();
+            accumulate_near(
+                &mut acc, receptor, f.position, &f.smell, scale, c, near, all,
+            );
+        }
+        for &k in &scratch.aversives {
+            let a = &self.aversives[k as usize];
+            accumulate_near(&mut acc, receptor, a.position, &a.smell, 1.0, c, near, all);
+        }
+        for a in self.areas {
+            accumulate_near(&mut acc, receptor, a.centre(), &a.smell, 1.0, c, near, all);
+        }
+        for (k, t) in self.things.iter().enumerate() {
+            if k != self.skip_thing && !t.smell.silent {
+                accumulate_near(&mut acc, receptor, t.position, &t.smell, 1.0, c, near, all);
+            }
+        }
+        if !body.smell.silent {
+            for (j, other) in self.creatures.iter().enumerate() {
+                if j != me && other.alive {
+                    let p = other.pose.position;
+                    accumulate_near(&mut acc, receptor, p, &body.smell, 1.0, c, near, all);
+                }
+            }
+        }
+        saturate(&mut acc);
+        acc
+    }
+
+    /// [`Surroundings::food_detectors_all`] on the food objects the grid finds around the
+    /// body.
+    pub fn food_detectors(&self, position: Vec2, radius: f64) -> [bool; 4] {
+        let mut detected = [false; 4];
+        let (lo, hi) = (position - radius, position + radius);
+        self.index.any_food(lo, hi, |k| {
+            let f = &self.food[k];
+            if circles_touch(position, radius, f.position, f.radius) {
+                for (t, d) in detected.iter_mut().enumerate() {
+                    *d |= f.holds(t);
+                }
+            }
+            false
+        });
+        detected
+    }
+
+    /// Everything creature `me` senses now (the grid's version of
+    /// [`Surroundings::sense_all`], with the same answers). Smell is computed only when
+    /// `smell` is true (the controller receives it, or a trace wants it), and not at all while
+    /// a whisker touches under `inhibit_smell_on_whisker` (§7.3).
+    pub fn sense(
+        &self,
+        me: usize,
+        body: &Body,
+        smell: bool,
+        inhibit_smell: bool,
+        scratch: &mut Scratch,
+    ) -> Senses {
         let pose = self.creatures[me].pose;
         let tips = body.whisker_tips(pose.position, pose.heading);
         let whiskers = [
@@ -179,10 +338,7 @@ impl Surroundings<'_> {
         ];
         let inhibited = inhibit_smell && (whiskers[0] || whiskers[1]);
         let smell = if smell && !inhibited {
-            [
-                self.smell_at(me, body, tips[0]),
-                self.smell_at(me, body, tips[1]),
-            ]
+            self.smell_pair(me, body, tips, scratch)
         } else {
             [[0.0; 8]; 2]
         };

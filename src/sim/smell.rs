@@ -87,6 +87,40 @@ pub fn accumulate(
     }
 }
 
+/// [`accumulate`] with the occluders chosen after the range test: `near` (the opaque walls
+/// that may meet the box `[lo, hi]` around the receptor) for a thing whose centre lies in the
+/// box, since the segment to it lies in the box too, else `all`. The same bits as
+/// [`accumulate`] with `all`.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn accumulate_near(
+    acc: &mut [f64; 8],
+    receptor: Vec2,
+    centre: Vec2,
+    smell: &Smell,
+    scale: f64,
+    c: f64,
+    (lo, hi, near): (Vec2, Vec2, &[BoxedSegment]),
+    all: &[BoxedSegment],
+) {
+    if smell.silent || scale == 0.0 {
+        return;
+    }
+    let d2 = receptor.distance_squared(centre);
+    let f = falloff(d2, c, smell.range_squared);
+    if f == 0.0 {
+        return;
+    }
+    let inside = centre.x >= lo.x && centre.x <= hi.x && centre.y >= lo.y && centre.y <= hi.y;
+    if !visible(receptor, centre, if inside { near } else { all }) {
+        return;
+    }
+    let f = f * scale;
+    for (a, e) in acc.iter_mut().zip(smell.emission.iter()) {
+        *a += f * e;
+    }
+}
+
 /// §7.1: a receptor saturates at 1.
 #[inline]
 pub fn saturate(acc: &mut [f64; 8]) {

@@ -78,6 +78,8 @@ pub struct Walls {
     /// Opaque walls only: what occludes smell. Kept apart so that smell tests do not skip
     /// over transparent walls one by one.
     opaque: Vec<BoxedSegment>,
+    /// How many of `opaque` are fixed walls (they come first; the closed opaque doors follow).
+    fixed_opaque: usize,
 }
 
 impl Walls {
@@ -114,7 +116,9 @@ impl Walls {
             })
             .collect();
         let n = walls.len() + doors.len();
+        let fixed_opaque = walls.iter().filter(|w| w.opaque).count();
         let mut built = Walls {
+            fixed_opaque,
             open: vec![false; doors.len()],
             fixed: walls,
             doors,
@@ -181,5 +185,27 @@ impl Walls {
     /// Segments that stop smells, with boxes.
     pub fn opaque(&self) -> &[BoxedSegment] {
         &self.opaque
+    }
+
+    /// How many walls can stand at once (fixed ones and every door).
+    pub fn capacity(&self) -> usize {
+        self.fixed.len() + self.doors.len()
+    }
+
+    /// How many opaque walls can stand at once (fixed ones and every opaque door).
+    pub fn opaque_capacity(&self) -> usize {
+        self.fixed_opaque + self.doors.iter().filter(|d| d.opaque).count()
+    }
+
+    /// How many of [`Walls::felt`] are fixed walls (boundary and interior, which never
+    /// change): they come first, the closed doors follow.
+    pub fn fixed_count(&self) -> usize {
+        self.fixed.len()
+    }
+
+    /// How many of [`Walls::opaque`] are fixed walls: they come first, the closed opaque doors
+    /// follow.
+    pub fn fixed_opaque_count(&self) -> usize {
+        self.fixed_opaque
     }
 }

@@ -4,8 +4,9 @@
 //!
 //! # One tick ([`World::step`])
 //!
-//! 1. **Food** regenerates, each object in list order (§4.3); **doors** whose open time is
-//!    over close (§4.5.2).
+//! 1. **Food** regenerates, each object on its own (§4.3; objects at capacity, which
+//!    regeneration leaves unchanged, are skipped); **doors** whose open time is over close
+//!    (§4.5.2).
 //! 2. **Wanderers** then **ground predators** (file order) feel with their whiskers, pick a
 //!    command and move; a predator attacks every creature its body then touches outside safe
 //!    areas. **Air predators** (file order) fly one tick, re-entering when they left the
@@ -30,6 +31,15 @@
 //!       exit is free (§4.5.1), opens the doors whose trigger it touches (§4.5.2), and is
 //!       attacked by the predators it touches or is under, outside safe areas (§4.7).
 //! 4. The tick counter advances.
+//!
+//! # What a tick costs
+//!
+//! Senses, eating and contacts look food, aversive objects and fixed walls up in a uniform
+//! grid ([`crate::sim::grid`]) instead of looping over every object, and a move is tested
+//! only against the walls it can reach, so a creature-tick costs what is around the creature,
+//! not what is in the world. Regeneration visits only food below capacity. The answers are
+//! the plain loops' to the bit (same tests, same order): [`World::set_brute_force`] runs the
+//! plain loops, and the tests compare the two.
 
 use crate::geometry::{circle_touches_segment, circles_touch, Circle, Segment, Vec2};
 use crate::seed::{uniform, Rng};
@@ -38,6 +48,7 @@ use crate::sim::controller::{Controller, MotorCommand, ObservationLayout, Sensor
 use crate::sim::eye::{Eye, Scene};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::{Actor, Door, Effect, Flyer, Role, Strategy, Teleporter, Thing};
+use crate::sim::grid::{Scratch, StaticIndex};
 use crate::sim::metabolism::Decay;
 use crate::sim::motion::{plan_move, Blockers, MotionParams, MoveOutcome, Pose};
 use crate::sim::noise::Noise;
@@ -111,10 +122,20 @@ pub struct World {
     /// Kind names; `Food::kind` and `Aversive::kind` index this.
     kinds: Vec<String>,
     food: Vec<Food>,
-    /// Indices of the food objects that regenerate, in list order, so that worlds of
-    /// non-regenerating food pay nothing for phase 1.
-    regrowing: Vec<usize>,
+    /// Indices of the food objects that regeneration would change now (some substance with
+    /// r > 0 below capacity), so that phase 1 skips the full ones, on which it does nothing.
+    /// Eating adds to it; phase 1 drops the objects it fills. Capacity: the food count.
+    regrowing: Vec<u32>,
+    /// Is food object k in `regrowing`?
+    listed: Vec<bool>,
     aversives: Vec<Aversive>,
+    /// The grid over food, aversive objects and fixed walls the senses and contacts query.
+    index: StaticIndex,
+    /// The grid queries' scratch space.
+    scratch: Scratch,
+    /// Sense, eat and regenerate with plain loops over every object instead of the grid and
+    /// the list of regrowing food (the reference the tests compare the grid against).
+    brute_force: bool,
     creatures: Vec<Creature>,
     body: Body,
     motion: MotionParams,
@@ -186,9 +207,19 @@ impl World {
             &objects,
             &mut rng,
         )?;
-        let regrowing = (0..objects.food.len())
-            .filter(|&i| objects.food[i].regen.iter().any(|&r| r > 0.0))
-            .collect();
+        let listed: Vec<bool> = objects.food.iter().map(Food::regrows_now).collect();
+        let mut regrowing = Vec::with_capacity(objects.food.len());
+        regrowing.extend((0..objects.food.len() as u32).filter(|&k| listed[k as usize]));
+        // Whiskers reach `whisker_length` from the centre, contacts the body radius.
+        let reach = creature.whisker_length.max(radius);
+        let index = StaticIndex::build(
+            world.arena,
+            reach,
+            &objects.food,
+            &objects.aversives,
+            &walls,
+        );
+        let scratch = index.scratch(walls.opaque_capacity(), walls.capacity());
         let phi = creature.whisker_angle_radians();
         let layout = creature.layout(world);
         let eye = layout
@@ -351,7 +382,11 @@ impl World {
             kinds: world.kinds.keys().cloned().collect(),
             food: objects.food,
             regrowing,
+            listed,
             aversives: objects.aversives,
+            index,
+            scratch,
+            brute_force: false,
             creatures: poses
                 .into_iter()
                 .map(|p| Creature::new(p, creature.initial_metabolism))
@@ -435,11 +470,28 @@ impl World {
         self.tick += 1;
     }
 
-    /// Phase 1: every food object regenerates, in list order.
+    /// Phase 1: every food object regenerates. Only those in `regrowing` can change, each
+    /// on its own, so the others are skipped and the order does not matter.
     fn regenerate_food(&mut self) {
-        for &i in &self.regrowing {
-            self.food[i].regenerate();
+        if self.brute_force {
+            for f in &mut self.food {
+                f.regenerate();
+            }
+            return;
         }
+        let mut kept = 0;
+        for n in 0..self.regrowing.len() {
+            let k = self.regrowing[n];
+            let f = &mut self.food[k as usize];
+            f.regenerate();
+            if f.regrows_now() {
+                self.regrowing[kept] = k;
+                kept += 1;
+            } else {
+                self.listed[k as usize] = false;
+            }
+        }
+        self.regrowing.truncate(kept);
     }
 
     /// Phase 2.1: creature `i` senses and its observation is written.
@@ -454,10 +506,15 @@ impl World {
             things: &self.things,
             skip_thing: usize::MAX,
             smell_c: self.smell_c,
+            index: &self.index,
         };
         let smell = self.full_sensing || self.offsets.has_smell();
-        let senses: Senses =
-            surroundings.sense(i, &self.body, smell, self.inhibit_smell_on_whisker);
+        let inhibit = self.inhibit_smell_on_whisker;
+        let senses: Senses = if self.brute_force {
+            surroundings.sense_all(i, &self.body, smell, inhibit)
+        } else {
+            surroundings.sense(i, &self.body, smell, inhibit, &mut self.scratch)
+        };
         let c = &mut self.creatures[i];
         c.whiskers = senses.whiskers;
         c.smell = senses.smell;
@@ -517,8 +574,11 @@ impl World {
                 self.blockers.push(Circle::new(t.position, t.radius));
             }
         }
+        let start = self.creatures[i].pose.position;
+        let travel = self.max_travel(command.left, command.right, self.motion.max_rpt);
+        self.walls_near(start, travel);
         let blockers = Blockers {
-            segments: self.walls.blocking(),
+            segments: &self.scratch.blocking,
             circles: &self.blockers,
         };
         let c = &mut self.creatures[i];
@@ -537,6 +597,41 @@ impl World {
         outcome
     }
 
+    /// An upper bound on how far a body's centre moves in one tick with motor signals `left`
+    /// and `right` clamped to ±`max_rpt`: the chord of eq. 30 is at most the larger wheel
+    /// distance 2πw·|RPT| (|sinc| ≤ 1), with a margin for rounding. +∞ when not finite.
+    fn max_travel(&self, left: f64, right: f64, max_rpt: f64) -> f64 {
+        let m = max_rpt.abs();
+        let clamp = |x: f64| {
+            if x.is_nan() {
+                0.0
+            } else {
+                x.min(m).max(-m).abs()
+            }
+        };
+        let d = std::f64::consts::TAU * self.motion.wheel.abs() * clamp(left).max(clamp(right));
+        if d.is_finite() {
+            d * (1.0 + 1e-9) + 1e-9
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// Puts into `scratch.blocking` the walls that may block a body of this world's radius
+    /// moving at most `travel` from `start` (every standing wall under `brute_force`).
+    /// Motion's verdict is a yes/no over the walls, so leaving out walls that cannot be
+    /// reached changes nothing.
+    fn walls_near(&mut self, start: Vec2, travel: f64) {
+        let felt = self.walls.felt();
+        if self.brute_force {
+            self.scratch.blocking.clear();
+            self.scratch.blocking.extend(felt.iter().map(|w| w.segment));
+        } else {
+            self.index
+                .blocking_near(start, travel, self.body.radius, felt, &mut self.scratch);
+        }
+    }
+
     /// Phases 2.4 and 2.5: eating, shock and metabolism of creature `i` after its move.
     fn contacts(&mut self, i: usize, outcome: &MoveOutcome) {
         let c = &mut self.creatures[i];
@@ -548,10 +643,26 @@ impl World {
         };
         let mut received = [0.0; 4];
         if eats {
-            for f in &mut self.food {
+            // Bites in food list order: `received` adds floats.
+            let (lo, hi) = (position - radius, position + radius);
+            if self.brute_force {
+                self.scratch.food.clear();
+                self.scratch.food.extend(0..self.food.len() as u32);
+            } else {
+                let food = &self.food;
+                self.index.food_where(lo, hi, &mut self.scratch, |k| {
+                    circles_touch(position, radius, food[k].position, food[k].radius)
+                });
+            }
+            for &k in &self.scratch.food {
+                let f = &mut self.food[k as usize];
                 if circles_touch(position, radius, f.position, f.radius) {
                     for (r, g) in received.iter_mut().zip(f.take_bite()) {
                         *r += g;
+                    }
+                    if !self.listed[k as usize] && f.regrows_now() {
+                        self.listed[k as usize] = true;
+                        self.regrowing.push(k);
                     }
                 }
             }
@@ -559,11 +670,15 @@ impl World {
         for (e, r) in c.eaten.iter_mut().zip(received) {
             *e += r;
         }
-        c.shocked = self
-            .aversives
-            .iter()
-            .any(|a| circles_touch(position, radius, a.position, a.radius))
-            || (self.wall_shock && outcome.blocked_by_wall);
+        let touches = |a: &Aversive| circles_touch(position, radius, a.position, a.radius);
+        let aversive = if self.brute_force {
+            self.aversives.iter().any(touches)
+        } else {
+            let (lo, hi) = (position - radius, position + radius);
+            self.index
+                .any_aversive(lo, hi, |k| touches(&self.aversives[k]))
+        };
+        c.shocked = aversive || (self.wall_shock && outcome.blocked_by_wall);
         self.decay
             .apply(&mut c.metabolism, &received, outcome.travelled);
         c.age += 1;
@@ -707,11 +822,16 @@ impl World {
             things: &self.things,
             skip_thing: actor.thing,
             smell_c: self.smell_c,
+            index: &self.index,
         };
-        let whiskers = [
-            surroundings.whisker_touches(usize::MAX, &self.body, actor.pose.position, tips[0]),
-            surroundings.whisker_touches(usize::MAX, &self.body, actor.pose.position, tips[1]),
-        ];
+        let feel = |tip| {
+            if self.brute_force {
+                surroundings.whisker_touches_all(usize::MAX, &self.body, actor.pose.position, tip)
+            } else {
+                surroundings.whisker_touches(usize::MAX, &self.body, actor.pose.position, tip)
+            }
+        };
+        let whiskers = [feel(tips[0]), feel(tips[1])];
         let (left, right, predator) = match actor.role {
             Role::Wanderer => {
                 let (l, rr) = self.actors[a].wander(whiskers, &mut self.rng);
@@ -755,13 +875,15 @@ impl World {
                 self.blockers.push(Circle::new(t.position, t.radius));
             }
         }
-        let blockers = Blockers {
-            segments: self.walls.blocking(),
-            circles: &self.blockers,
-        };
         let params = MotionParams {
             max_rpt: actor.max_rpt,
             ..self.motion
+        };
+        let travel = self.max_travel(left, right, params.max_rpt);
+        self.walls_near(actor.pose.position, travel);
+        let blockers = Blockers {
+            segments: &self.scratch.blocking,
+            circles: &self.blockers,
         };
         let outcome = plan_move(actor.pose, left, right, r, &params, &blockers);
         self.actors[a].pose = outcome.pose;
@@ -865,6 +987,18 @@ impl World {
     /// of all senses). Does not change the observations or any other result.
     pub fn set_full_sensing(&mut self, on: bool) {
         self.full_sensing = on;
+    }
+
+    /// Sense, eat and regenerate food with plain loops over every object instead of the
+    /// spatial grid (default: off). The results are the same to the bit; tests compare the
+    /// two.
+    pub fn set_brute_force(&mut self, on: bool) {
+        self.brute_force = on;
+    }
+
+    /// The grid the senses query (for tests and benchmarks).
+    pub fn index(&self) -> &StaticIndex {
+        &self.index
     }
 
     /// Distal landmarks (§4.5.3), in file order.

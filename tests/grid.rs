@@ -1,0 +1,389 @@
+//! The spatial grid changes no result: seeded random worlds with many walls, doors, food and
+//! aversive objects of mixed smell ranges (finite and unlimited), areas, teleporters,
+//! wanderers, predators and many creatures run side by side with the grid and with the plain
+//! loops over every object (`World::set_brute_force`), and must agree to the bit after every
+//! tick: whiskers, smell, food detectors, eating, shocks, motion, regeneration, doors.
+
+mod sim_common;
+use berry_evolve::geometry::Vec2;
+use berry_evolve::sim::controller::{Controller, MotorCommand};
+use berry_evolve::sim::motion::Pose;
+use berry_evolve::sim::World;
+use std::fmt::Write;
+
+/// splitmix64: the test's own seeded generator, so that both worlds get the same draws.
+struct Mix(u64);
+
+impl Mix {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [a, b).
+    fn uniform(&mut self, a: f64, b: f64) -> f64 {
+        a + (b - a) * ((self.next() >> 11) as f64 / (1u64 << 53) as f64)
+    }
+
+    fn chance(&mut self, p: f64) -> bool {
+        self.uniform(0.0, 1.0) < p
+    }
+
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n
+    }
+}
+
+/// A controller driven by its own seeded generator: random motors, sometimes eating.
+struct Random(Mix);
+
+impl Controller for Random {
+    fn act(&mut self, _: &[f64]) -> MotorCommand {
+        let r = &mut self.0;
+        MotorCommand {
+            left: r.uniform(-0.6, 0.6),
+            right: r.uniform(-0.6, 0.6),
+            eat: r.uniform(0.0, 1.0),
+        }
+    }
+}
+
+fn odour(r: &mut Mix) -> String {
+    let v: Vec<String> = (0..8)
+        .map(|_| {
+            if r.chance(0.4) {
+                format!("{:.3}", r.uniform(0.0, 1.0))
+            } else {
+                "0".into()
+            }
+        })
+        .collect();
+    format!("[{}]", v.join(", "))
+}
+
+fn range(r: &mut Mix, max: f64) -> String {
+    if r.chance(0.25) {
+        String::new()
+    } else {
+        format!("range = {:.3}\n", r.uniform(1.0, max))
+    }
+}
+
+/// A random world: arena, walls (axis-aligned, diagonal, long, transparent), doors with
+/// triggers, kinds of food and aversive objects, explicit objects anywhere (on walls too),
+/// placed objects, areas, gadgets and a creature spec.
+fn random_world(seed: u64) -> String {
+    let r = &mut Mix(seed);
+    let (w, h) = (r.uniform(150.0, 1200.0), r.uniform(150.0, 1200.0));
+    let mut t = String::new();
+    writeln!(t, "[world]\narena = [{w:.3}, {h:.3}]").unwrap();
+    writeln!(t, "smell_c = {:.4}", r.uniform(0.0005, 0.05)).unwrap();
+    writeln!(t, "wall_shock = {}", r.chance(0.5)).unwrap();
+    writeln!(t, "slippery_walls = {}", r.chance(0.5)).unwrap();
+    writeln!(t, "boundary_walls = {}", r.chance(0.8)).unwrap();
+    let point = |r: &mut Mix| (r.uniform(0.0, w), r.uniform(0.0, h));
+    let many = r.chance(0.5);
+    let walls = 10 + r.below(if many { 80 } else { 20 });
+    for _ in 0..walls {
+        let (x0, y0) = point(r);
+        let len = if r.chance(0.1) {
+            r.uniform(0.3, 1.0) * w.max(h)
+        } else {
+            r.uniform(3.0, 60.0)
+        };
+        let (dx, dy) = match r.below(3) {
+            0 => (len, 0.0),
+            1 => (0.0, len),
+            _ => {
+                let a = r.uniform(0.0, std::f64::consts::TAU);
+                (len * libm::cos(a), len * libm::sin(a))
+            }
+        };
+        let (x1, y1) = ((x0 + dx).clamp(0.0, w), (y0 + dy).clamp(0.0, h));
+        if (x1 - x0).abs() + (y1 - y0).abs() < 1.0 {
+            continue;
+        }
+        writeln!(
+            t,
+            "[[world.walls]]\nfrom = [{x0:.3}, {y0:.3}]\nto = [{x1:.3}, {y1:.3}]\nopaque = {}",
+            r.chance(0.8)
+        )
+        .unwrap();
+    }
+    for _ in 0..r.below(4) {
+        let (x0, y0) = point(r);
+        let (x1, y1) = (
+            (x0 + r.uniform(5.0, 40.0)).min(w),
+            (y0 + r.uniform(-20.0, 20.0)).clamp(0.0, h),
+        );
+        let (tx, ty) = point(r);
+        writeln!(
+            t,
+            "[[world.doors]]\nfrom = [{x0:.3}, {y0:.3}]\nto = [{x1:.3}, {y1:.3}]\nopaque = {}\n\
+             trigger = [{tx:.3}, {ty:.3}]\ntrigger_radius = {:.3}\nopen_ticks = {}",
+            r.chance(0.7),
+            r.uniform(5.0, 40.0),
+            r.below(40)
+        )
+        .unwrap();
+    }
+    let max_range = r.uniform(10.0, 200.0);
+    let food_kinds = 1 + r.below(4);
+    for k in 0..food_kinds {
+        let radius = if r.chance(0.2) {
+            0.0
+        } else {
+            r.uniform(0.5, 6.0)
+        };
+        let substance: Vec<String> = (0..4)
+            .map(|_| format!("{:.3}", r.uniform(0.0, 5.0)))
+            .collect();
+        let bite: Vec<String> = (0..4)
+            .map(|_| format!("{:.3}", r.uniform(0.0, 1.5)))
+            .collect();
+        let regen: Vec<String> = (0..4)
+            .map(|_| {
+                if r.chance(0.5) {
+                    format!("{:.4}", r.uniform(0.0, 0.2))
+                } else {
+                    "0".into()
+                }
+            })
+            .collect();
+        writeln!(
+            t,
+            "[world.kinds.food{k}]\nclass = \"food\"\nradius = {radius:.3}\nsubstance = [{}]\n\
+             bite = [{}]\nregen = [{}]\ndepletes = {}\nsmell_follows_amount = {}\n\
+             odour = {}\nintensity = {:.3}\n{}",
+            substance.join(", "),
+            bite.join(", "),
+            regen.join(", "),
+            r.chance(0.8),
+            r.chance(0.4),
+            odour(r),
+            r.uniform(0.1, 2.0),
+            range(r, max_range)
+        )
+        .unwrap();
+    }
+    let aversive_kinds = r.below(3);
+    for k in 0..aversive_kinds {
+        let radius = if r.chance(0.2) {
+            0.0
+        } else {
+            r.uniform(0.5, 6.0)
+        };
+        writeln!(
+            t,
+            "[world.kinds.nettle{k}]\nclass = \"aversive\"\nradius = {radius:.3}\n\
+             odour = {}\nintensity = {:.3}\n{}",
+            odour(r),
+            r.uniform(0.1, 2.0),
+            range(r, max_range)
+        )
+        .unwrap();
+    }
+    let mut kinds: Vec<String> = (0..food_kinds).map(|k| format!("food{k}")).collect();
+    kinds.extend((0..aversive_kinds).map(|k| format!("nettle{k}")));
+    for _ in 0..r.below(60) {
+        let (x, y) = point(r);
+        let kind = &kinds[r.below(kinds.len() as u64) as usize];
+        writeln!(
+            t,
+            "[[world.objects]]\nkind = \"{kind}\"\nposition = [{x:.3}, {y:.3}]"
+        )
+        .unwrap();
+    }
+    for kind in &kinds {
+        writeln!(
+            t,
+            "[[world.place]]\nkind = \"{kind}\"\ncount = {}",
+            r.below(150)
+        )
+        .unwrap();
+    }
+    for _ in 0..r.below(3) {
+        let (x0, y0) = point(r);
+        let (x1, y1) = ((x0 + 30.0).min(w), (y0 + 30.0).min(h));
+        writeln!(
+            t,
+            "[[world.areas]]\nregion = [{x0:.3}, {y0:.3}, {x1:.3}, {y1:.3}]\nkind = \"{}\"\n\
+             odour = {}\nintensity = 0.5\n{}",
+            if r.chance(0.5) { "safe" } else { "plain" },
+            odour(r),
+            range(r, max_range)
+        )
+        .unwrap();
+    }
+    if r.chance(0.5) {
+        let (x0, y0) = point(r);
+        let (x1, y1) = point(r);
+        writeln!(
+            t,
+            "[[world.teleporters]]\nentry = [{x0:.3}, {y0:.3}]\nradius = 6\nexit = [{x1:.3}, {y1:.3}]\n\
+             odour = {}\nintensity = 1\n{}",
+            odour(r),
+            range(r, max_range)
+        )
+        .unwrap();
+    }
+    if r.chance(0.5) {
+        writeln!(
+            t,
+            "[world.wanderers]\ncount = {}\nodour = {}\nintensity = 1\n{}",
+            1 + r.below(4),
+            odour(r),
+            range(r, max_range)
+        )
+        .unwrap();
+    }
+    if r.chance(0.4) {
+        writeln!(
+            t,
+            "[[world.predators]]\nstrategy = \"wander\"\neffect = \"shock\"\nodour = {}\n\
+             intensity = 1\n{}",
+            odour(r),
+            range(r, max_range)
+        )
+        .unwrap();
+    }
+    if r.chance(0.3) {
+        writeln!(
+            t,
+            "[[world.air_predators]]\neffect = \"shock\"\nstrike_radius = 10"
+        )
+        .unwrap();
+    }
+    writeln!(
+        t,
+        "[creature]\nodour = {}\nodour_intensity = {:.3}\neating = \"{}\"\nwhisker_length = {:.3}\n\
+         inhibit_smell_on_whisker = {}\nmax_rpt = {:.3}",
+        odour(r),
+        r.uniform(0.0, 1.0),
+        if r.chance(0.5) { "action" } else { "contact" },
+        r.uniform(0.0, 20.0),
+        r.chance(0.3),
+        r.uniform(0.05, 1.0)
+    )
+    .unwrap();
+    t
+}
+
+/// Everything a tick can change, printed exactly (`{:?}` of an f64 round-trips its bits).
+fn state(w: &World) -> String {
+    let mut s = format!("{:?}\n{:?}\n", w.creatures(), w.food());
+    for i in 0..w.creatures().len() {
+        writeln!(s, "{:?}", w.observation(i)).unwrap();
+    }
+    writeln!(s, "{:?}\n{:?}\n{:?}", w.actors(), w.flyers(), w.things()).unwrap();
+    writeln!(s, "{:?}", w.walls()).unwrap();
+    s
+}
+
+#[test]
+fn grid_and_brute_force_agree_to_the_bit_on_random_worlds() {
+    let mut checked = 0;
+    for seed in 0..40u64 {
+        let text = random_world(seed);
+        let setup = sim_common::setup(&text);
+        let creatures = 12;
+        let build = || {
+            World::new(
+                &setup.world,
+                &setup.creature,
+                creatures,
+                sim_common::rng(seed),
+            )
+        };
+        let (mut grid, mut brute) = match (build(), build()) {
+            (Ok(a), Ok(b)) => (a, b),
+            // A random world may leave no room for its creatures; the next seed will do.
+            _ => continue,
+        };
+        checked += 1;
+        brute.set_brute_force(true);
+        grid.set_full_sensing(true);
+        brute.set_full_sensing(true);
+        let mut cg: Vec<Random> = (0..creatures as u64)
+            .map(|i| Random(Mix(seed * 100 + i)))
+            .collect();
+        let mut cb: Vec<Random> = (0..creatures as u64)
+            .map(|i| Random(Mix(seed * 100 + i)))
+            .collect();
+        let mut jumps = Mix(seed ^ 0xABCD);
+        let [w, h] = grid.arena();
+        for tick in 0..300 {
+            if tick % 25 == 24 {
+                // Creatures anywhere, some beyond the arena and its grid.
+                for i in 0..creatures {
+                    let pose = Pose {
+                        position: Vec2::new(
+                            jumps.uniform(-0.1 * w, 1.1 * w),
+                            jumps.uniform(-0.1 * h, 1.1 * h),
+                        ),
+                        heading: sim_common::heading(jumps.uniform(0.0, 360.0)),
+                    };
+                    grid.set_pose(i, pose);
+                    brute.set_pose(i, pose);
+                }
+            }
+            grid.step(&mut cg);
+            brute.step(&mut cb);
+            let (a, b) = (state(&grid), state(&brute));
+            assert!(
+                a == b,
+                "seed {seed}, tick {tick}: the grid and the plain loops differ\n{text}"
+            );
+        }
+    }
+    eprintln!("{checked} random worlds checked");
+    assert!(checked >= 20, "only {checked} random worlds could be built");
+}
+
+#[test]
+fn the_grid_has_cells_as_wide_as_the_largest_finite_range() {
+    let w = sim_common::world(
+        r#"
+[world]
+arena = [3000, 1500]
+
+[world.kinds.near]
+class = "food"
+odour = [1, 0, 0, 0, 0, 0, 0, 0]
+range = 40
+intensity = 1
+
+[world.kinds.far]
+class = "aversive"
+odour = [0, 1, 0, 0, 0, 0, 0, 0]
+range = 75
+intensity = 1
+
+[world.kinds.everywhere]
+class = "food"
+odour = [0, 0, 1, 0, 0, 0, 0, 0]
+intensity = 1
+
+[[world.place]]
+kind = "near"
+count = 20
+
+[[world.place]]
+kind = "far"
+count = 5
+
+[[world.place]]
+kind = "everywhere"
+count = 3
+"#,
+        1,
+        1,
+    );
+    let index = w.index();
+    assert_eq!(index.smell_reach(), 75.0);
+    assert_eq!(index.cell_size(), 75.0);
+    assert_eq!(index.dimensions(), [40, 20]);
+}
