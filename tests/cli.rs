@@ -405,3 +405,48 @@ fn kept_champion_replays_to_its_recorded_fitness() {
     let out = replay(&["--trial", "0"]);
     assert!(String::from_utf8_lossy(&out.stderr).contains("another seed"));
 }
+
+/// A checkpoint written by another version of the program resumes, with a note that later
+/// generations may differ from a run made entirely with that version.
+#[test]
+fn resuming_another_versions_checkpoint_says_so() {
+    use sha2::{Digest, Sha256};
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("old");
+    run_tiny(&dir, &["--generations", "3"]);
+    let newest = checkpoints(&dir).pop().unwrap();
+    let envelope: serde_json::Value = serde_json::from_slice(&read(&newest)).unwrap();
+    // Re-sign the envelope as version 0.1.0 would have (the checksum covers `program`).
+    let old = "berry-evolve 0.1.0";
+    let fields = |checksum: Option<&str>| {
+        format!(
+            "{{\"format\":{},\"program\":{},\"config_hash\":{},\"generation\":{}{},\"payload\":{}}}",
+            envelope["format"],
+            serde_json::to_string(old).unwrap(),
+            envelope["config_hash"],
+            envelope["generation"],
+            checksum.map_or(String::new(), |c| format!(",\"checksum\":\"{c}\"")),
+            serde_json::to_string(&envelope["payload"]).unwrap()
+        )
+    };
+    let digest = Sha256::digest(fields(None).as_bytes());
+    let hex: String = digest.iter().map(|b| format!("{b:02x}")).collect();
+    std::fs::write(&newest, fields(Some(&format!("sha256:{hex}"))) + "\n").unwrap();
+    let out = bin()
+        .args(["resume", dir.to_str().unwrap(), "--generations", "4"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("note:") && stderr.contains("was written by berry-evolve 0.1.0"),
+        "{stderr}"
+    );
+    // Resuming this version's own checkpoint says nothing of the kind.
+    let out = bin()
+        .args(["resume", dir.to_str().unwrap(), "--generations", "5"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("was written by"));
+}

@@ -23,7 +23,7 @@ pub struct ExportArgs {
 
 /// Runs the subcommand.
 pub fn run(args: ExportArgs) -> anyhow::Result<()> {
-    let (_, path, payload) = load_checkpoint(&args.target)?;
+    let (_, path, payload, _) = load_checkpoint(&args.target)?;
     let mut bytes = Vec::new();
     if args.population {
         let mut w = csv::Writer::from_writer(&mut bytes);

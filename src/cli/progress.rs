@@ -52,6 +52,12 @@ impl Progress for Bar {
             bar.finish();
         }
     }
+    fn note(&mut self, message: &str) {
+        match &self.bar {
+            Some(bar) => bar.println(format!("note: {message}")),
+            None => eprintln!("note: {message}"),
+        }
+    }
 }
 
 struct Lines {
@@ -79,4 +85,7 @@ impl Progress for Lines {
         eprintln!("checkpoint {}", path.display());
     }
     fn end(&mut self) {}
+    fn note(&mut self, message: &str) {
+        eprintln!("note: {message}");
+    }
 }

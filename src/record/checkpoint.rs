@@ -6,13 +6,14 @@
 //! One compact JSON object on one line, followed by a newline, with the fields in this order:
 //!
 //! ```text
-//! {"format":1,"program":"berry-evolve 0.1.0","config_hash":"<hex>","generation":12,
+//! {"format":1,"program":"berry-evolve 0.2.0","config_hash":"<hex>","generation":12,
 //!  "checksum":"sha256:<64 hex digits>","payload":{...}}
 //! ```
 //!
 //! - `format`: this layout's version, [`CHECKPOINT_FORMAT`]. Readers refuse newer formats
 //!   (written by a newer berry-evolve) and formats older than [`OLDEST_READABLE_FORMAT`].
-//! - `program`: the writer's name and version ([`PROGRAM`]); informational.
+//! - `program`: the writer's name and version ([`PROGRAM`]); `resume` notes when it differs
+//!   from the running program (another version may compute differently).
 //! - `config_hash`: the hash of the experiment configuration, so that a run never resumes from
 //!   another experiment's checkpoint.
 //! - `generation`: the generation the payload belongs to; also in the file name,
@@ -95,7 +96,7 @@ const SHORT_HASH: usize = 12;
 pub struct Checkpoint<T> {
     /// The layout version the file was written with.
     pub format: u32,
-    /// The writer, e.g. `berry-evolve 0.1.0`.
+    /// The writer, e.g. `berry-evolve 0.2.0`.
     pub program: String,
     /// The hash of the experiment configuration that produced it.
     pub config_hash: String,

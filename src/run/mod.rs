@@ -146,6 +146,8 @@ pub trait Progress {
     fn checkpoint(&mut self, path: &Path);
     /// The run ended normally.
     fn end(&mut self);
+    /// Something the user should know that is not an error (default: ignored).
+    fn note(&mut self, _message: &str) {}
 }
 
 /// A [`Progress`] that reports nothing.
@@ -258,7 +260,17 @@ pub fn resume(
     options: RunOptions<'_>,
     progress: &mut dyn Progress,
 ) -> Result<RunSummary, RunError> {
-    let (dir, loaded_path, payload) = load_checkpoint(target)?;
+    let (dir, loaded_path, payload, program) = load_checkpoint(target)?;
+    if program != checkpoint::PROGRAM {
+        // Reproducibility is promised per version: another version may compute differently
+        // (0.2.0 changed the brains' arithmetic), so say so rather than stay silent.
+        progress.note(&format!(
+            "{} was written by {program}; this is {}. The run continues, but its later \
+             generations may differ from a run made entirely with {program}",
+            loaded_path.display(),
+            checkpoint::PROGRAM
+        ));
+    }
     let mut experiment = payload.experiment.clone();
     let experiment_path = dir.join(EXPERIMENT_FILE);
     if experiment_path.exists() {
@@ -337,14 +349,17 @@ pub fn resume(
     drive(state, population, options, progress)
 }
 
-/// Finds and reads the checkpoint to resume from. Returns (run folder, checkpoint, payload).
-pub fn load_checkpoint(target: &Path) -> Result<(PathBuf, PathBuf, CheckpointPayload), RunError> {
+/// Finds and reads the checkpoint to resume from. Returns (run folder, checkpoint, payload,
+/// the program that wrote it).
+pub fn load_checkpoint(
+    target: &Path,
+) -> Result<(PathBuf, PathBuf, CheckpointPayload, String), RunError> {
     if target.is_file() {
         let loaded = checkpoint::load::<CheckpointPayload>(target, None)?;
         check_payload_hash(target, &loaded.config_hash, &loaded.payload)?;
         check_payload_shape(target, &loaded.payload)?;
         let dir = run_dir_of_checkpoint(target);
-        return Ok((dir, target.to_path_buf(), loaded.payload));
+        return Ok((dir, target.to_path_buf(), loaded.payload, loaded.program));
     }
     let cdir = target.join(CHECKPOINT_DIR);
     remove_stale_temp_files(target).map_err(io_err(target))?;
@@ -363,6 +378,7 @@ pub fn load_checkpoint(target: &Path) -> Result<(PathBuf, PathBuf, CheckpointPay
         target.to_path_buf(),
         loaded.path.clone(),
         loaded.checkpoint.payload,
+        loaded.checkpoint.program,
     ))
 }
 
