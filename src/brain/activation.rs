@@ -63,7 +63,7 @@ impl Activation {
 
     /// Replaces every element of `y` by the function's value there (the match is outside the
     /// loop, so each loop is branch-free and vectorised).
-    #[inline]
+    #[inline(always)]
     pub fn apply_slice(self, y: &mut [f64]) {
         match self {
             Activation::Tanh => tanh_slice(y),
@@ -150,7 +150,7 @@ pub fn tanh(x: f64) -> f64 {
 }
 
 /// [`tanh`] of every element, in place (vectorised).
-#[inline]
+#[inline(always)]
 pub fn tanh_slice(y: &mut [f64]) {
     for v in y {
         *v = tanh(*v);
@@ -158,7 +158,7 @@ pub fn tanh_slice(y: &mut [f64]) {
 }
 
 /// [`nan_to_zero`] of [`tanh`] for every element, in place: output units (vectorised).
-#[inline]
+#[inline(always)]
 pub fn tanh_outputs(y: &mut [f64]) {
     for v in y {
         *v = nan_to_zero(tanh(*v));
@@ -175,7 +175,7 @@ pub fn logistic(x: f64) -> f64 {
 }
 
 /// [`logistic`] of every element, in place (vectorised).
-#[inline]
+#[inline(always)]
 pub fn logistic_slice(y: &mut [f64]) {
     for v in y {
         *v = logistic(*v);
