@@ -26,7 +26,7 @@
 
 use crate::geometry::{Segment, Vec2};
 use crate::sim::food::{Aversive, Food};
-use crate::sim::smell::Smell;
+use crate::sim::smell::{Shade, Smell};
 use crate::sim::wall::{BoxedSegment, Walls};
 
 /// Up to this many fixed walls, a box query filters the whole wall list (a few comparisons
@@ -154,8 +154,11 @@ pub struct Scratch {
     pub food: Vec<u32>,
     /// Aversive candidates of the last smell query, in increasing index order.
     pub aversives: Vec<u32>,
-    /// Per receptor: the opaque walls (fixed and closed doors) that may meet its smell box.
-    pub near: [Vec<BoxedSegment>; 2],
+    /// The opaque walls (fixed and closed doors) that may meet the smell box of the last
+    /// [`StaticIndex::near_opaque`] query.
+    pub near: Vec<BoxedSegment>,
+    /// Per receptor: `near` as that receptor sees it (see [`Shade`]).
+    pub shades: [Vec<Shade>; 2],
     /// The walls (fixed and closed doors) that may block a move, see
     /// [`StaticIndex::blocking_near`].
     pub blocking: Vec<Segment>,
@@ -313,7 +316,8 @@ impl StaticIndex {
             bits: vec![0; n / 64 + 1],
             food: Vec::with_capacity(self.food_count),
             aversives: Vec::with_capacity(self.aversive_count),
-            near: [
+            near: Vec::with_capacity(opaque_total),
+            shades: [
                 Vec::with_capacity(opaque_total),
                 Vec::with_capacity(opaque_total),
             ],
@@ -419,6 +423,24 @@ impl StaticIndex {
         }
         let g = &self.geometry;
         let c = g.cells(lo, hi);
+        if bits.len() == 1 {
+            // Fewer than 64 objects: the bitset is one word, kept in a register (no first/last
+            // word bookkeeping, no stores to clear it).
+            let mut b = 0u64;
+            for y in c.y0..=c.y1 {
+                for &k in lists.row(g.nx, y, c.x0, c.x1) {
+                    b |= 1u64 << (k & 63);
+                }
+            }
+            for &k in always {
+                b |= 1u64 << (k & 63);
+            }
+            while b != 0 {
+                out.push(b.trailing_zeros());
+                b &= b - 1;
+            }
+            return;
+        }
         let (mut first, mut last) = (usize::MAX, 0);
         let mut mark = |k: u32| {
             let w = (k >> 6) as usize;
@@ -498,31 +520,30 @@ impl StaticIndex {
         );
     }
 
-    /// The smell box of a receptor at `receptor` (the largest finite range around it) and,
-    /// into `scratch.near[which]`, the opaque walls of `opaque` (fixed ones first, in order,
+    /// The smell box of receptors in the box `[lo, hi]` (the largest finite range around it)
+    /// and, into `scratch.near`, the opaque walls of `opaque` (fixed ones first, in order,
     /// then the closed opaque doors) that may meet it.
     pub fn near_opaque(
         &self,
-        receptor: Vec2,
+        lo: Vec2,
+        hi: Vec2,
         opaque: &[BoxedSegment],
         scratch: &mut Scratch,
-        which: usize,
     ) -> SmellBox {
         let r = self.smell_reach + self.slack;
-        let (lo, hi) = (receptor - r, receptor + r);
+        let (lo, hi) = (lo - r, hi + r);
         let Scratch { bits, near, .. } = scratch;
-        let out = &mut near[which];
-        out.clear();
+        near.clear();
         if self.fixed_opaque <= FEW_WALLS {
-            out.extend(opaque.iter().filter(|w| w.may_meet(lo, hi)));
+            near.extend(opaque.iter().filter(|w| w.may_meet(lo, hi)));
             return SmellBox { lo, hi };
         }
         self.each_wall(&self.opaque, lo, hi, bits, |k| {
             if opaque[k].may_meet(lo, hi) {
-                out.push(opaque[k]);
+                near.push(opaque[k]);
             }
         });
-        out.extend(
+        near.extend(
             opaque[self.fixed_opaque..]
                 .iter()
                 .filter(|d| d.may_meet(lo, hi)),
