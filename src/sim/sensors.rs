@@ -323,26 +323,26 @@ impl Surroundings<'_> {
         );
         for &k in &scratch.food {
             let f = &self.food[k as usize];
-            let scale = f.smell_scale();
+            let scale = || f.smell_scale();
             accumulate_pair(&mut acc, tips, f.position, &f.smell, scale, c, near, all);
         }
         for &k in &scratch.aversives {
             let a = &self.aversives[k as usize];
-            accumulate_pair(&mut acc, tips, a.position, &a.smell, 1.0, c, near, all);
+            accumulate_pair(&mut acc, tips, a.position, &a.smell, || 1.0, c, near, all);
         }
         for a in self.areas {
-            accumulate_pair(&mut acc, tips, a.centre(), &a.smell, 1.0, c, near, all);
+            accumulate_pair(&mut acc, tips, a.centre(), &a.smell, || 1.0, c, near, all);
         }
         for (k, t) in self.things.iter().enumerate() {
             if k != self.skip_thing && !t.smell.silent {
-                accumulate_pair(&mut acc, tips, t.position, &t.smell, 1.0, c, near, all);
+                accumulate_pair(&mut acc, tips, t.position, &t.smell, || 1.0, c, near, all);
             }
         }
         if !body.smell.silent {
             for (j, other) in self.creatures.iter().enumerate() {
                 if j != me && other.alive {
                     let p = other.pose.position;
-                    accumulate_pair(&mut acc, tips, p, &body.smell, 1.0, c, near, all);
+                    accumulate_pair(&mut acc, tips, p, &body.smell, || 1.0, c, near, all);
                 }
             }
         }

@@ -144,7 +144,9 @@ pub fn visible_from(receptor: Vec2, centre: Vec2, shades: &[Shade]) -> bool {
 /// in the caller's order, so each receptor has the same bits as [`accumulate`] with `all`.
 /// The occlusion test runs only for a finite squared distance inside the range, so with
 /// finite receptor and centre, as [`visible_from`] needs. The silence, scale and box tests
-/// are done once for both receptors.
+/// are done once for both receptors, and `scale` (a sum and a division for food whose smell
+/// follows its amount) is only computed for a thing in range of a receptor: skipping a thing
+/// of scale 0 after the range tests rather than before adds nothing either way.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub fn accumulate_pair(
@@ -152,22 +154,28 @@ pub fn accumulate_pair(
     receptors: [Vec2; 2],
     centre: Vec2,
     smell: &Smell,
-    scale: f64,
+    scale: impl FnOnce() -> f64,
     c: f64,
     (lo, hi, shades): (Vec2, Vec2, [&[Shade]; 2]),
     all: &[BoxedSegment],
 ) {
-    if smell.silent || scale == 0.0 {
+    if smell.silent {
+        return;
+    }
+    let f = receptors.map(|r| falloff(r.distance_squared(centre), c, smell.range_squared));
+    if f[0] == 0.0 && f[1] == 0.0 {
+        return;
+    }
+    let scale = scale();
+    if scale == 0.0 {
         return;
     }
     let inside = centre.x >= lo.x && centre.x <= hi.x && centre.y >= lo.y && centre.y <= hi.y;
     for i in 0..2 {
-        let receptor = receptors[i];
-        let d2 = receptor.distance_squared(centre);
-        let f = falloff(d2, c, smell.range_squared);
-        if f == 0.0 {
+        if f[i] == 0.0 {
             continue;
         }
+        let receptor = receptors[i];
         let seen = if inside {
             visible_from(receptor, centre, shades[i])
         } else {
@@ -176,7 +184,7 @@ pub fn accumulate_pair(
         if !seen {
             continue;
         }
-        let f = f * scale;
+        let f = f[i] * scale;
         for (a, e) in acc[i].iter_mut().zip(smell.emission.iter()) {
             *a += f * e;
         }
