@@ -4,8 +4,10 @@
 //!
 //! Each sense comes twice: the plain loops over every object (`*_all`, the reference the
 //! tests compare against) and the same tests run only on the candidates the world's
-//! [`StaticIndex`] yields (what the tick loop uses). Candidates come in index order and the
-//! tests are the same functions, so both give the same bits.
+//! [`StaticIndex`] yields (what the tick loop uses), for both whiskers and both smell
+//! receptors in one pass. Candidates come in index order, and the tests are the same
+//! functions or give provably the same answers (a yes/no test does not depend on extra
+//! candidates; see [`crate::sim::smell::Shade`]), so both give the same bits.
 
 use crate::geometry::{circles_touch, segment_touches_circle, segments_intersect, Segment, Vec2};
 use crate::sim::area::Area;
