@@ -26,7 +26,7 @@
 
 use crate::geometry::{Segment, Vec2};
 use crate::sim::food::{Aversive, Food};
-use crate::sim::smell::Smell;
+use crate::sim::smell::{Shade, Smell};
 use crate::sim::wall::{BoxedSegment, Walls};
 
 /// Up to this many fixed walls, a box query filters the whole wall list (a few comparisons
@@ -58,20 +58,26 @@ struct Geometry {
     cell: f64,
     nx: usize,
     ny: usize,
+    /// `nx − 1` and `ny − 1` as floats, converted once (an unsigned-to-float conversion is a
+    /// dozen instructions on x86-64, and every query clamps four coordinates).
+    last_x: f64,
+    last_y: f64,
 }
 
 impl Geometry {
     /// Column (or row) of coordinate `t` measured from the origin, clamped to `0..n`. NaN maps
     /// to 0 (queries with NaN bounds take every cell, see [`Geometry::cells`]). Truncation is
     /// the floor here since negative values map to 0 anyway (and `floor` is a library call
-    /// on baseline x86-64).
+    /// on baseline x86-64). `last` is `n − 1` as a float. Below it, `k` is under
+    /// [`MAX_CELLS`], so the conversion through `u32` (one instruction, where one to `usize`
+    /// takes several) gives the same column.
     #[inline]
-    fn index(t: f64, inv_cell: f64, n: usize) -> usize {
+    fn index(t: f64, inv_cell: f64, n: usize, last: f64) -> usize {
         let k = t * inv_cell;
-        if k >= (n - 1) as f64 {
+        if k >= last {
             n - 1
         } else if k > 0.0 {
-            k as usize
+            k as u32 as usize
         } else {
             0
         }
@@ -79,12 +85,12 @@ impl Geometry {
 
     #[inline]
     fn col(&self, x: f64) -> usize {
-        Self::index(x - self.origin.x, self.inv_cell, self.nx)
+        Self::index(x - self.origin.x, self.inv_cell, self.nx, self.last_x)
     }
 
     #[inline]
     fn row(&self, y: f64) -> usize {
-        Self::index(y - self.origin.y, self.inv_cell, self.ny)
+        Self::index(y - self.origin.y, self.inv_cell, self.ny, self.last_y)
     }
 
     /// The cells meeting the box `[lo, hi]`; every cell when a bound is NaN.
@@ -154,8 +160,11 @@ pub struct Scratch {
     pub food: Vec<u32>,
     /// Aversive candidates of the last smell query, in increasing index order.
     pub aversives: Vec<u32>,
-    /// Per receptor: the opaque walls (fixed and closed doors) that may meet its smell box.
-    pub near: [Vec<BoxedSegment>; 2],
+    /// The opaque walls (fixed and closed doors) that may meet the smell box of the last
+    /// [`StaticIndex::near_opaque`] query.
+    pub near: Vec<BoxedSegment>,
+    /// Per receptor: `near` as that receptor sees it (see [`Shade`]).
+    pub shades: [Vec<Shade>; 2],
     /// The walls (fixed and closed doors) that may block a move, see
     /// [`StaticIndex::blocking_near`].
     pub blocking: Vec<Segment>,
@@ -258,12 +267,15 @@ impl StaticIndex {
         while side(w, cell) * side(h, cell) > MAX_CELLS {
             cell *= 2.0;
         }
+        let (nx, ny) = (side(w, cell), side(h, cell));
         let geometry = Geometry {
             origin: Vec2::ZERO,
             inv_cell: 1.0 / cell,
             cell,
-            nx: side(w, cell),
-            ny: side(h, cell),
+            nx,
+            ny,
+            last_x: (nx - 1) as f64,
+            last_y: (ny - 1) as f64,
         };
         let slack = 1e-6 * (1.0 + extent + smell_reach + reach);
         let cells = geometry.nx * geometry.ny;
@@ -313,7 +325,8 @@ impl StaticIndex {
             bits: vec![0; n / 64 + 1],
             food: Vec::with_capacity(self.food_count),
             aversives: Vec::with_capacity(self.aversive_count),
-            near: [
+            near: Vec::with_capacity(opaque_total),
+            shades: [
                 Vec::with_capacity(opaque_total),
                 Vec::with_capacity(opaque_total),
             ],
@@ -419,6 +432,24 @@ impl StaticIndex {
         }
         let g = &self.geometry;
         let c = g.cells(lo, hi);
+        if bits.len() == 1 {
+            // Fewer than 64 objects: the bitset is one word, kept in a register (no first/last
+            // word bookkeeping, no stores to clear it).
+            let mut b = 0u64;
+            for y in c.y0..=c.y1 {
+                for &k in lists.row(g.nx, y, c.x0, c.x1) {
+                    b |= 1u64 << (k & 63);
+                }
+            }
+            for &k in always {
+                b |= 1u64 << (k & 63);
+            }
+            while b != 0 {
+                out.push(b.trailing_zeros());
+                b &= b - 1;
+            }
+            return;
+        }
         let (mut first, mut last) = (usize::MAX, 0);
         let mut mark = |k: u32| {
             let w = (k >> 6) as usize;
@@ -498,31 +529,30 @@ impl StaticIndex {
         );
     }
 
-    /// The smell box of a receptor at `receptor` (the largest finite range around it) and,
-    /// into `scratch.near[which]`, the opaque walls of `opaque` (fixed ones first, in order,
+    /// The smell box of receptors in the box `[lo, hi]` (the largest finite range around it)
+    /// and, into `scratch.near`, the opaque walls of `opaque` (fixed ones first, in order,
     /// then the closed opaque doors) that may meet it.
     pub fn near_opaque(
         &self,
-        receptor: Vec2,
+        lo: Vec2,
+        hi: Vec2,
         opaque: &[BoxedSegment],
         scratch: &mut Scratch,
-        which: usize,
     ) -> SmellBox {
         let r = self.smell_reach + self.slack;
-        let (lo, hi) = (receptor - r, receptor + r);
+        let (lo, hi) = (lo - r, hi + r);
         let Scratch { bits, near, .. } = scratch;
-        let out = &mut near[which];
-        out.clear();
+        near.clear();
         if self.fixed_opaque <= FEW_WALLS {
-            out.extend(opaque.iter().filter(|w| w.may_meet(lo, hi)));
+            near.extend(opaque.iter().filter(|w| w.may_meet(lo, hi)));
             return SmellBox { lo, hi };
         }
         self.each_wall(&self.opaque, lo, hi, bits, |k| {
             if opaque[k].may_meet(lo, hi) {
-                out.push(opaque[k]);
+                near.push(opaque[k]);
             }
         });
-        out.extend(
+        near.extend(
             opaque[self.fixed_opaque..]
                 .iter()
                 .filter(|d| d.may_meet(lo, hi)),

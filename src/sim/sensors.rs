@@ -4,16 +4,18 @@
 //!
 //! Each sense comes twice: the plain loops over every object (`*_all`, the reference the
 //! tests compare against) and the same tests run only on the candidates the world's
-//! [`StaticIndex`] yields (what the tick loop uses). Candidates come in index order and the
-//! tests are the same functions, so both give the same bits.
+//! [`StaticIndex`] yields (what the tick loop uses), for both whiskers and both smell
+//! receptors in one pass. Candidates come in index order, and the tests are the same
+//! functions or give provably the same answers (a yes/no test does not depend on extra
+//! candidates; see [`crate::sim::smell::Shade`]), so both give the same bits.
 
 use crate::geometry::{circles_touch, segment_touches_circle, segments_intersect, Segment, Vec2};
 use crate::sim::area::Area;
 use crate::sim::controller::{ObservationLayout, SensorGroup};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::Thing;
-use crate::sim::grid::{Scratch, SmellBox, StaticIndex};
-use crate::sim::smell::{accumulate, accumulate_near, saturate, Smell};
+use crate::sim::grid::{Scratch, StaticIndex};
+use crate::sim::smell::{accumulate, accumulate_pair, saturate, Shade, Smell};
 use crate::sim::wall::BoxedSegment;
 use crate::sim::world::Creature;
 
@@ -232,10 +234,71 @@ impl Surroundings<'_> {
             })
     }
 
+    /// [`Surroundings::whisker_touches`] for both whiskers from `from` to `tips` at once: one
+    /// grid query over the box of both whiskers hands out the candidates (a superset of each
+    /// whisker's own, and a yes/no answer does not depend on extra candidates or their
+    /// order), each candidate is tested against each whisker not yet touching, and the search
+    /// stops once both touch.
+    pub fn whisker_pair(&self, me: usize, body: &Body, from: Vec2, tips: [Vec2; 2]) -> [bool; 2] {
+        let whiskers = [Segment::new(from, tips[0]), Segment::new(from, tips[1])];
+        let lo = [from.min(tips[0]), from.min(tips[1])];
+        let hi = [from.max(tips[0]), from.max(tips[1])];
+        let (ulo, uhi) = (lo[0].min(lo[1]), hi[0].max(hi[1]));
+        let index = self.index;
+        let mut touch = [false; 2];
+        let mut wall = |w: &BoxedSegment| {
+            // Most walls miss the box of both whiskers: one box test rejects them for both.
+            if !w.may_meet(ulo, uhi) {
+                return false;
+            }
+            for i in 0..2 {
+                if !touch[i]
+                    && w.may_meet(lo[i], hi[i])
+                    && segments_intersect(&whiskers[i], &w.segment)
+                {
+                    touch[i] = true;
+                }
+            }
+            touch[0] && touch[1]
+        };
+        if index.any_fixed_wall(ulo, uhi, |k| wall(&self.walls[k]))
+            || self.walls[index.fixed_felt()..].iter().any(&mut wall)
+        {
+            return touch;
+        }
+        let mut circle = |centre: Vec2, radius: f64| {
+            for i in 0..2 {
+                if !touch[i] && segment_touches_circle(&whiskers[i], centre, radius) {
+                    touch[i] = true;
+                }
+            }
+            touch[0] && touch[1]
+        };
+        let _ = self
+            .creatures
+            .iter()
+            .enumerate()
+            .any(|(j, c)| j != me && c.alive && circle(c.pose.position, body.radius))
+            || index.any_aversive(ulo, uhi, |k| {
+                let a = &self.aversives[k];
+                a.radius > 0.0 && circle(a.position, a.radius)
+            })
+            || index.any_food(ulo, uhi, |k| {
+                let f = &self.food[k];
+                f.radius > 0.0 && circle(f.position, f.radius)
+            })
+            || self.things.iter().enumerate().any(|(k, t)| {
+                k != self.skip_thing && t.felt && t.radius > 0.0 && circle(t.position, t.radius)
+            });
+        touch
+    }
+
     /// [`Surroundings::smell_at_all`] at both receptors `tips`: the food and aversive objects
     /// come from the grid (those within the largest finite range of either receptor, and
-    /// those of unlimited range), in index order; a source inside a receptor's smell box is
-    /// tested for occlusion against the opaque walls that meet that box only.
+    /// those of unlimited range), in index order; a source inside the smell box of the pair
+    /// (the largest finite range around both receptors) is tested for occlusion against the
+    /// opaque walls that meet that box only. One pass over the sources serves both receptors;
+    /// each receptor still adds its terms in the order of [`Surroundings::smell_at_all`].
     pub fn smell_pair(
         &self,
         me: usize,
@@ -244,60 +307,49 @@ impl Surroundings<'_> {
         scratch: &mut Scratch,
     ) -> [[f64; 8]; 2] {
         let index = self.index;
-        index.smell_sources(tips[0].min(tips[1]), tips[0].max(tips[1]), scratch);
-        let boxes = [
-            index.near_opaque(tips[0], self.opaque, scratch, 0),
-            index.near_opaque(tips[1], self.opaque, scratch, 1),
-        ];
-        [
-            self.smell_near(me, body, tips[0], boxes[0], &scratch.near[0], scratch),
-            self.smell_near(me, body, tips[1], boxes[1], &scratch.near[1], scratch),
-        ]
-    }
-
-    /// One receptor of [`Surroundings::smell_pair`]: the sums of
-    /// [`Surroundings::smell_at_all`] in the same order over the candidates of `scratch`,
-    /// with `near` (the opaque walls meeting `bx`) as the occluders of sources inside `bx`.
-    fn smell_near(
-        &self,
-        me: usize,
-        body: &Body,
-        receptor: Vec2,
-        bx: SmellBox,
-        near: &[BoxedSegment],
-        scratch: &Scratch,
-    ) -> [f64; 8] {
-        let mut acc = [0.0; 8];
+        let (lo, hi) = (tips[0].min(tips[1]), tips[0].max(tips[1]));
+        index.smell_sources(lo, hi, scratch);
+        let bx = index.near_opaque(lo, hi, self.opaque, scratch);
+        let Scratch { near, shades, .. } = scratch;
+        for (shades, &tip) in shades.iter_mut().zip(tips.iter()) {
+            shades.clear();
+            shades.extend(near.iter().map(|w| Shade::new(tip, w)));
+        }
+        let scratch = &*scratch;
+        let mut acc = [[0.0; 8]; 2];
         let (c, all) = (self.smell_c, self.opaque);
-        let near = (bx.lo, bx.hi, near);
+        let near = (
+            bx.lo,
+            bx.hi,
+            [&scratch.shades[0][..], &scratch.shades[1][..]],
+        );
         for &k in &scratch.food {
             let f = &self.food[k as usize];
-            let scale = f.smell_scale();
-            accumulate_near(
-                &mut acc, receptor, f.position, &f.smell, scale, c, near, all,
-            );
+            let scale = || f.smell_scale();
+            accumulate_pair(&mut acc, tips, f.position, &f.smell, scale, c, near, all);
         }
         for &k in &scratch.aversives {
             let a = &self.aversives[k as usize];
-            accumulate_near(&mut acc, receptor, a.position, &a.smell, 1.0, c, near, all);
+            accumulate_pair(&mut acc, tips, a.position, &a.smell, || 1.0, c, near, all);
         }
         for a in self.areas {
-            accumulate_near(&mut acc, receptor, a.centre(), &a.smell, 1.0, c, near, all);
+            accumulate_pair(&mut acc, tips, a.centre(), &a.smell, || 1.0, c, near, all);
         }
         for (k, t) in self.things.iter().enumerate() {
             if k != self.skip_thing && !t.smell.silent {
-                accumulate_near(&mut acc, receptor, t.position, &t.smell, 1.0, c, near, all);
+                accumulate_pair(&mut acc, tips, t.position, &t.smell, || 1.0, c, near, all);
             }
         }
         if !body.smell.silent {
             for (j, other) in self.creatures.iter().enumerate() {
                 if j != me && other.alive {
                     let p = other.pose.position;
-                    accumulate_near(&mut acc, receptor, p, &body.smell, 1.0, c, near, all);
+                    accumulate_pair(&mut acc, tips, p, &body.smell, || 1.0, c, near, all);
                 }
             }
         }
-        saturate(&mut acc);
+        saturate(&mut acc[0]);
+        saturate(&mut acc[1]);
         acc
     }
 
@@ -332,10 +384,7 @@ impl Surroundings<'_> {
     ) -> Senses {
         let pose = self.creatures[me].pose;
         let tips = body.whisker_tips(pose.position, pose.heading);
-        let whiskers = [
-            self.whisker_touches(me, body, pose.position, tips[0]),
-            self.whisker_touches(me, body, pose.position, tips[1]),
-        ];
+        let whiskers = self.whisker_pair(me, body, pose.position, tips);
         let inhibited = inhibit_smell && (whiskers[0] || whiskers[1]);
         let smell = if smell && !inhibited {
             self.smell_pair(me, body, tips, scratch)

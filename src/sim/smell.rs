@@ -87,37 +87,107 @@ pub fn accumulate(
     }
 }
 
-/// [`accumulate`] with the occluders chosen after the range test: `near` (the opaque walls
-/// that may meet the box `[lo, hi]` around the receptor) for a thing whose centre lies in the
-/// box, since the segment to it lies in the box too, else `all`. The same bits as
-/// [`accumulate`] with `all`.
+/// An opaque wall as seen from one receptor: the box `[x0, x1] × [y0, y1]` (bounds may be
+/// infinite) a source's centre must lie in for the segment from the receptor to it to meet
+/// the wall's box. For a finite receptor and centre, "the centre is in the box" is exactly
+/// [`BoxedSegment::may_meet`] of the segment's box (the receptor's side of the wall is
+/// settled once per receptor instead of once per source), so [`visible_from`] gives the
+/// answers of [`visible`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Shade {
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+    segment: Segment,
+}
+
+impl Shade {
+    /// `wall` seen from `receptor`. The segment's box misses the wall's box on the low x side
+    /// only when both ends are below `wall.lo.x`, which the receptor settles: if it is below,
+    /// the centre must not be (x0 = lo.x), else nothing is required (x0 = −∞). Likewise for
+    /// the other three sides. NaN bounds require nothing, as in `may_meet`.
+    #[inline]
+    pub fn new(receptor: Vec2, wall: &BoxedSegment) -> Shade {
+        let (lo, hi) = (wall.lo, wall.hi);
+        let pick = |cut: bool, v: f64, none: f64| if cut { v } else { none };
+        Shade {
+            x0: pick(receptor.x < lo.x, lo.x, f64::NEG_INFINITY),
+            x1: pick(hi.x < receptor.x, hi.x, f64::INFINITY),
+            y0: pick(receptor.y < lo.y, lo.y, f64::NEG_INFINITY),
+            y1: pick(hi.y < receptor.y, hi.y, f64::INFINITY),
+            segment: wall.segment,
+        }
+    }
+}
+
+/// [`visible`] for a finite `receptor` and `centre`, with the opaque walls given as the
+/// receptor's [`Shade`]s: the same answers.
+#[inline]
+pub fn visible_from(receptor: Vec2, centre: Vec2, shades: &[Shade]) -> bool {
+    let line = Segment::new(receptor, centre);
+    !shades.iter().any(|s| {
+        centre.x >= s.x0
+            && centre.x <= s.x1
+            && centre.y >= s.y0
+            && centre.y <= s.y1
+            && segments_intersect(&line, &s.segment)
+    })
+}
+
+/// [`accumulate`] at both receptors of a creature at once, into `acc[0]` and `acc[1]`, with
+/// the occluders chosen per source: `shades[i]` (the opaque walls that may meet the box
+/// `[lo, hi]`, which holds both receptors, as receptor i sees them) for a thing whose centre
+/// lies in the box, since the segment from either receptor to it lies in the box too, else
+/// `all`. Which walls are tested does not change the yes/no answer of [`visible`] as long as
+/// every wall that may meet the segment is among them, and each receptor's sum gets its terms
+/// in the caller's order, so each receptor has the same bits as [`accumulate`] with `all`.
+/// The occlusion test runs only for a finite squared distance inside the range, so with
+/// finite receptor and centre, as [`visible_from`] needs. The silence, scale and box tests
+/// are done once for both receptors, and `scale` (a sum and a division for food whose smell
+/// follows its amount) is only computed for a thing in range of a receptor: skipping a thing
+/// of scale 0 after the range tests rather than before adds nothing either way.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub fn accumulate_near(
-    acc: &mut [f64; 8],
-    receptor: Vec2,
+pub fn accumulate_pair(
+    acc: &mut [[f64; 8]; 2],
+    receptors: [Vec2; 2],
     centre: Vec2,
     smell: &Smell,
-    scale: f64,
+    scale: impl FnOnce() -> f64,
     c: f64,
-    (lo, hi, near): (Vec2, Vec2, &[BoxedSegment]),
+    (lo, hi, shades): (Vec2, Vec2, [&[Shade]; 2]),
     all: &[BoxedSegment],
 ) {
-    if smell.silent || scale == 0.0 {
+    if smell.silent {
         return;
     }
-    let d2 = receptor.distance_squared(centre);
-    let f = falloff(d2, c, smell.range_squared);
-    if f == 0.0 {
+    let f = receptors.map(|r| falloff(r.distance_squared(centre), c, smell.range_squared));
+    if f[0] == 0.0 && f[1] == 0.0 {
+        return;
+    }
+    let scale = scale();
+    if scale == 0.0 {
         return;
     }
     let inside = centre.x >= lo.x && centre.x <= hi.x && centre.y >= lo.y && centre.y <= hi.y;
-    if !visible(receptor, centre, if inside { near } else { all }) {
-        return;
-    }
-    let f = f * scale;
-    for (a, e) in acc.iter_mut().zip(smell.emission.iter()) {
-        *a += f * e;
+    for i in 0..2 {
+        if f[i] == 0.0 {
+            continue;
+        }
+        let receptor = receptors[i];
+        let seen = if inside {
+            visible_from(receptor, centre, shades[i])
+        } else {
+            visible(receptor, centre, all)
+        };
+        if !seen {
+            continue;
+        }
+        let f = f[i] * scale;
+        for (a, e) in acc[i].iter_mut().zip(smell.emission.iter()) {
+            *a += f * e;
+        }
     }
 }
 
