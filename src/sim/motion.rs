@@ -133,7 +133,19 @@ pub struct MoveOutcome {
 /// frame (y down) a positive angle turns clockwise on screen, towards the creature's right.
 #[inline]
 pub fn rotate(v: Vec2, angle: f64) -> Vec2 {
-    rotate_sc(v, libm::sin(angle), libm::cos(angle))
+    let (s, c) = sin_cos(angle);
+    rotate_sc(v, s, c)
+}
+
+/// `(libm::sin(x), libm::cos(x))`, without the calls for x = ±0, whose results libm gives
+/// exactly: sin(±0) = ±0 and cos(±0) = 1 (a straight move turns by exactly 0).
+#[inline]
+fn sin_cos(x: f64) -> (f64, f64) {
+    if x == 0.0 {
+        (x, 1.0)
+    } else {
+        (libm::sin(x), libm::cos(x))
+    }
 }
 
 /// Rotation by an angle given by its sine and cosine.
@@ -336,15 +348,6 @@ impl<'a, T> Shortlist<'a, T> {
         list
     }
 
-    /// Nothing on the list.
-    #[inline]
-    fn is_empty(&self) -> bool {
-        match self.len {
-            Some(n) => n == 0,
-            None => self.all.is_empty(),
-        }
-    }
-
     /// The listed items in their original order.
     #[inline]
     fn iter(&self) -> ShortlistIter<'_, 'a, T> {
@@ -426,6 +429,14 @@ struct PreparedWall {
     touching: bool,
     /// `point_segment_distance_squared(start, wall)` when `touching` (else unused).
     d0: f64,
+    /// Where the start lies against the box: `start.x < lo.x`, `hi.x < start.x`,
+    /// `start.y < lo.y`, `hi.y < start.y`. The box of start → p1 misses the wall's box on a
+    /// side exactly when the start and p1 both lie beyond it (max(s, p) < l ⟺ s < l ∧ p < l
+    /// for numbers), so each step compares p1 alone.
+    start_lo_x: bool,
+    start_hi_x: bool,
+    start_lo_y: bool,
+    start_hi_y: bool,
 }
 
 impl PreparedWall {
@@ -439,6 +450,10 @@ impl PreparedWall {
         len2: 0.0,
         touching: false,
         d0: 0.0,
+        start_lo_x: false,
+        start_hi_x: false,
+        start_lo_y: false,
+        start_hi_y: false,
     };
 
     #[inline]
@@ -460,6 +475,10 @@ impl PreparedWall {
             } else {
                 0.0
             },
+            start_lo_x: start.x < lo.x,
+            start_hi_x: hi.x < start.x,
+            start_lo_y: start.y < lo.y,
+            start_hi_y: hi.y < start.y,
         }
     }
 
@@ -476,29 +495,29 @@ impl PreparedWall {
     }
 
     /// `wall_blocks(start, p1, path, path_box, r, wall)` for the start the wall was prepared
-    /// with.
+    /// with, where `path` is start → p1 (finite) and `r2` is `r * r`.
     #[inline]
-    fn blocks(&self, p1: Vec2, path: &Segment, path_box: (Vec2, Vec2), r: f64) -> bool {
-        let (plo, phh) = path_box;
-        let path_misses =
-            phh.x < self.lo.x || self.hi.x < plo.x || phh.y < self.lo.y || self.hi.y < plo.y;
-        let end_misses = p1.x < self.grown_lo.x
-            || p1.x > self.grown_hi.x
-            || p1.y < self.grown_lo.y
-            || p1.y > self.grown_hi.y;
-        if path_misses && end_misses {
-            return false;
-        }
+    fn blocks(&self, p1: Vec2, path: &Segment, r2: f64) -> bool {
+        // `wall_blocks`'s box rejection of the path (see `start_lo_x`).
+        let path_misses = (self.start_lo_x & (p1.x < self.lo.x))
+            | (self.start_hi_x & (self.hi.x < p1.x))
+            | (self.start_lo_y & (p1.y < self.lo.y))
+            | (self.start_hi_y & (self.hi.y < p1.y));
         // segments_intersect begins with exactly the `path_misses` rejection (eq. 5–8), and
-        // circle_touches_segment with the `end_misses` one (eq. 2–3).
+        // circle_touches_segment with the `end_misses` one (eq. 2–3); `wall_blocks` returns
+        // false when both hold, which the two tests below do too.
         let crosses = !path_misses && segments_intersect(path, &self.wall);
         let mut d1 = f64::NAN;
         if !crosses {
+            let end_misses = (p1.x < self.grown_lo.x)
+                | (p1.x > self.grown_hi.x)
+                | (p1.y < self.grown_lo.y)
+                | (p1.y > self.grown_hi.y);
             if end_misses {
                 return false;
             }
             d1 = self.distance_squared(p1);
-            let touches_end = d1 <= r * r;
+            let touches_end = d1 <= r2;
             if !touches_end {
                 return false;
             }
@@ -580,6 +599,78 @@ fn search(
     (lo, cause)
 }
 
+/// The search of [`plan_move`] over prepared shortlists: the walls and bodies that may block
+/// a path within the box (`lo`, `hi`) of start → target (finite, within ±1e300), prepared
+/// for `start`. `None` (nothing searched) when there are more than [`PREPARED_LEN`] of a kind.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn prepared_search(
+    start: Vec2,
+    target: Vec2,
+    radius: f64,
+    lo: Vec2,
+    hi: Vec2,
+    steps: u32,
+    cause: Verdict,
+    blockers: &Blockers,
+) -> Option<(Vec2, Verdict)> {
+    let r2 = radius * radius;
+    // The common search, a body pushing against one wall: a loop over that wall alone.
+    let mut near = blockers
+        .segments
+        .iter()
+        .filter(|w| wall_may_block(lo, hi, radius, w));
+    if let (Some(only), None) = (near.next(), near.next()) {
+        if !blockers
+            .circles
+            .iter()
+            .any(|c| circle_may_block(lo, hi, radius, c))
+        {
+            let w = PreparedWall::new(only, start, radius);
+            return Some(search(start, target, steps, cause, |p1| {
+                if w.blocks(p1, &Segment::new(start, p1), r2) {
+                    Verdict::Wall
+                } else {
+                    Verdict::Free
+                }
+            }));
+        }
+    }
+    let mut pw = [PreparedWall::EMPTY; PREPARED_LEN];
+    let mut nw = 0;
+    for w in blockers.segments {
+        if wall_may_block(lo, hi, radius, w) {
+            if nw == PREPARED_LEN {
+                return None;
+            }
+            pw[nw] = PreparedWall::new(w, start, radius);
+            nw += 1;
+        }
+    }
+    let mut pc = [PreparedCircle::EMPTY; PREPARED_LEN];
+    let mut nc = 0;
+    for c in blockers.circles {
+        if circle_may_block(lo, hi, radius, c) {
+            if nc == PREPARED_LEN {
+                return None;
+            }
+            pc[nc] = PreparedCircle::new(c, start, radius);
+            nc += 1;
+        }
+    }
+    let (pw, pc) = (&pw[..nw], &pc[..nc]);
+    Some(search(start, target, steps, cause, |p1| {
+        let path = Segment::new(start, p1);
+        if pw.iter().any(|w| w.blocks(p1, &path, r2)) {
+            Verdict::Wall
+        } else if pc.iter().any(|c| c.blocks(p1)) {
+            Verdict::Body
+        } else {
+            Verdict::Free
+        }
+    }))
+}
+
 /// §8.2: may a body of `radius` move along the straight path `p0 → p1`? Yes when the segment
 /// p0 → p1 touches no blocking segment and the body placed at p1 touches no blocking segment
 /// or circle (contact inclusive). Blockers the body already touches at `p0` follow the
@@ -614,7 +705,7 @@ pub fn plan_move(
     }
     // eq. 32 twice, with the half angle's sine and cosine computed once.
     let half = 0.5 * d.phi;
-    let (s, c) = (libm::sin(half), libm::cos(half));
+    let (s, c) = sin_cos(half);
     let chord_dir = normalise(rotate_sc(pose.heading, s, c));
     let free_heading = normalise(rotate_sc(chord_dir, s, c));
     let start = pose.position;
@@ -630,27 +721,10 @@ pub fn plan_move(
     }
     // eq. 31.
     let target = start + chord_dir * d.chord;
-    // Every path the search tests runs from `start` to a point of the box of start → target
-    // (a midpoint of two points of the box is in the box), so a blocker that cannot block
-    // any path within that box is left out of every test. The box must be finite and far from
-    // overflow for the midpoints to stay inside it; otherwise every blocker is tested.
-    let (lo, hi) = Segment::new(start, target).bounds();
-    const SAFE: f64 = 1e300;
-    let use_all = !(lo.x >= -SAFE && lo.y >= -SAFE && hi.x <= SAFE && hi.y <= SAFE);
-    let walls = Shortlist::new(blockers.segments, use_all, |w| {
-        wall_may_block(lo, hi, radius, w)
-    });
-    let circles = Shortlist::new(blockers.circles, use_all, |c| {
-        circle_may_block(lo, hi, radius, c)
-    });
-    let test = |p1: Vec2| {
-        if walls.is_empty() && circles.is_empty() {
-            Verdict::Free
-        } else {
-            verdict_over(start, p1, radius, walls.iter(), circles.iter())
-        }
-    };
-    let cause = test(target);
+    // The first test goes over every blocker given: the shortlists below would give the same
+    // verdict (they leave out only blockers that cannot block any path of the search), and
+    // most moves are free, so they are built only for a search.
+    let cause = verdict(start, target, radius, blockers);
     if cause == Verdict::Free {
         return MoveOutcome {
             pose: Pose {
@@ -661,31 +735,32 @@ pub fn plan_move(
             ..stay
         };
     }
-    // Binary search (eq. 37) over the shortlists, with the few candidates prepared.
-    let (lo, cause) = match (walls.len, circles.len) {
-        (Some(nw), Some(nc)) if nw <= PREPARED_LEN && nc <= PREPARED_LEN => {
-            let mut pw = [PreparedWall::EMPTY; PREPARED_LEN];
-            for (p, &i) in pw.iter_mut().zip(&walls.index[..nw]) {
-                *p = PreparedWall::new(&blockers.segments[i as usize], start, radius);
-            }
-            let mut pc = [PreparedCircle::EMPTY; PREPARED_LEN];
-            for (p, &i) in pc.iter_mut().zip(&circles.index[..nc]) {
-                *p = PreparedCircle::new(&blockers.circles[i as usize], start, radius);
-            }
-            let (pw, pc) = (&pw[..nw], &pc[..nc]);
+    // Every path the search tests runs from `start` to a point of the box of start → target
+    // (a midpoint of two points of the box is in the box), so a blocker that cannot block
+    // any path within that box is left out of every test. The box must be finite and far from
+    // overflow for the midpoints to stay inside it; otherwise every blocker is tested.
+    let (lo, hi) = Segment::new(start, target).bounds();
+    const SAFE: f64 = 1e300;
+    let use_all = !(lo.x >= -SAFE && lo.y >= -SAFE && hi.x <= SAFE && hi.y <= SAFE);
+    // Binary search (eq. 37), with the few candidates prepared when there are few.
+    let prepared = if use_all {
+        None
+    } else {
+        prepared_search(start, target, radius, lo, hi, params.search_steps, cause, blockers)
+    };
+    let (lo, cause) = match prepared {
+        Some(found) => found,
+        None => {
+            let walls = Shortlist::new(blockers.segments, use_all, |w| {
+                wall_may_block(lo, hi, radius, w)
+            });
+            let circles = Shortlist::new(blockers.circles, use_all, |c| {
+                circle_may_block(lo, hi, radius, c)
+            });
             search(start, target, params.search_steps, cause, |p1| {
-                let path = Segment::new(start, p1);
-                let path_box = path.bounds();
-                if pw.iter().any(|w| w.blocks(p1, &path, path_box, radius)) {
-                    Verdict::Wall
-                } else if pc.iter().any(|c| c.blocks(p1)) {
-                    Verdict::Body
-                } else {
-                    Verdict::Free
-                }
+                verdict_over(start, p1, radius, walls.iter(), circles.iter())
             })
         }
-        _ => search(start, target, params.search_steps, cause, test),
     };
     // eq. 38.
     let travelled = start.distance(lo);
