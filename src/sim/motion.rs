@@ -165,13 +165,14 @@ fn normalise(v: Vec2) -> Vec2 {
     }
 }
 
-/// sin(x)/x, continuous through 0 (see the module docs).
+/// sin(x)/x, continuous through 0 (see the module docs), and sin(x) when it was computed.
 #[inline]
-fn sinc(x: f64) -> f64 {
+fn sinc(x: f64) -> (f64, Option<f64>) {
     if x.abs() < 1e-4 {
-        1.0 - x * x / 6.0
+        (1.0 - x * x / 6.0, None)
     } else {
-        libm::sin(x) / x
+        let sin = libm::sin(x);
+        (sin / x, Some(sin))
     }
 }
 
@@ -191,25 +192,34 @@ pub struct Drive {
 /// eq. 28–30 and 33 for wheel diameter `wheel` and motor signals (already clamped) in RPT.
 /// A wheel of diameter 0 does not move or turn.
 pub fn drive(wheel: f64, left_rpt: f64, right_rpt: f64) -> Drive {
+    drive_and_sin(wheel, left_rpt, right_rpt).0
+}
+
+/// [`drive`], and libm's sin(φ/2) when the chord needed it (`plan_move` needs it too).
+#[inline]
+fn drive_and_sin(wheel: f64, left_rpt: f64, right_rpt: f64) -> (Drive, Option<f64>) {
     let d_left = std::f64::consts::TAU * wheel * left_rpt;
     let d_right = std::f64::consts::TAU * wheel * right_rpt;
     if wheel == 0.0 {
-        return Drive {
+        let d = Drive {
             d_left,
             d_right,
             phi: 0.0,
             chord: 0.0,
         };
+        return (d, None);
     }
     let phi = (d_left - d_right) / wheel;
     // eq. 30 with the division folded into sinc: w·sin(δ/2w)/δ = sinc(φ/2)/2.
-    let chord = 0.5 * (d_left + d_right) * sinc(0.5 * phi);
-    Drive {
+    let (sinc_half, sin_half) = sinc(0.5 * phi);
+    let chord = 0.5 * (d_left + d_right) * sinc_half;
+    let d = Drive {
         d_left,
         d_right,
         phi,
         chord,
-    }
+    };
+    (d, sin_half)
 }
 
 /// Clamp a motor signal to ±max; NaN counts as 0.
@@ -499,20 +509,20 @@ impl PreparedWall {
     #[inline]
     fn blocks(&self, p1: Vec2, path: &Segment, r2: f64) -> bool {
         // `wall_blocks`'s box rejection of the path (see `start_lo_x`).
-        let path_misses = (self.start_lo_x & (p1.x < self.lo.x))
-            | (self.start_hi_x & (self.hi.x < p1.x))
-            | (self.start_lo_y & (p1.y < self.lo.y))
-            | (self.start_hi_y & (self.hi.y < p1.y));
+        let path_misses = (self.start_lo_x && p1.x < self.lo.x)
+            || (self.start_hi_x && self.hi.x < p1.x)
+            || (self.start_lo_y && p1.y < self.lo.y)
+            || (self.start_hi_y && self.hi.y < p1.y);
         // segments_intersect begins with exactly the `path_misses` rejection (eq. 5–8), and
         // circle_touches_segment with the `end_misses` one (eq. 2–3); `wall_blocks` returns
         // false when both hold, which the two tests below do too.
         let crosses = !path_misses && segments_intersect(path, &self.wall);
         let mut d1 = f64::NAN;
         if !crosses {
-            let end_misses = (p1.x < self.grown_lo.x)
-                | (p1.x > self.grown_hi.x)
-                | (p1.y < self.grown_lo.y)
-                | (p1.y > self.grown_hi.y);
+            let end_misses = p1.x < self.grown_lo.x
+                || p1.x > self.grown_hi.x
+                || p1.y < self.grown_lo.y
+                || p1.y > self.grown_hi.y;
             if end_misses {
                 return false;
             }
@@ -698,14 +708,18 @@ pub fn plan_move(
     };
     let left = clamp_rpt(left_rpt, params.max_rpt);
     let right = clamp_rpt(right_rpt, params.max_rpt);
-    let d = drive(params.wheel, left, right);
+    let (d, sin_half) = drive_and_sin(params.wheel, left, right);
     if !d.phi.is_finite() || !d.chord.is_finite() {
         // Only a non-finite wheel gets here; keep the world finite.
         return stay;
     }
     // eq. 32 twice, with the half angle's sine and cosine computed once.
     let half = 0.5 * d.phi;
-    let (s, c) = sin_cos(half);
+    // sinc computed libm::sin of the same 0.5 * φ (unless it was tiny).
+    let (s, c) = match sin_half {
+        Some(s) => (s, libm::cos(half)),
+        None => sin_cos(half),
+    };
     let chord_dir = normalise(rotate_sc(pose.heading, s, c));
     let free_heading = normalise(rotate_sc(chord_dir, s, c));
     let start = pose.position;
