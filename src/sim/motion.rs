@@ -493,7 +493,7 @@ impl PreparedWall {
     }
 
     /// `point_segment_distance_squared(p, wall)`, step by step.
-    #[inline]
+    #[inline(always)]
     fn distance_squared(&self, p: Vec2) -> f64 {
         let closest = if self.len2 == 0.0 {
             self.wall.a
@@ -504,15 +504,32 @@ impl PreparedWall {
         p.distance_squared(closest)
     }
 
-    /// `wall_blocks(start, p1, path, path_box, r, wall)` for the start the wall was prepared
-    /// with, where `path` is start → p1 (finite) and `r2` is `r * r`.
-    #[inline]
-    fn blocks(&self, p1: Vec2, path: &Segment, r2: f64) -> bool {
-        // `wall_blocks`'s box rejection of the path (see `start_lo_x`).
-        let path_misses = (self.start_lo_x && p1.x < self.lo.x)
+    /// `wall_blocks`'s box rejection of the path start → p1 (see `start_lo_x`).
+    #[inline(always)]
+    fn path_misses(&self, p1: Vec2) -> bool {
+        (self.start_lo_x && p1.x < self.lo.x)
             || (self.start_hi_x && self.hi.x < p1.x)
             || (self.start_lo_y && p1.y < self.lo.y)
-            || (self.start_hi_y && self.hi.y < p1.y);
+            || (self.start_hi_y && self.hi.y < p1.y)
+    }
+
+    /// `wall_blocks(start, p1, path, path_box, r, wall)` for the start the wall was prepared
+    /// with, where `path` is start → p1 (finite) and `r2` is `r * r`.
+    #[inline(always)]
+    fn blocks(&self, p1: Vec2, path: &Segment, r2: f64) -> bool {
+        if !self.touching {
+            // Then `wall_blocks` is `crosses || touches_end`, both pure: the end test first,
+            // which decides a body pushing against the wall without the path test.
+            let end_misses = p1.x < self.grown_lo.x
+                || p1.x > self.grown_hi.x
+                || p1.y < self.grown_lo.y
+                || p1.y > self.grown_hi.y;
+            if !end_misses && self.distance_squared(p1) <= r2 {
+                return true;
+            }
+            return !self.path_misses(p1) && segments_intersect(path, &self.wall);
+        }
+        let path_misses = self.path_misses(p1);
         // segments_intersect begins with exactly the `path_misses` rejection (eq. 5–8), and
         // circle_touches_segment with the `end_misses` one (eq. 2–3); `wall_blocks` returns
         // false when both hold, which the two tests below do too.
