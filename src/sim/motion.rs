@@ -261,12 +261,14 @@ fn wall_blocks(
     if path_misses && end_misses {
         return false;
     }
+    let touching = circle_touches_segment(p0, r, wall);
+    if !touching {
+        // Plain §8.2: `crosses || touches at p1`, both pure; the cheaper end test first.
+        return circle_touches_segment(p1, r, wall) || segments_intersect(path, wall);
+    }
     let crosses = segments_intersect(path, wall);
     if !crosses && !circle_touches_segment(p1, r, wall) {
         return false;
-    }
-    if !circle_touches_segment(p0, r, wall) {
-        return true;
     }
     // Already touching at the start: no deeper, and never through.
     let d0 = point_segment_distance_squared(p0, wall);
@@ -288,6 +290,7 @@ fn circle_blocks(p0: Vec2, p1: Vec2, r: f64, body: &Circle) -> bool {
 }
 
 /// §8.2 with walls tested first, so a path blocked by both reports a wall.
+#[inline]
 fn verdict(p0: Vec2, p1: Vec2, radius: f64, blockers: &Blockers) -> Verdict {
     verdict_over(
         p0,
@@ -513,10 +516,10 @@ impl PreparedWall {
             || (self.start_hi_y && self.hi.y < p1.y)
     }
 
-    /// `wall_blocks(start, p1, path, path_box, r, wall)` for the start the wall was prepared
-    /// with, where `path` is start → p1 (finite) and `r2` is `r * r`.
+    /// `wall_blocks(start, p1, start → p1, its box, r, wall)` for the `start` the wall was
+    /// prepared with (p1 finite), where `r2` is `r * r`.
     #[inline(always)]
-    fn blocks(&self, p1: Vec2, path: &Segment, r2: f64) -> bool {
+    fn blocks(&self, start: Vec2, p1: Vec2, r2: f64) -> bool {
         if !self.touching {
             // Then `wall_blocks` is `crosses || touches_end`, both pure: the end test first,
             // which decides a body pushing against the wall without the path test.
@@ -527,13 +530,13 @@ impl PreparedWall {
             if !end_misses && self.distance_squared(p1) <= r2 {
                 return true;
             }
-            return !self.path_misses(p1) && segments_intersect(path, &self.wall);
+            return !self.path_misses(p1) && segments_intersect(&Segment::new(start, p1), &self.wall);
         }
         let path_misses = self.path_misses(p1);
         // segments_intersect begins with exactly the `path_misses` rejection (eq. 5–8), and
         // circle_touches_segment with the `end_misses` one (eq. 2–3); `wall_blocks` returns
         // false when both hold, which the two tests below do too.
-        let crosses = !path_misses && segments_intersect(path, &self.wall);
+        let crosses = !path_misses && segments_intersect(&Segment::new(start, p1), &self.wall);
         let mut d1 = f64::NAN;
         if !crosses {
             let end_misses = p1.x < self.grown_lo.x
@@ -655,7 +658,7 @@ fn prepared_search(
         {
             let w = PreparedWall::new(only, start, radius);
             return Some(search(start, target, steps, cause, |p1| {
-                if w.blocks(p1, &Segment::new(start, p1), r2) {
+                if w.blocks(start, p1, r2) {
                     Verdict::Wall
                 } else {
                     Verdict::Free
@@ -687,8 +690,7 @@ fn prepared_search(
     }
     let (pw, pc) = (&pw[..nw], &pc[..nc]);
     Some(search(start, target, steps, cause, |p1| {
-        let path = Segment::new(start, p1);
-        if pw.iter().any(|w| w.blocks(p1, &path, r2)) {
+        if pw.iter().any(|w| w.blocks(start, p1, r2)) {
             Verdict::Wall
         } else if pc.iter().any(|c| c.blocks(p1)) {
             Verdict::Body
