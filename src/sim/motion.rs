@@ -530,7 +530,8 @@ impl PreparedWall {
             if !end_misses && self.distance_squared(p1) <= r2 {
                 return true;
             }
-            return !self.path_misses(p1) && segments_intersect(&Segment::new(start, p1), &self.wall);
+            return !self.path_misses(p1)
+                && segments_intersect(&Segment::new(start, p1), &self.wall);
         }
         let path_misses = self.path_misses(p1);
         // segments_intersect begins with exactly the `path_misses` rejection (eq. 5–8), and
@@ -779,7 +780,16 @@ pub fn plan_move(
     let prepared = if use_all {
         None
     } else {
-        prepared_search(start, target, radius, lo, hi, params.search_steps, cause, blockers)
+        prepared_search(
+            start,
+            target,
+            radius,
+            lo,
+            hi,
+            params.search_steps,
+            cause,
+            blockers,
+        )
     };
     let (lo, cause) = match prepared {
         Some(found) => found,
