@@ -17,17 +17,28 @@
 //!
 //! # A cheaper search, same results
 //!
-//! Every path the search tests runs from the start to a point in the box of start → target
-//! (a float midpoint of two points of a box lies in the box), so before the first test the
-//! walls and bodies are shortlisted: a blocker is left out only when the very box and distance
-//! rejections that `wall_blocks` / `circle_blocks` begin with, evaluated with the same float
-//! expressions, reject it for every path and end point within that box. Left out, it could not
-//! have blocked any tested path, so no verdict, end point or cause changes. The few
-//! shortlisted blockers (at most 8 of each kind) are then prepared once per search (their boxes, squared lengths and
-//! contact at the start), and each step repeats `wall_blocks` / `circle_blocks` with the same
-//! float operations on those stored values. Walls are still tested before bodies. A box that
-//! is not finite or reaches beyond ±1e300 (where a midpoint could overflow), or more than 32
-//! candidates, falls back to testing every blocker; nothing is allocated.
+//! The planned path start → target is tested against every blocker given (most moves are
+//! free and end there). Only a blocked move searches. Every path the search tests runs from
+//! the start to a point in the box of start → target (a float midpoint of two points of a box
+//! lies in the box), so the walls and bodies are first shortlisted: a blocker is left out only
+//! when the very box and distance rejections that `wall_blocks` / `circle_blocks` begin with,
+//! evaluated with the same float expressions, reject it for every path and end point within
+//! that box. Left out, it could not have blocked any tested path (the target's included), so
+//! no verdict, end point or cause changes. The few shortlisted blockers (at most 8 of each
+//! kind) are then prepared once per search (their boxes, squared lengths, contact at the
+//! start and on which sides of the wall's box the start lies), and each step repeats
+//! `wall_blocks` / `circle_blocks` with the same float operations on those stored values.
+//! Walls are still tested before bodies. A single wall and no body, a body pushing against a
+//! wall, has its own loop. A box that is not finite or reaches beyond ±1e300 (where a
+//! midpoint could overflow), or more than 8 candidates of a kind, falls back to the
+//! shortlists (more than 32: every blocker); nothing is allocated.
+//!
+//! `wall_blocks` for a wall the body does not touch at the start is `crosses || touches at
+//! the end`, two pure tests: the end test runs first, since it alone decides a body pushed
+//! against the wall, which would otherwise repeat the path test on every step. sin(φ/2) is
+//! computed once for the chord and the heading, and sin and cos of ±0 (a straight move, or a
+//! blocked move that travelled 0) are not computed: libm returns exactly ±0 and 1 for them.
+//! The tests compare all of this with a plain copy of the original algorithm bit for bit.
 //!
 //! # M near d_L = d_R
 //!
