@@ -17,17 +17,28 @@
 //!
 //! # A cheaper search, same results
 //!
-//! Every path the search tests runs from the start to a point in the box of start → target
-//! (a float midpoint of two points of a box lies in the box), so before the first test the
-//! walls and bodies are shortlisted: a blocker is left out only when the very box and distance
-//! rejections that `wall_blocks` / `circle_blocks` begin with, evaluated with the same float
-//! expressions, reject it for every path and end point within that box. Left out, it could not
-//! have blocked any tested path, so no verdict, end point or cause changes. The few
-//! shortlisted blockers (at most 8 of each kind) are then prepared once per search (their boxes, squared lengths and
-//! contact at the start), and each step repeats `wall_blocks` / `circle_blocks` with the same
-//! float operations on those stored values. Walls are still tested before bodies. A box that
-//! is not finite or reaches beyond ±1e300 (where a midpoint could overflow), or more than 32
-//! candidates, falls back to testing every blocker; nothing is allocated.
+//! The planned path start → target is tested against every blocker given (most moves are
+//! free and end there). Only a blocked move searches. Every path the search tests runs from
+//! the start to a point in the box of start → target (a float midpoint of two points of a box
+//! lies in the box), so the walls and bodies are first shortlisted: a blocker is left out only
+//! when the very box and distance rejections that `wall_blocks` / `circle_blocks` begin with,
+//! evaluated with the same float expressions, reject it for every path and end point within
+//! that box. Left out, it could not have blocked any tested path (the target's included), so
+//! no verdict, end point or cause changes. The few shortlisted blockers (at most 8 of each
+//! kind) are then prepared once per search (their boxes, squared lengths, contact at the
+//! start and on which sides of the wall's box the start lies), and each step repeats
+//! `wall_blocks` / `circle_blocks` with the same float operations on those stored values.
+//! Walls are still tested before bodies. A single wall and no body, a body pushing against a
+//! wall, has its own loop. A box that is not finite or reaches beyond ±1e300 (where a
+//! midpoint could overflow), or more than 8 candidates of a kind, falls back to the
+//! shortlists (more than 32: every blocker); nothing is allocated.
+//!
+//! `wall_blocks` for a wall the body does not touch at the start is `crosses || touches at
+//! the end`, two pure tests: the end test runs first, since it alone decides a body pushed
+//! against the wall, which would otherwise repeat the path test on every step. sin(φ/2) is
+//! computed once for the chord and the heading, and sin and cos of ±0 (a straight move, or a
+//! blocked move that travelled 0) are not computed: libm returns exactly ±0 and 1 for them.
+//! The tests compare all of this with a plain copy of the original algorithm bit for bit.
 //!
 //! # M near d_L = d_R
 //!
@@ -133,7 +144,19 @@ pub struct MoveOutcome {
 /// frame (y down) a positive angle turns clockwise on screen, towards the creature's right.
 #[inline]
 pub fn rotate(v: Vec2, angle: f64) -> Vec2 {
-    rotate_sc(v, libm::sin(angle), libm::cos(angle))
+    let (s, c) = sin_cos(angle);
+    rotate_sc(v, s, c)
+}
+
+/// `(libm::sin(x), libm::cos(x))`, without the calls for x = ±0, whose results libm gives
+/// exactly: sin(±0) = ±0 and cos(±0) = 1 (a straight move turns by exactly 0).
+#[inline]
+fn sin_cos(x: f64) -> (f64, f64) {
+    if x == 0.0 {
+        (x, 1.0)
+    } else {
+        (libm::sin(x), libm::cos(x))
+    }
 }
 
 /// Rotation by an angle given by its sine and cosine.
@@ -153,13 +176,14 @@ fn normalise(v: Vec2) -> Vec2 {
     }
 }
 
-/// sin(x)/x, continuous through 0 (see the module docs).
+/// sin(x)/x, continuous through 0 (see the module docs), and sin(x) when it was computed.
 #[inline]
-fn sinc(x: f64) -> f64 {
+fn sinc(x: f64) -> (f64, Option<f64>) {
     if x.abs() < 1e-4 {
-        1.0 - x * x / 6.0
+        (1.0 - x * x / 6.0, None)
     } else {
-        libm::sin(x) / x
+        let sin = libm::sin(x);
+        (sin / x, Some(sin))
     }
 }
 
@@ -179,25 +203,34 @@ pub struct Drive {
 /// eq. 28–30 and 33 for wheel diameter `wheel` and motor signals (already clamped) in RPT.
 /// A wheel of diameter 0 does not move or turn.
 pub fn drive(wheel: f64, left_rpt: f64, right_rpt: f64) -> Drive {
+    drive_and_sin(wheel, left_rpt, right_rpt).0
+}
+
+/// [`drive`], and libm's sin(φ/2) when the chord needed it (`plan_move` needs it too).
+#[inline]
+fn drive_and_sin(wheel: f64, left_rpt: f64, right_rpt: f64) -> (Drive, Option<f64>) {
     let d_left = std::f64::consts::TAU * wheel * left_rpt;
     let d_right = std::f64::consts::TAU * wheel * right_rpt;
     if wheel == 0.0 {
-        return Drive {
+        let d = Drive {
             d_left,
             d_right,
             phi: 0.0,
             chord: 0.0,
         };
+        return (d, None);
     }
     let phi = (d_left - d_right) / wheel;
     // eq. 30 with the division folded into sinc: w·sin(δ/2w)/δ = sinc(φ/2)/2.
-    let chord = 0.5 * (d_left + d_right) * sinc(0.5 * phi);
-    Drive {
+    let (sinc_half, sin_half) = sinc(0.5 * phi);
+    let chord = 0.5 * (d_left + d_right) * sinc_half;
+    let d = Drive {
         d_left,
         d_right,
         phi,
         chord,
-    }
+    };
+    (d, sin_half)
 }
 
 /// Clamp a motor signal to ±max; NaN counts as 0.
@@ -239,12 +272,14 @@ fn wall_blocks(
     if path_misses && end_misses {
         return false;
     }
+    let touching = circle_touches_segment(p0, r, wall);
+    if !touching {
+        // Plain §8.2: `crosses || touches at p1`, both pure; the cheaper end test first.
+        return circle_touches_segment(p1, r, wall) || segments_intersect(path, wall);
+    }
     let crosses = segments_intersect(path, wall);
     if !crosses && !circle_touches_segment(p1, r, wall) {
         return false;
-    }
-    if !circle_touches_segment(p0, r, wall) {
-        return true;
     }
     // Already touching at the start: no deeper, and never through.
     let d0 = point_segment_distance_squared(p0, wall);
@@ -266,6 +301,7 @@ fn circle_blocks(p0: Vec2, p1: Vec2, r: f64, body: &Circle) -> bool {
 }
 
 /// §8.2 with walls tested first, so a path blocked by both reports a wall.
+#[inline]
 fn verdict(p0: Vec2, p1: Vec2, radius: f64, blockers: &Blockers) -> Verdict {
     verdict_over(
         p0,
@@ -334,15 +370,6 @@ impl<'a, T> Shortlist<'a, T> {
         }
         list.len = Some(len);
         list
-    }
-
-    /// Nothing on the list.
-    #[inline]
-    fn is_empty(&self) -> bool {
-        match self.len {
-            Some(n) => n == 0,
-            None => self.all.is_empty(),
-        }
     }
 
     /// The listed items in their original order.
@@ -426,6 +453,14 @@ struct PreparedWall {
     touching: bool,
     /// `point_segment_distance_squared(start, wall)` when `touching` (else unused).
     d0: f64,
+    /// Where the start lies against the box: `start.x < lo.x`, `hi.x < start.x`,
+    /// `start.y < lo.y`, `hi.y < start.y`. The box of start → p1 misses the wall's box on a
+    /// side exactly when the start and p1 both lie beyond it (max(s, p) < l ⟺ s < l ∧ p < l
+    /// for numbers), so each step compares p1 alone.
+    start_lo_x: bool,
+    start_hi_x: bool,
+    start_lo_y: bool,
+    start_hi_y: bool,
 }
 
 impl PreparedWall {
@@ -439,6 +474,10 @@ impl PreparedWall {
         len2: 0.0,
         touching: false,
         d0: 0.0,
+        start_lo_x: false,
+        start_hi_x: false,
+        start_lo_y: false,
+        start_hi_y: false,
     };
 
     #[inline]
@@ -460,11 +499,15 @@ impl PreparedWall {
             } else {
                 0.0
             },
+            start_lo_x: start.x < lo.x,
+            start_hi_x: hi.x < start.x,
+            start_lo_y: start.y < lo.y,
+            start_hi_y: hi.y < start.y,
         }
     }
 
     /// `point_segment_distance_squared(p, wall)`, step by step.
-    #[inline]
+    #[inline(always)]
     fn distance_squared(&self, p: Vec2) -> f64 {
         let closest = if self.len2 == 0.0 {
             self.wall.a
@@ -475,30 +518,48 @@ impl PreparedWall {
         p.distance_squared(closest)
     }
 
-    /// `wall_blocks(start, p1, path, path_box, r, wall)` for the start the wall was prepared
-    /// with.
-    #[inline]
-    fn blocks(&self, p1: Vec2, path: &Segment, path_box: (Vec2, Vec2), r: f64) -> bool {
-        let (plo, phh) = path_box;
-        let path_misses =
-            phh.x < self.lo.x || self.hi.x < plo.x || phh.y < self.lo.y || self.hi.y < plo.y;
-        let end_misses = p1.x < self.grown_lo.x
-            || p1.x > self.grown_hi.x
-            || p1.y < self.grown_lo.y
-            || p1.y > self.grown_hi.y;
-        if path_misses && end_misses {
-            return false;
+    /// `wall_blocks`'s box rejection of the path start → p1 (see `start_lo_x`).
+    #[inline(always)]
+    fn path_misses(&self, p1: Vec2) -> bool {
+        (self.start_lo_x && p1.x < self.lo.x)
+            || (self.start_hi_x && self.hi.x < p1.x)
+            || (self.start_lo_y && p1.y < self.lo.y)
+            || (self.start_hi_y && self.hi.y < p1.y)
+    }
+
+    /// `wall_blocks(start, p1, start → p1, its box, r, wall)` for the `start` the wall was
+    /// prepared with (p1 finite), where `r2` is `r * r`.
+    #[inline(always)]
+    fn blocks(&self, start: Vec2, p1: Vec2, r2: f64) -> bool {
+        if !self.touching {
+            // Then `wall_blocks` is `crosses || touches_end`, both pure: the end test first,
+            // which decides a body pushing against the wall without the path test.
+            let end_misses = p1.x < self.grown_lo.x
+                || p1.x > self.grown_hi.x
+                || p1.y < self.grown_lo.y
+                || p1.y > self.grown_hi.y;
+            if !end_misses && self.distance_squared(p1) <= r2 {
+                return true;
+            }
+            return !self.path_misses(p1)
+                && segments_intersect(&Segment::new(start, p1), &self.wall);
         }
+        let path_misses = self.path_misses(p1);
         // segments_intersect begins with exactly the `path_misses` rejection (eq. 5–8), and
-        // circle_touches_segment with the `end_misses` one (eq. 2–3).
-        let crosses = !path_misses && segments_intersect(path, &self.wall);
+        // circle_touches_segment with the `end_misses` one (eq. 2–3); `wall_blocks` returns
+        // false when both hold, which the two tests below do too.
+        let crosses = !path_misses && segments_intersect(&Segment::new(start, p1), &self.wall);
         let mut d1 = f64::NAN;
         if !crosses {
+            let end_misses = p1.x < self.grown_lo.x
+                || p1.x > self.grown_hi.x
+                || p1.y < self.grown_lo.y
+                || p1.y > self.grown_hi.y;
             if end_misses {
                 return false;
             }
             d1 = self.distance_squared(p1);
-            let touches_end = d1 <= r * r;
+            let touches_end = d1 <= r2;
             if !touches_end {
                 return false;
             }
@@ -580,6 +641,77 @@ fn search(
     (lo, cause)
 }
 
+/// The search of [`plan_move`] over prepared shortlists: the walls and bodies that may block
+/// a path within the box (`lo`, `hi`) of start → target (finite, within ±1e300), prepared
+/// for `start`. `None` (nothing searched) when there are more than [`PREPARED_LEN`] of a kind.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn prepared_search(
+    start: Vec2,
+    target: Vec2,
+    radius: f64,
+    lo: Vec2,
+    hi: Vec2,
+    steps: u32,
+    cause: Verdict,
+    blockers: &Blockers,
+) -> Option<(Vec2, Verdict)> {
+    let r2 = radius * radius;
+    // The common search, a body pushing against one wall: a loop over that wall alone.
+    let mut near = blockers
+        .segments
+        .iter()
+        .filter(|w| wall_may_block(lo, hi, radius, w));
+    if let (Some(only), None) = (near.next(), near.next()) {
+        if !blockers
+            .circles
+            .iter()
+            .any(|c| circle_may_block(lo, hi, radius, c))
+        {
+            let w = PreparedWall::new(only, start, radius);
+            return Some(search(start, target, steps, cause, |p1| {
+                if w.blocks(start, p1, r2) {
+                    Verdict::Wall
+                } else {
+                    Verdict::Free
+                }
+            }));
+        }
+    }
+    let mut pw = [PreparedWall::EMPTY; PREPARED_LEN];
+    let mut nw = 0;
+    for w in blockers.segments {
+        if wall_may_block(lo, hi, radius, w) {
+            if nw == PREPARED_LEN {
+                return None;
+            }
+            pw[nw] = PreparedWall::new(w, start, radius);
+            nw += 1;
+        }
+    }
+    let mut pc = [PreparedCircle::EMPTY; PREPARED_LEN];
+    let mut nc = 0;
+    for c in blockers.circles {
+        if circle_may_block(lo, hi, radius, c) {
+            if nc == PREPARED_LEN {
+                return None;
+            }
+            pc[nc] = PreparedCircle::new(c, start, radius);
+            nc += 1;
+        }
+    }
+    let (pw, pc) = (&pw[..nw], &pc[..nc]);
+    Some(search(start, target, steps, cause, |p1| {
+        if pw.iter().any(|w| w.blocks(start, p1, r2)) {
+            Verdict::Wall
+        } else if pc.iter().any(|c| c.blocks(p1)) {
+            Verdict::Body
+        } else {
+            Verdict::Free
+        }
+    }))
+}
+
 /// §8.2: may a body of `radius` move along the straight path `p0 → p1`? Yes when the segment
 /// p0 → p1 touches no blocking segment and the body placed at p1 touches no blocking segment
 /// or circle (contact inclusive). Blockers the body already touches at `p0` follow the
@@ -607,14 +739,18 @@ pub fn plan_move(
     };
     let left = clamp_rpt(left_rpt, params.max_rpt);
     let right = clamp_rpt(right_rpt, params.max_rpt);
-    let d = drive(params.wheel, left, right);
+    let (d, sin_half) = drive_and_sin(params.wheel, left, right);
     if !d.phi.is_finite() || !d.chord.is_finite() {
         // Only a non-finite wheel gets here; keep the world finite.
         return stay;
     }
     // eq. 32 twice, with the half angle's sine and cosine computed once.
     let half = 0.5 * d.phi;
-    let (s, c) = (libm::sin(half), libm::cos(half));
+    // sinc computed libm::sin of the same 0.5 * φ (unless it was tiny).
+    let (s, c) = match sin_half {
+        Some(s) => (s, libm::cos(half)),
+        None => sin_cos(half),
+    };
     let chord_dir = normalise(rotate_sc(pose.heading, s, c));
     let free_heading = normalise(rotate_sc(chord_dir, s, c));
     let start = pose.position;
@@ -630,27 +766,10 @@ pub fn plan_move(
     }
     // eq. 31.
     let target = start + chord_dir * d.chord;
-    // Every path the search tests runs from `start` to a point of the box of start → target
-    // (a midpoint of two points of the box is in the box), so a blocker that cannot block
-    // any path within that box is left out of every test. The box must be finite and far from
-    // overflow for the midpoints to stay inside it; otherwise every blocker is tested.
-    let (lo, hi) = Segment::new(start, target).bounds();
-    const SAFE: f64 = 1e300;
-    let use_all = !(lo.x >= -SAFE && lo.y >= -SAFE && hi.x <= SAFE && hi.y <= SAFE);
-    let walls = Shortlist::new(blockers.segments, use_all, |w| {
-        wall_may_block(lo, hi, radius, w)
-    });
-    let circles = Shortlist::new(blockers.circles, use_all, |c| {
-        circle_may_block(lo, hi, radius, c)
-    });
-    let test = |p1: Vec2| {
-        if walls.is_empty() && circles.is_empty() {
-            Verdict::Free
-        } else {
-            verdict_over(start, p1, radius, walls.iter(), circles.iter())
-        }
-    };
-    let cause = test(target);
+    // The first test goes over every blocker given: the shortlists below would give the same
+    // verdict (they leave out only blockers that cannot block any path of the search), and
+    // most moves are free, so they are built only for a search.
+    let cause = verdict(start, target, radius, blockers);
     if cause == Verdict::Free {
         return MoveOutcome {
             pose: Pose {
@@ -661,31 +780,41 @@ pub fn plan_move(
             ..stay
         };
     }
-    // Binary search (eq. 37) over the shortlists, with the few candidates prepared.
-    let (lo, cause) = match (walls.len, circles.len) {
-        (Some(nw), Some(nc)) if nw <= PREPARED_LEN && nc <= PREPARED_LEN => {
-            let mut pw = [PreparedWall::EMPTY; PREPARED_LEN];
-            for (p, &i) in pw.iter_mut().zip(&walls.index[..nw]) {
-                *p = PreparedWall::new(&blockers.segments[i as usize], start, radius);
-            }
-            let mut pc = [PreparedCircle::EMPTY; PREPARED_LEN];
-            for (p, &i) in pc.iter_mut().zip(&circles.index[..nc]) {
-                *p = PreparedCircle::new(&blockers.circles[i as usize], start, radius);
-            }
-            let (pw, pc) = (&pw[..nw], &pc[..nc]);
+    // Every path the search tests runs from `start` to a point of the box of start → target
+    // (a midpoint of two points of the box is in the box), so a blocker that cannot block
+    // any path within that box is left out of every test. The box must be finite and far from
+    // overflow for the midpoints to stay inside it; otherwise every blocker is tested.
+    let (lo, hi) = Segment::new(start, target).bounds();
+    const SAFE: f64 = 1e300;
+    let use_all = !(lo.x >= -SAFE && lo.y >= -SAFE && hi.x <= SAFE && hi.y <= SAFE);
+    // Binary search (eq. 37), with the few candidates prepared when there are few.
+    let prepared = if use_all {
+        None
+    } else {
+        prepared_search(
+            start,
+            target,
+            radius,
+            lo,
+            hi,
+            params.search_steps,
+            cause,
+            blockers,
+        )
+    };
+    let (lo, cause) = match prepared {
+        Some(found) => found,
+        None => {
+            let walls = Shortlist::new(blockers.segments, use_all, |w| {
+                wall_may_block(lo, hi, radius, w)
+            });
+            let circles = Shortlist::new(blockers.circles, use_all, |c| {
+                circle_may_block(lo, hi, radius, c)
+            });
             search(start, target, params.search_steps, cause, |p1| {
-                let path = Segment::new(start, p1);
-                let path_box = path.bounds();
-                if pw.iter().any(|w| w.blocks(p1, &path, path_box, radius)) {
-                    Verdict::Wall
-                } else if pc.iter().any(|c| c.blocks(p1)) {
-                    Verdict::Body
-                } else {
-                    Verdict::Free
-                }
+                verdict_over(start, p1, radius, walls.iter(), circles.iter())
             })
         }
-        _ => search(start, target, params.search_steps, cause, test),
     };
     // eq. 38.
     let travelled = start.distance(lo);
