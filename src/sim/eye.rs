@@ -183,11 +183,22 @@ impl Eye {
             heading,
             cull,
         };
+        // Most objects of a large world are beyond the eye's range: reject them here with a
+        // few inline comparisons instead of a call each.
+        let range = self.range;
+        let far = |centre: Vec2, radius: f64| {
+            let reach = (range + radius) * (1.0 + 1e-9) + 1e-9;
+            cull && (centre - position).length_squared() > reach * reach
+        };
         for f in scene.food {
-            self.cylinder(out, &look, f.position, f.radius, f.height, &f.colour);
+            if !far(f.position, f.radius) {
+                self.cylinder(out, &look, f.position, f.radius, f.height, &f.colour);
+            }
         }
         for a in scene.aversives {
-            self.cylinder(out, &look, a.position, a.radius, a.height, &a.colour);
+            if !far(a.position, a.radius) {
+                self.cylinder(out, &look, a.position, a.radius, a.height, &a.colour);
+            }
         }
         for (k, other) in scene.creatures.iter().enumerate() {
             if k != me && other.alive {
