@@ -25,14 +25,14 @@ pub struct BenchArgs {
     /// Worlds per simulator measurement.
     #[arg(long, default_value_t = 16)]
     pub worlds: u64,
-    /// Ticks per world.
-    #[arg(long, default_value_t = 5000)]
+    /// Ticks per world (long enough that one measurement takes about half a second).
+    #[arg(long, default_value_t = 20000)]
     pub ticks: u64,
     /// Evolution benchmark experiment.
     #[arg(long, default_value = "experiments/foraging.toml")]
     pub evolution: PathBuf,
     /// Generations for the evolution benchmark (0 skips it).
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, default_value_t = 10)]
     pub generations: u64,
     /// Tiling factors k of the scaling series: the scaling world tiled k × k times at the
     /// same density (comma-separated; 0 alone skips the series).
