@@ -181,14 +181,6 @@ pub struct SmellBox {
     pub hi: Vec2,
 }
 
-impl SmellBox {
-    /// Is `p` inside the box (bounds included)?
-    #[inline]
-    pub fn contains(&self, p: Vec2) -> bool {
-        p.x >= self.lo.x && p.x <= self.hi.x && p.y >= self.lo.y && p.y <= self.hi.y
-    }
-}
-
 /// The grid of one world (see the module docs).
 #[derive(Debug, Clone, PartialEq)]
 pub struct StaticIndex {
