@@ -420,13 +420,19 @@ mod tests {
     #[test]
     fn avx2_and_portable_kernels_agree_bit_for_bit() {
         // Awkward sizes exercise every block width; values span many magnitudes.
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        use crate::seed::{
+            below, stream, uniform, Generation, IndividualId, Purpose, Seed, TrialIndex,
+        };
+        let mut rng = stream(
+            Seed(41),
+            Purpose::Baseline,
+            Generation(0),
+            IndividualId(0),
+            TrialIndex(0),
+        );
         let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            let unit = (state >> 11) as f64 / (1u64 << 53) as f64;
-            (unit - 0.5) * libm::exp2(((state % 41) as f64) - 20.0)
+            let scale = libm::exp2(below(&mut rng, 41) as f64 - 20.0);
+            uniform(&mut rng, -0.5, 0.5) * scale
         };
         for (units, inputs) in [
             (1, 1),
