@@ -87,10 +87,10 @@ impl BrainController {
     }
 }
 
-impl Controller for BrainController {
-    fn act(&mut self, observation: &[f64]) -> MotorCommand {
-        self.brain.activate(observation, &mut self.outputs);
-        let out = &self.outputs;
+impl BrainController {
+    /// The motor command for brain outputs `out` (see the module docs).
+    #[inline]
+    fn command(&self, out: &[f64]) -> MotorCommand {
         MotorCommand {
             left: out[0] * self.max_rpt,
             right: out[1] * self.max_rpt,
@@ -99,6 +99,73 @@ impl Controller for BrainController {
             } else {
                 0.0
             },
+        }
+    }
+
+    /// [`Controller::act`] for several observations at once, for a
+    /// [stateless](Brain::is_stateless) brain shared by several trial worlds: `observations`
+    /// holds `commands.len()` observations one after another, and command k is exactly what
+    /// `act` would give for observation k. [`BrainController::last_outputs`] afterwards holds
+    /// every observation's outputs. The output buffer grows to the largest batch seen, so
+    /// after the first tick this allocates nothing.
+    ///
+    /// # Panics
+    /// When the brain keeps state (see [`Brain::activate_batch`]).
+    pub fn act_batch(&mut self, observations: &[f64], commands: &mut [MotorCommand]) {
+        let m = self.brain.outputs();
+        let n = commands.len();
+        if self.outputs.len() != n * m {
+            self.outputs.resize(n * m, 0.0);
+        }
+        let mut outputs = std::mem::take(&mut self.outputs);
+        self.brain.activate_batch(observations, &mut outputs);
+        for (command, out) in commands.iter_mut().zip(outputs.chunks_exact(m)) {
+            *command = self.command(out);
+        }
+        self.outputs = outputs;
+    }
+}
+
+impl Controller for BrainController {
+    fn act(&mut self, observation: &[f64]) -> MotorCommand {
+        let m = self.brain.outputs();
+        if self.outputs.len() != m {
+            // After a batch the buffer held another number of observations' outputs.
+            self.outputs.resize(m, 0.0);
+        }
+        self.brain.activate(observation, &mut self.outputs);
+        self.command(&self.outputs)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::brain::spec::{BrainSpec, Topology};
+
+    /// A batch gives every observation the command `act` gives it alone, and `act` still
+    /// works after batches of any size, the empty one included.
+    #[test]
+    fn batches_match_single_observations() {
+        let spec: BrainSpec = toml::from_str("kind = \"mlp\"\nhidden = [5]").expect("spec");
+        let topology = Topology::new(spec, 4, 3).expect("topology");
+        let parameters: Vec<f64> = (0..topology.parameter_count())
+            .map(|k| ((k * 37 % 23) as f64 - 11.0) / 7.0)
+            .collect();
+        let brain = Brain::new(&topology, &parameters).expect("brain");
+        let mut batch = BrainController::new(brain.clone(), 0.5, true);
+        let mut single = BrainController::new(brain, 0.5, true);
+        let observations: Vec<f64> = (0..4 * 6).map(|k| (k as f64 * 0.37).sin()).collect();
+        for n in [6, 0, 2, 6] {
+            let mut commands = vec![MotorCommand::default(); n];
+            batch.act_batch(&observations[..4 * n], &mut commands);
+            for (k, command) in commands.iter().enumerate() {
+                assert_eq!(*command, single.act(&observations[4 * k..4 * k + 4]));
+            }
+            assert_eq!(
+                batch.act(&observations[..4]),
+                single.act(&observations[..4])
+            );
         }
     }
 }

@@ -171,6 +171,41 @@ impl Brain {
         }
     }
 
+    /// True when the brain keeps no state from one tick to the next (an MLP): one such brain
+    /// can then drive the creatures of several trial worlds at once with
+    /// [`Brain::activate_batch`].
+    pub fn is_stateless(&self) -> bool {
+        matches!(self, Brain::Mlp(_))
+    }
+
+    /// [`Brain::activate`] for `n` observations at once: `inputs` holds n × inputs values (one
+    /// observation after another), `outputs` receives n × outputs. Each observation's outputs
+    /// have exactly the bits [`Brain::activate`] gives it alone.
+    ///
+    /// # Panics
+    /// When the brain is not [stateless](Brain::is_stateless) (its state belongs to one
+    /// life), or when the lengths are not whole multiples of the brain's sizes for the same n
+    /// (programming errors).
+    pub fn activate_batch(&mut self, inputs: &[f64], outputs: &mut [f64]) {
+        let (n_in, n_out) = (self.inputs(), self.outputs());
+        let n = inputs.len() / n_in.max(1);
+        assert_eq!(inputs.len(), n * n_in, "brain batch input count");
+        assert_eq!(outputs.len(), n * n_out, "brain batch output count");
+        match self {
+            Brain::Mlp(b) => {
+                for (x, y) in inputs
+                    .chunks_exact(n_in.max(1))
+                    .zip(outputs.chunks_exact_mut(n_out))
+                {
+                    b.activate(x, y);
+                }
+            }
+            Brain::Recurrent(_) | Brain::Ctrnn(_) => {
+                panic!("a recurrent brain's state belongs to one life: it cannot run a batch")
+            }
+        }
+    }
+
     /// One tick: reads `inputs`, writes `outputs`, each output in [-1, 1]. Allocates nothing.
     ///
     /// # Panics
