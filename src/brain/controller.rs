@@ -155,7 +155,7 @@ mod tests {
         let brain = Brain::new(&topology, &parameters).expect("brain");
         let mut batch = BrainController::new(brain.clone(), 0.5, true);
         let mut single = BrainController::new(brain, 0.5, true);
-        let observations: Vec<f64> = (0..4 * 6).map(|k| (k as f64 * 0.37).sin()).collect();
+        let observations: Vec<f64> = (0..4 * 6).map(|k| libm::sin(k as f64 * 0.37)).collect();
         for n in [6, 0, 2, 6] {
             let mut commands = vec![MotorCommand::default(); n];
             batch.act_batch(&observations[..4 * n], &mut commands);
