@@ -369,7 +369,7 @@ intensity = 1
 
 [[world.place]]
 kind = "near"
-count = 20
+count = 200
 
 [[world.place]]
 kind = "far"
@@ -382,8 +382,47 @@ count = 3
         1,
         1,
     );
+    // 800 cells for 208 objects and 4 walls: within 4 cells per item.
     let index = w.index();
     assert_eq!(index.smell_reach(), 75.0);
     assert_eq!(index.cell_size(), 75.0);
     assert_eq!(index.dimensions(), [40, 20]);
+}
+
+/// A world without smell would get cells as narrow as the whisker reach; its grid is capped
+/// at 4 cells per object and wall instead (at least 64), since every trial builds one.
+#[test]
+fn a_grid_has_few_cells_per_object() {
+    let w = sim_common::world(
+        r#"
+[world]
+arena = [600, 600]
+
+[world.kinds.food]
+class = "food"
+radius = 10
+
+[world.kinds.poison]
+class = "aversive"
+radius = 10
+
+[[world.place]]
+kind = "food"
+count = 25
+
+[[world.place]]
+kind = "poison"
+count = 25
+"#,
+        1,
+        1,
+    );
+    // 50 objects, and the 4 boundary walls in both the felt and the opaque lists.
+    let items = 50 + 2 * 4;
+    let index = w.index();
+    let [nx, ny] = index.dimensions();
+    assert!(nx * ny <= 4 * items, "{nx} x {ny} cells");
+    // Halving the cells' side would break the cap: the cells are as narrow as it allows.
+    assert!(4 * nx * ny > 4 * items, "{nx} x {ny} cells");
+    assert!(index.cell_size() >= 600.0 / nx as f64);
 }

@@ -19,8 +19,13 @@
 //! cells would hand the range test objects far out of range. Cells are never narrower than
 //! the body's contact and whisker reach (so a whisker query covers at most 2 × 2 cells), and
 //! the grid never has more than [`MAX_CELLS`] cells (huge arenas with short ranges get wider
-//! cells). Objects with an unlimited range (θ = +∞) cannot be cut off by distance: they sit
-//! in a short always-visited list, merged into every smell query in index order. Worlds with
+//! cells). Nor does it have more than [`CELLS_PER_ITEM`] cells per object and wall it
+//! holds (at least [`MIN_CELLS`]): the grid is built anew for every trial world, at a few
+//! instructions per cell, and a world without smell would otherwise get cells as narrow as
+//! the whisker reach (WaterWorld's 54 objects and walls got 14,400 cells, whose building was
+//! a tenth of a 500-tick trial's instructions). Objects with an unlimited range (θ = +∞)
+//! cannot be cut off by distance: they sit in a short always-visited list, merged into every
+//! smell query in index order. Worlds with
 //! at most [`FEW_WALLS`] fixed walls filter the wall list directly instead of visiting cells,
 //! which is cheaper at that size.
 
@@ -38,6 +43,13 @@ const CELLS_PER_RANGE: f64 = 1.0;
 
 /// Most cells a grid may have (memory per world stays below a few hundred KiB).
 pub const MAX_CELLS: usize = 1 << 16;
+
+/// Cells per indexed object or wall at most (see the module docs); never fewer than
+/// [`MIN_CELLS`] in all.
+const CELLS_PER_ITEM: usize = 4;
+
+/// Cells a grid may always have, however little it holds.
+const MIN_CELLS: usize = 64;
 
 /// An inclusive range of cells, columns `x0..=x1` and rows `y0..=y1`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -256,7 +268,13 @@ impl StaticIndex {
             cell = extent;
         }
         let side = |len: f64, cell: f64| ((len / cell).ceil() as usize).max(1);
-        while side(w, cell) * side(h, cell) > MAX_CELLS {
+        // A grid is built for every trial world, so its cells must not outnumber what it
+        // holds by much: building costs a few instructions per cell, and a world without
+        // smell (cells as narrow as the whisker reach) would otherwise spend more building
+        // its grid than living its trial.
+        let items = food.len() + aversives.len() + fixed_felt + fixed_opaque;
+        let most = (CELLS_PER_ITEM * items).clamp(MIN_CELLS, MAX_CELLS);
+        while side(w, cell) * side(h, cell) > most {
             cell *= 2.0;
         }
         let (nx, ny) = (side(w, cell), side(h, cell));
