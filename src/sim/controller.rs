@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
+use std::sync::OnceLock;
 
 /// What a controller asks of the body for one tick.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -210,11 +211,25 @@ impl InputsSpec {
 
 /// Where each input sits in an observation vector: the groups switched on, in
 /// [`SensorGroup::ORDER`], each a contiguous range.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+///
+/// Every trial world builds its layout, and the names (90 strings for a 30-pixel retina) are
+/// only wanted by traces, genome files and `inspect`: they are made on first use. Two
+/// layouts are equal when they have the same groups, ranges and input names.
+#[derive(Debug, Clone)]
 pub struct ObservationLayout {
     groups: Vec<(SensorGroup, Range<usize>)>,
-    names: Vec<String>,
+    sizes: GroupSizes,
+    len: usize,
+    names: OnceLock<Vec<String>>,
 }
+
+impl PartialEq for ObservationLayout {
+    fn eq(&self, other: &Self) -> bool {
+        self.groups == other.groups && self.names() == other.names()
+    }
+}
+
+impl Eq for ObservationLayout {}
 
 impl ObservationLayout {
     /// The layout for the groups `inputs` switches on, with the world- and
@@ -222,30 +237,47 @@ impl ObservationLayout {
     /// world without landmarks) is listed with an empty range.
     pub fn new(inputs: &InputsSpec, sizes: &GroupSizes) -> Self {
         let mut groups = Vec::new();
-        let mut names = Vec::new();
+        let mut len = 0;
         for group in SensorGroup::ORDER {
             if inputs.includes(group) {
-                let start = names.len();
-                names.extend(group.input_names(sizes));
-                groups.push((group, start..names.len()));
+                let start = len;
+                len += group.width(sizes);
+                groups.push((group, start..len));
             }
         }
-        ObservationLayout { groups, names }
+        ObservationLayout {
+            groups,
+            sizes: *sizes,
+            len,
+            names: OnceLock::new(),
+        }
     }
 
     /// Number of inputs.
     pub fn len(&self) -> usize {
-        self.names.len()
+        self.len
     }
 
     /// True when no group is switched on.
     pub fn is_empty(&self) -> bool {
-        self.names.is_empty()
+        self.len == 0
     }
 
     /// Names of the inputs, in order (`smell_left_1`, …, `bias`).
     pub fn names(&self) -> &[String] {
-        &self.names
+        self.names.get_or_init(|| {
+            let names: Vec<String> = self
+                .groups
+                .iter()
+                .flat_map(|(group, _)| group.input_names(&self.sizes))
+                .collect();
+            debug_assert_eq!(
+                names.len(),
+                self.len,
+                "SensorGroup::width and input_names agree"
+            );
+            names
+        })
     }
 
     /// The groups switched on and their ranges in the observation.
@@ -265,6 +297,46 @@ impl ObservationLayout {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The layout counts inputs with `width` and names them lazily with `input_names`: the
+    /// two must agree for every group and size.
+    #[test]
+    fn widths_count_the_names() {
+        for sizes in [
+            GroupSizes::default(),
+            GroupSizes {
+                landmarks: 3,
+                areas: 2,
+                retina: [30, 1],
+            },
+            GroupSizes {
+                landmarks: 1,
+                areas: 5,
+                retina: [7, 4],
+            },
+        ] {
+            for group in SensorGroup::ORDER {
+                assert_eq!(
+                    group.width(&sizes),
+                    group.input_names(&sizes).len(),
+                    "{group:?}"
+                );
+            }
+            let all = InputsSpec {
+                metabolism: true,
+                landmarks: true,
+                areas: true,
+                eye: true,
+                ..InputsSpec::default()
+            };
+            let layout = ObservationLayout::new(&all, &sizes);
+            assert_eq!(layout.len(), layout.names().len());
+            assert_eq!(
+                layout.groups().last().map(|(_, r)| r.end),
+                Some(layout.len())
+            );
+        }
+    }
 
     #[test]
     fn default_layout_is_documented_order() {
