@@ -2,6 +2,7 @@
 //! generations, with 1 and 2 threads. Timing lives here and in scripts, never in tests.
 
 use berry_evolve::brain::{Brain, BrainController};
+use berry_evolve::evo::lockstep::{self, Lockstep};
 use berry_evolve::evo::state::{evaluate, first_population, offspring};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
@@ -53,7 +54,9 @@ fn pool(threads: usize) -> anyhow::Result<rayon::ThreadPool> {
 }
 
 /// Creature-ticks per second for `worlds` one-creature worlds of `spec` on `threads`
-/// threads. Worlds are built before the clock starts: placement is not what is measured.
+/// threads, all driven by one genome and run as evolution runs trials: in lockstep chunks
+/// of [`lockstep::CHUNK_TRIALS`] worlds, one rayon job and one brain per chunk. Worlds and
+/// brains are built before the clock starts: placement is not what is measured.
 fn sim_rate(
     experiment: &Experiment,
     spec: &WorldSpec,
@@ -75,32 +78,45 @@ fn sim_rate(
         &mut rng,
     )
     .swap_remove(0);
+    anyhow::ensure!(
+        lockstep::stateless(&topology),
+        "the simulator benchmark runs worlds in lockstep and needs a stateless brain (an MLP)"
+    );
     let pool = pool(threads)?;
-    let mut jobs = Vec::with_capacity(worlds as usize);
-    for w in 0..worlds {
+    let mut jobs = Vec::new();
+    for chunk in lockstep::chunks(worlds) {
         let brain = Brain::new(&topology, &genome.parameters)?;
         let controllers = [BrainController::new(
             brain,
             experiment.creature.max_rpt,
             experiment.creature.eats_by_action(),
         )];
-        let rng = stream(
-            experiment.seed(),
-            Purpose::Baseline,
-            Generation(1),
-            IndividualId(w),
-            TrialIndex(0),
-        );
-        jobs.push((World::new(spec, &experiment.creature, 1, rng)?, controllers));
+        let mut chunk_worlds = Vec::with_capacity((chunk.end - chunk.start) as usize);
+        for w in chunk {
+            let rng = stream(
+                experiment.seed(),
+                Purpose::Baseline,
+                Generation(1),
+                IndividualId(w),
+                TrialIndex(0),
+            );
+            chunk_worlds.push(World::new(spec, &experiment.creature, 1, rng)?);
+        }
+        jobs.push((chunk_worlds, controllers));
     }
     let start = Instant::now();
     let travelled: Vec<f64> = pool.install(|| {
         jobs.par_iter_mut()
-            .map(|(world, controllers)| {
+            .flat_map_iter(|(worlds, controllers)| {
+                let n = worlds.len();
+                let width = worlds[0].layout().len();
+                let mut lockstep = Lockstep::new(n, 1, width);
+                let running = vec![true; n];
+                let mut invalid = vec![false; n];
                 for _ in 0..ticks {
-                    world.step(controllers);
+                    lockstep.tick(worlds, &running, controllers, &mut invalid);
                 }
-                world.creatures()[0].travelled
+                worlds.iter().map(|w| w.creatures()[0].travelled)
             })
             .collect()
     });

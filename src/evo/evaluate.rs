@@ -2,15 +2,18 @@
 //!
 //! One trial is a pure function of (experiment, the genomes of one group, generation, group
 //! index, trial index): it builds its world from its own seed stream and shares nothing with
-//! other trials. [`evaluate_population`] runs all (group, trial) pairs in parallel with rayon,
-//! collects them in index order and reduces them serially, so the result is the same bits for
-//! any number of threads, and the same as evaluating one group at a time with
-//! [`evaluate_group`] (which a later distributed runner can call on another machine).
+//! other trials. [`evaluate_population`] runs all (group, trial) pairs in parallel with rayon
+//! (with stateless brains, several trials of a group at once in lockstep, see
+//! [`crate::evo::lockstep`]), collects them in index order and reduces them serially, so the
+//! result is the same bits for any number of threads, and the same as evaluating one group at
+//! a time with [`evaluate_group`] (which a later distributed runner can call on another
+//! machine).
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
 use crate::brain::{Brain, BrainController};
 use crate::evo::fitness::LifeScore;
+use crate::evo::lockstep;
 use crate::experiment::{Aggregate, Experiment};
 use crate::seed::{stream, Generation, IndividualId, Purpose, Rng, TrialIndex};
 use crate::sim::controller::{Controller, MotorCommand};
@@ -95,35 +98,39 @@ pub fn trial_stream(
     )
 }
 
-/// A brain controller that notices non-finite outputs instead of letting NaN reach the
-/// world: the creature stands still for that tick and the life is marked invalid.
-struct CheckedController {
-    inner: BrainController,
-    non_finite: bool,
+/// The command a creature gets from `command`: itself when every field is finite, else None
+/// (the creature stands still for that tick and its life is marked invalid). The one check
+/// both evaluation paths apply, so that they agree to the bit.
+#[inline]
+pub(crate) fn finite_command(command: MotorCommand) -> Option<MotorCommand> {
+    (command.left.is_finite() && command.right.is_finite() && command.eat.is_finite())
+        .then_some(command)
 }
 
-impl Controller for CheckedController {
+/// A controller that notices non-finite outputs instead of letting NaN reach the world: the
+/// creature stands still for that tick and the life is marked invalid.
+pub(crate) struct CheckedController<C> {
+    pub(crate) inner: C,
+    pub(crate) non_finite: bool,
+}
+
+impl<C: Controller> Controller for CheckedController<C> {
     fn act(&mut self, observation: &[f64]) -> MotorCommand {
-        let command = self.inner.act(observation);
-        if command.left.is_finite() && command.right.is_finite() && command.eat.is_finite() {
-            command
-        } else {
+        finite_command(self.inner.act(observation)).unwrap_or_else(|| {
             self.non_finite = true;
             MotorCommand::default()
-        }
+        })
     }
 }
 
-/// Lives one trial for a group of genomes sharing one world; returns one outcome per genome.
-pub fn run_trial(
+/// Builds the controller of every genome of group `group` (errors name the individual).
+pub(crate) fn controllers(
     experiment: &Experiment,
     topology: &Topology,
     genomes: &[Genome],
-    generation: Generation,
     group: u64,
-    trial: TrialIndex,
-) -> Result<Vec<TrialOutcome>, EvaluationError> {
-    let mut controllers = genomes
+) -> Result<Vec<BrainController>, EvaluationError> {
+    genomes
         .iter()
         .enumerate()
         .map(|(k, genome)| {
@@ -133,54 +140,109 @@ pub fn run_trial(
                     error,
                 }
             })?;
-            Ok(CheckedController {
-                inner: BrainController::new(
-                    brain,
-                    experiment.creature.max_rpt,
-                    experiment.creature.eats_by_action(),
-                ),
-                non_finite: false,
-            })
+            Ok(BrainController::new(
+                brain,
+                experiment.creature.max_rpt,
+                experiment.creature.eats_by_action(),
+            ))
         })
-        .collect::<Result<Vec<_>, EvaluationError>>()?;
+        .collect()
+}
+
+/// Builds trial `trial`'s world for `creatures` creatures of group `group`.
+pub(crate) fn trial_world(
+    experiment: &Experiment,
+    creatures: usize,
+    generation: Generation,
+    group: u64,
+    trial: TrialIndex,
+) -> Result<World, EvaluationError> {
     let rng = trial_stream(experiment, generation, group, trial);
-    let mut world = World::new(&experiment.world, &experiment.creature, genomes.len(), rng)
-        .map_err(|error| EvaluationError::World {
+    World::new(&experiment.world, &experiment.creature, creatures, rng).map_err(|error| {
+        EvaluationError::World {
             generation: generation.0,
             trial: trial.0,
             error,
-        })?;
-    let mut scores: Vec<LifeScore> = (0..genomes.len())
-        .map(|_| LifeScore::new(&experiment.fitness))
-        .collect();
-    for _ in 0..experiment.evaluation.ticks {
-        world.step(&mut controllers);
-        let mut anyone_alive = false;
-        for (i, creature) in world.creatures().iter().enumerate() {
-            if controllers[i].non_finite {
-                continue;
-            }
-            if creature.alive {
-                scores[i].record_tick(&creature.metabolism, creature.shocked);
-                anyone_alive = true;
-            }
         }
-        if !anyone_alive {
-            break;
+    })
+}
+
+/// The score bookkeeping after one tick: every living creature whose life is still valid
+/// (`invalid[i]` false) records the tick. Returns whether any did; when none did, the trial
+/// is over (nothing it could still record).
+#[inline]
+pub(crate) fn record_tick(world: &World, invalid: &[bool], scores: &mut [LifeScore]) -> bool {
+    let mut anyone_alive = false;
+    for ((creature, score), &invalid) in world.creatures().iter().zip(scores).zip(invalid) {
+        if !invalid && creature.alive {
+            score.record_tick(&creature.metabolism, creature.shocked);
+            anyone_alive = true;
         }
     }
-    Ok(world
+    anyone_alive
+}
+
+/// Every creature's outcome at the end of a trial.
+pub(crate) fn outcomes(world: &World, scores: &[LifeScore], invalid: &[bool]) -> Vec<TrialOutcome> {
+    world
         .creatures()
         .iter()
         .zip(scores)
-        .zip(&controllers)
-        .map(|((creature, score), controller)| TrialOutcome {
+        .zip(invalid)
+        .map(|((creature, score), &non_finite)| TrialOutcome {
             score: score.finish(&creature.metabolism),
             metabolism: creature.metabolism,
             shocked_ticks: score.shocked_ticks(),
-            non_finite: controller.non_finite,
+            non_finite,
         })
-        .collect())
+        .collect()
+}
+
+/// Lives one trial for a group of genomes sharing one world; returns one outcome per genome.
+/// Builds one brain per genome for this trial alone and steps the world tick by tick (the
+/// path for brains with state; [`crate::evo::lockstep`] gives the same bits for stateless
+/// ones).
+pub fn run_trial(
+    experiment: &Experiment,
+    topology: &Topology,
+    genomes: &[Genome],
+    generation: Generation,
+    group: u64,
+    trial: TrialIndex,
+) -> Result<Vec<TrialOutcome>, EvaluationError> {
+    let mut controllers: Vec<CheckedController<BrainController>> =
+        controllers(experiment, topology, genomes, group)?
+            .into_iter()
+            .map(|inner| CheckedController {
+                inner,
+                non_finite: false,
+            })
+            .collect();
+    let world = trial_world(experiment, genomes.len(), generation, group, trial)?;
+    Ok(live_trial(experiment, world, &mut controllers))
+}
+
+/// Steps `world` for at most `ticks` ticks with `controllers` (one per creature), stopping
+/// after the first tick in which no creature recorded a score.
+pub(crate) fn live_trial<C: Controller>(
+    experiment: &Experiment,
+    mut world: World,
+    controllers: &mut [CheckedController<C>],
+) -> Vec<TrialOutcome> {
+    let mut scores: Vec<LifeScore> = (0..controllers.len())
+        .map(|_| LifeScore::new(&experiment.fitness))
+        .collect();
+    let mut invalid = vec![false; controllers.len()];
+    for _ in 0..experiment.evaluation.ticks {
+        world.step(controllers);
+        for (flag, controller) in invalid.iter_mut().zip(controllers.iter()) {
+            *flag = controller.non_finite;
+        }
+        if !record_tick(&world, &invalid, &mut scores) {
+            break;
+        }
+    }
+    outcomes(&world, &scores, &invalid)
 }
 
 /// Combines an individual's trials (in trial order) into its evaluation.
@@ -237,8 +299,12 @@ pub fn evaluate_group(
         .collect())
 }
 
-/// Evaluates a whole population in parallel on the current rayon pool. Every (group, trial)
-/// pair is one job; results are collected in index order and aggregated serially.
+/// Evaluates a whole population in parallel on the current rayon pool. With a stateless
+/// brain (an MLP), each job is one group and a chunk of up to
+/// [`lockstep::CHUNK_TRIALS`] of its trials run in lockstep ([`lockstep::run_trials`]: one
+/// brain per genome, batched over the chunk's worlds); otherwise each (group, trial) pair is
+/// one job ([`run_trial`]). Either way, results are collected in index order and aggregated
+/// serially, so they are the same bits on any number of threads and on either path.
 pub fn evaluate_population(
     experiment: &Experiment,
     topology: &Topology,
@@ -248,23 +314,44 @@ pub fn evaluate_population(
     let k = experiment.evaluation.group_size as usize;
     let trials = experiment.evaluation.trials;
     let groups = population.len() / k;
-    let jobs: Vec<(usize, u64)> = (0..groups)
-        .flat_map(|g| (0..trials).map(move |t| (g, t)))
-        .collect();
-    let outcomes: Vec<Vec<TrialOutcome>> = jobs
-        .par_iter()
-        .map(|&(g, t)| {
-            run_trial(
-                experiment,
-                topology,
-                &population[g * k..(g + 1) * k],
-                generation,
-                g as u64,
-                TrialIndex(t),
-            )
-        })
-        .collect::<Result<_, _>>()?;
-    // Serial reduction in index order: outcomes[g * trials + t][i] is individual g*k + i.
+    // outcomes[g * trials + t][i] is individual g*k + i's life in trial t.
+    let outcomes: Vec<Vec<TrialOutcome>> = if lockstep::stateless(topology) {
+        let chunks = lockstep::chunks(trials);
+        let jobs: Vec<(usize, std::ops::Range<u64>)> = (0..groups)
+            .flat_map(|g| chunks.iter().map(move |c| (g, c.clone())))
+            .collect();
+        let per_job: Vec<Vec<Vec<TrialOutcome>>> = jobs
+            .par_iter()
+            .map(|(g, chunk)| {
+                lockstep::run_trials(
+                    experiment,
+                    topology,
+                    &population[g * k..(g + 1) * k],
+                    generation,
+                    *g as u64,
+                    chunk.clone(),
+                )
+            })
+            .collect::<Result<_, _>>()?;
+        per_job.into_iter().flatten().collect()
+    } else {
+        let jobs: Vec<(usize, u64)> = (0..groups)
+            .flat_map(|g| (0..trials).map(move |t| (g, t)))
+            .collect();
+        jobs.par_iter()
+            .map(|&(g, t)| {
+                run_trial(
+                    experiment,
+                    topology,
+                    &population[g * k..(g + 1) * k],
+                    generation,
+                    g as u64,
+                    TrialIndex(t),
+                )
+            })
+            .collect::<Result<_, _>>()?
+    };
+    // Serial reduction in index order.
     let mut evaluations = Vec::with_capacity(population.len());
     let mut trial_list = Vec::with_capacity(trials as usize);
     for group_trials in outcomes.chunks(trials as usize) {

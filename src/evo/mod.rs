@@ -6,6 +6,7 @@
 pub mod evaluate;
 pub mod fitness;
 pub mod init;
+pub mod lockstep;
 pub mod select;
 pub mod spec;
 pub mod state;

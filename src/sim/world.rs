@@ -32,6 +32,10 @@
 //!       attacked by the predators it touches or is under, outside safe areas (§4.7).
 //! 4. The tick counter advances.
 //!
+//! [`World::begin_tick`] (1, 2), [`World::observe`] (3.1), [`World::apply`] (3.3 to 3.6) and
+//! [`World::end_tick`] (4) are these phases one by one, for callers that compute the commands
+//! (3.2) themselves; `step` is exactly those calls in that order.
+//!
 //! # What a tick costs
 //!
 //! Senses, eating and contacts look food, aversive objects and fixed walls up in a uniform
@@ -441,6 +445,9 @@ impl World {
     /// number of creatures; creature i is driven by `controllers[i]`. Dead creatures are
     /// skipped (their controllers are not called).
     ///
+    /// This is [`World::begin_tick`], then for each creature in index order
+    /// [`World::observe`], its controller and [`World::apply`], then [`World::end_tick`].
+    ///
     /// # Panics
     /// When `controllers.len()` differs from the number of creatures (a programming error).
     pub fn step<C: Controller>(&mut self, controllers: &mut [C]) {
@@ -449,6 +456,27 @@ impl World {
             self.creatures.len(),
             "World::step needs one controller per creature"
         );
+        self.begin_tick();
+        for (i, controller) in controllers.iter_mut().enumerate() {
+            let Some(observation) = self.observe(i) else {
+                continue;
+            };
+            let command = controller.act(observation);
+            self.apply(i, command);
+        }
+        self.end_tick();
+    }
+
+    /// The phases of [`World::step`], for a caller that computes the motor commands itself
+    /// (e.g. one brain driving the same creature index in several worlds at once,
+    /// [`crate::evo::lockstep`]). Phases 1 and 2 of the tick: food regenerates, doors close,
+    /// wanderers, ground and air predators act.
+    ///
+    /// The only valid order is the one `step` uses: `begin_tick`, then for each creature i
+    /// in index order `observe(i)` and, when it returned an observation, `apply(i, command)`,
+    /// then `end_tick`. Any other order gives another world (creature i senses the world as
+    /// creatures 0..i left it in this tick; noise draws follow the tick order).
+    pub fn begin_tick(&mut self) {
         self.regenerate_food();
         self.close_doors();
         for a in 0..self.actors.len() {
@@ -457,16 +485,41 @@ impl World {
         for f in 0..self.flyers.len() {
             self.fly(f);
         }
-        let width = self.layout.len();
-        for (i, controller) in controllers.iter_mut().enumerate() {
-            if !self.creatures[i].alive {
-                continue;
-            }
-            self.sense(i);
-            let command = controller.act(&self.observations[i * width..(i + 1) * width]);
-            let outcome = self.move_creature(i, command);
-            self.contacts(i, &outcome);
+    }
+
+    /// Phase 3.1 of the tick (see [`World::begin_tick`] for the order): creature `creature`
+    /// senses and its observation is returned, or None when it is dead (a dead creature
+    /// neither senses nor draws noise, and must not be given a command).
+    ///
+    /// # Panics
+    /// When `creature` is out of range.
+    pub fn observe(&mut self, creature: usize) -> Option<&[f64]> {
+        if !self.creatures[creature].alive {
+            return None;
         }
+        self.sense(creature);
+        Some(self.observation(creature))
+    }
+
+    /// Phases 3.3 to 3.6 of the tick (see [`World::begin_tick`] for the order): creature
+    /// `creature` moves by `command` (clamped), then eats, is shocked, teleports, opens
+    /// doors and meets predators. Call it only after [`World::observe`] returned an
+    /// observation for this creature in this tick.
+    ///
+    /// # Panics
+    /// When `creature` is out of range.
+    pub fn apply(&mut self, creature: usize, command: MotorCommand) {
+        debug_assert!(
+            self.creatures[creature].alive,
+            "World::apply on a dead creature"
+        );
+        let outcome = self.move_creature(creature, command);
+        self.contacts(creature, &outcome);
+    }
+
+    /// Phase 4 of the tick (see [`World::begin_tick`] for the order): the tick counter
+    /// advances.
+    pub fn end_tick(&mut self) {
         self.tick += 1;
     }
 

@@ -1,0 +1,308 @@
+//! Lockstep evaluation: one stateless brain per genome drives its creature in several trial
+//! worlds at once, tick by tick, so that the brain computes a batch of observations per call
+//! ([`BrainController::act_batch`]) and is built once per job instead of once per trial.
+//!
+//! Creature i of world w depends only on world w: each world goes through the phases of
+//! [`World::step`] in their only valid order ([`World::begin_tick`], then per creature
+//! [`World::observe`] and [`World::apply`], then [`World::end_tick`]); the lockstep only
+//! interleaves worlds between those phases. A stateless brain's batch gives every observation
+//! the bits it gives alone, so each world's trial is the same bits as
+//! [`crate::evo::evaluate::run_trial`]'s, whatever the chunk size or the other worlds.
+
+use crate::brain::genome::Genome;
+use crate::brain::spec::Topology;
+use crate::brain::{Brain, BrainController};
+use crate::evo::evaluate::{
+    controllers, finite_command, outcomes, record_tick, trial_world, EvaluationError, TrialOutcome,
+};
+use crate::evo::fitness::LifeScore;
+use crate::experiment::Experiment;
+use crate::seed::{Generation, TrialIndex};
+use crate::sim::controller::MotorCommand;
+use crate::sim::world::World;
+use std::ops::Range;
+
+/// Most trials (worlds) one lockstep job runs: enough for a batched brain kernel to pay off
+/// (n ≥ 8), few enough that a generation still splits into many jobs. A constant, so that
+/// the jobs never depend on the number of threads (the results depend on neither).
+pub const CHUNK_TRIALS: u64 = 16;
+
+/// The trial ranges of one group's jobs: `0..trials` cut into chunks of [`CHUNK_TRIALS`],
+/// in order.
+pub fn chunks(trials: u64) -> Vec<Range<u64>> {
+    (0..trials.div_ceil(CHUNK_TRIALS))
+        .map(|c| c * CHUNK_TRIALS..((c + 1) * CHUNK_TRIALS).min(trials))
+        .collect()
+}
+
+/// Can brains of `topology` run in lockstep (do they keep no state from tick to tick)?
+/// Asks [`Brain::is_stateless`] of an all-zero brain, so that which kinds qualify is decided
+/// in one place.
+pub fn stateless(topology: &Topology) -> bool {
+    Brain::new(topology, &vec![0.0; topology.parameter_count()])
+        .is_ok_and(|brain| brain.is_stateless())
+}
+
+/// What lockstep needs of a controller: the commands of several observations at once, each
+/// the one it would give that observation alone (no state from call to call).
+pub trait BatchController {
+    /// Fills `commands[k]` with the command for observation k of `observations`
+    /// (`commands.len()` observations back to back).
+    fn act_batch(&mut self, observations: &[f64], commands: &mut [MotorCommand]);
+}
+
+impl BatchController for BrainController {
+    #[inline]
+    fn act_batch(&mut self, observations: &[f64], commands: &mut [MotorCommand]) {
+        BrainController::act_batch(self, observations, commands);
+    }
+}
+
+/// The buffers of one lockstep job, sized for its worlds once so that a tick allocates
+/// nothing.
+#[derive(Debug, Clone)]
+pub struct Lockstep {
+    creatures: usize,
+    width: usize,
+    /// Creature i's observations in every world where it is alive, back to back.
+    observations: Vec<f64>,
+    /// Their commands, in the same order.
+    commands: Vec<MotorCommand>,
+    /// The worlds those observations came from, in the same order.
+    live: Vec<usize>,
+}
+
+impl Lockstep {
+    /// Buffers for up to `worlds` worlds of `creatures` creatures whose observations have
+    /// `width` values.
+    pub fn new(worlds: usize, creatures: usize, width: usize) -> Lockstep {
+        Lockstep {
+            creatures,
+            width,
+            observations: Vec::with_capacity(worlds * width),
+            commands: Vec::with_capacity(worlds),
+            live: Vec::with_capacity(worlds),
+        }
+    }
+
+    /// One tick of every world `w` with `running[w]`: creature i of each is driven by
+    /// `controllers[i]`, one batch per creature index. A non-finite command sets
+    /// `invalid[w * creatures + i]` and the creature gets [`MotorCommand::default`] for that
+    /// tick, as [`crate::evo::evaluate::run_trial`] does.
+    ///
+    /// # Panics
+    /// When the slices do not match the sizes given to [`Lockstep::new`] (a programming
+    /// error).
+    pub fn tick<B: BatchController>(
+        &mut self,
+        worlds: &mut [World],
+        running: &[bool],
+        controllers: &mut [B],
+        invalid: &mut [bool],
+    ) {
+        let k = self.creatures;
+        assert_eq!(controllers.len(), k, "one controller per creature");
+        assert_eq!(running.len(), worlds.len(), "one running flag per world");
+        assert_eq!(invalid.len(), worlds.len() * k, "one flag per creature");
+        assert!(
+            self.live.capacity() >= worlds.len(),
+            "lockstep buffers too small"
+        );
+        for (world, _) in worlds.iter_mut().zip(running).filter(|(_, &r)| r) {
+            world.begin_tick();
+        }
+        for (i, controller) in controllers.iter_mut().enumerate() {
+            self.observations.clear();
+            self.live.clear();
+            for (w, world) in worlds.iter_mut().enumerate() {
+                if !running[w] {
+                    continue;
+                }
+                if let Some(observation) = world.observe(i) {
+                    debug_assert_eq!(observation.len(), self.width);
+                    self.observations.extend_from_slice(observation);
+                    self.live.push(w);
+                }
+            }
+            if self.live.is_empty() {
+                continue;
+            }
+            self.commands.clear();
+            self.commands
+                .resize(self.live.len(), MotorCommand::default());
+            controller.act_batch(&self.observations, &mut self.commands);
+            for (&w, &command) in self.live.iter().zip(&self.commands) {
+                let command = finite_command(command).unwrap_or_else(|| {
+                    invalid[w * k + i] = true;
+                    MotorCommand::default()
+                });
+                worlds[w].apply(i, command);
+            }
+        }
+        for (world, _) in worlds.iter_mut().zip(running).filter(|(_, &r)| r) {
+            world.end_tick();
+        }
+    }
+}
+
+/// Lives trials `trials` (a chunk, see [`chunks`]) of group `group` in lockstep; returns,
+/// per trial in order, one outcome per genome: the same bits as
+/// [`crate::evo::evaluate::run_trial`] for each trial.
+///
+/// # Panics
+/// When the brains are not [stateless](stateless) (a programming error: check first).
+pub fn run_trials(
+    experiment: &Experiment,
+    topology: &Topology,
+    genomes: &[Genome],
+    generation: Generation,
+    group: u64,
+    trials: Range<u64>,
+) -> Result<Vec<Vec<TrialOutcome>>, EvaluationError> {
+    let mut controllers = controllers(experiment, topology, genomes, group)?;
+    let worlds = trials
+        .map(|t| trial_world(experiment, genomes.len(), generation, group, TrialIndex(t)))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(live_trials(experiment, worlds, &mut controllers))
+}
+
+/// Steps `worlds` in lockstep for at most `ticks` ticks with `controllers` (one per
+/// creature); each world stops after the first tick in which none of its creatures recorded
+/// a score, as [`crate::evo::evaluate::run_trial`]'s does.
+pub(crate) fn live_trials<B: BatchController>(
+    experiment: &Experiment,
+    mut worlds: Vec<World>,
+    controllers: &mut [B],
+) -> Vec<Vec<TrialOutcome>> {
+    let k = controllers.len();
+    let n = worlds.len();
+    let width = worlds.first().map_or(0, |w| w.layout().len());
+    let mut lockstep = Lockstep::new(n, k, width);
+    let mut scores: Vec<LifeScore> = (0..n * k)
+        .map(|_| LifeScore::new(&experiment.fitness))
+        .collect();
+    let mut invalid = vec![false; n * k];
+    let mut running = vec![true; n];
+    for _ in 0..experiment.evaluation.ticks {
+        if !running.contains(&true) {
+            break;
+        }
+        lockstep.tick(&mut worlds, &running, controllers, &mut invalid);
+        for (w, world) in worlds.iter().enumerate() {
+            if running[w] {
+                let range = w * k..(w + 1) * k;
+                running[w] = record_tick(world, &invalid[range.clone()], &mut scores[range]);
+            }
+        }
+    }
+    worlds
+        .iter()
+        .enumerate()
+        .map(|(w, world)| {
+            let range = w * k..(w + 1) * k;
+            outcomes(world, &scores[range.clone()], &invalid[range])
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::evo::evaluate::{live_trial, CheckedController};
+    use crate::sim::controller::Controller;
+    use std::path::Path;
+
+    /// A stateless controller that turns some observations into NaN commands: its command is
+    /// a function of the observation's bits alone, NaN for about one observation in `every`.
+    #[derive(Clone, Copy)]
+    struct Flaky {
+        every: u64,
+    }
+
+    impl Controller for Flaky {
+        fn act(&mut self, observation: &[f64]) -> MotorCommand {
+            let sum: f64 = observation.iter().sum();
+            if sum.to_bits() % self.every == 0 {
+                return MotorCommand {
+                    left: f64::NAN,
+                    right: 0.1,
+                    eat: 1.0,
+                };
+            }
+            MotorCommand {
+                left: 0.25 * libm::sin(sum),
+                right: 0.25 * libm::cos(1.3 * sum),
+                eat: 1.0,
+            }
+        }
+    }
+
+    impl BatchController for Flaky {
+        fn act_batch(&mut self, observations: &[f64], commands: &mut [MotorCommand]) {
+            let width = observations.len() / commands.len();
+            for (command, observation) in commands.iter_mut().zip(observations.chunks(width)) {
+                *command = self.act(observation);
+            }
+        }
+    }
+
+    fn tiny(ticks: u64) -> Experiment {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut experiment = Experiment::load(&root.join("tests/fixtures/tiny.toml")).unwrap();
+        experiment.evaluation.ticks = ticks;
+        experiment
+    }
+
+    /// Non-finite commands mark exactly the lives `run_trial`'s check marks, stand the
+    /// creature still the same way, and stop a world whose creatures are all invalid at the
+    /// same tick.
+    #[test]
+    fn non_finite_commands_give_the_per_trial_outcomes() {
+        let experiment = tiny(150);
+        let mut some_invalid = 0;
+        let mut all_invalid = 0;
+        for (creatures, every) in [(1usize, 97u64), (3, 61), (4, 1009), (2, 3)] {
+            let worlds: Vec<World> = (0..CHUNK_TRIALS + 3)
+                .map(|t| trial_world(&experiment, creatures, Generation(2), 1, TrialIndex(t)))
+                .collect::<Result<_, _>>()
+                .unwrap();
+            let mut batch = vec![Flaky { every }; creatures];
+            let lockstep = live_trials(&experiment, worlds.clone(), &mut batch);
+            for (world, together) in worlds.into_iter().zip(&lockstep) {
+                let mut checked: Vec<CheckedController<Flaky>> = (0..creatures)
+                    .map(|_| CheckedController {
+                        inner: Flaky { every },
+                        non_finite: false,
+                    })
+                    .collect();
+                let alone = live_trial(&experiment, world, &mut checked);
+                assert_eq!(alone.len(), together.len());
+                for (a, b) in alone.iter().zip(together) {
+                    assert_eq!(a.score.to_bits(), b.score.to_bits());
+                    assert_eq!(
+                        a.metabolism.map(f64::to_bits),
+                        b.metabolism.map(f64::to_bits)
+                    );
+                    assert_eq!(a.shocked_ticks, b.shocked_ticks);
+                    assert_eq!(a.non_finite, b.non_finite);
+                }
+                let invalid = together.iter().filter(|o| o.non_finite).count();
+                some_invalid += usize::from(invalid > 0 && invalid < creatures);
+                all_invalid += usize::from(invalid == creatures);
+            }
+        }
+        // The cases above do exercise both a partly and a wholly invalid world.
+        assert!(
+            some_invalid > 0 && all_invalid > 0,
+            "{some_invalid} {all_invalid}"
+        );
+    }
+
+    #[test]
+    fn chunks_cover_the_trials_in_order() {
+        assert!(chunks(0).is_empty());
+        assert_eq!(chunks(5), vec![0..5]);
+        assert_eq!(chunks(16), vec![0..16]);
+        assert_eq!(chunks(33), vec![0..16, 16..32, 32..33]);
+    }
+}
