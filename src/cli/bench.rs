@@ -23,11 +23,12 @@ pub struct BenchArgs {
         PathBuf::from("experiments/bench/eye-predators-world.toml"),
     ])]
     pub world: Vec<PathBuf>,
-    /// Worlds per simulator measurement.
-    #[arg(long, default_value_t = 16)]
+    /// Worlds per simulator measurement. They run in lockstep chunks of 16 worlds, one
+    /// thread per chunk, as evolution runs trials: 64 give both threads whole chunks.
+    #[arg(long, default_value_t = 64)]
     pub worlds: u64,
     /// Ticks per world (long enough that one measurement takes about half a second).
-    #[arg(long, default_value_t = 20000)]
+    #[arg(long, default_value_t = 5000)]
     pub ticks: u64,
     /// Evolution benchmark experiment.
     #[arg(long, default_value = "experiments/foraging.toml")]
@@ -315,8 +316,11 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         let mut first = None;
         for &k in args.scaling.iter().filter(|&&k| k > 0) {
             let spec = tiled_world(&experiment.world, k)?;
+            // One thread runs one chunk at a time, so one chunk's worth of (large) worlds
+            // gives the same rate as more.
+            let worlds = args.worlds.min(berry_evolve::evo::lockstep::CHUNK_TRIALS);
             let rate = median_of(repeat, || {
-                sim_rate(&experiment, &spec, args.worlds, args.ticks, 1)
+                sim_rate(&experiment, &spec, worlds, args.ticks, 1)
             })?;
             let base = *first.get_or_insert(rate);
             println!(
