@@ -311,6 +311,155 @@ fn blocks<const N: usize>(
     j
 }
 
+/// Samples per tile of [`affine_batch`]: the tile's sums for one block of units stay in
+/// registers while the inputs are walked, so each weight load serves this many samples.
+pub const BATCH_TILE: usize = 4;
+
+/// [`affine`] for `n` samples at once: `x` holds n input vectors one after another (n × p
+/// values, p = `x.len() / n`), `y` receives n output vectors (n × `biases.len()` values), and
+/// sample s gets exactly the bits [`affine`] gives it alone. `tile` is scratch space for at
+/// least [`BATCH_TILE`] × p values (the caller keeps it, so a batch allocates nothing).
+///
+/// The samples are taken in tiles of [`BATCH_TILE`] (then 2, then 1 for the remainder). A
+/// tile's inputs are first copied input-major into `tile` (the T values of input i side by
+/// side), then the units are taken in blocks of 8, 4, 2 and 1 as in [`accumulate`]: for one
+/// block, the tile × block sums live in registers while the inputs are walked in index order,
+/// so each row slice of weights is loaded once and multiplied by every sample's input i.
+/// Every sum is still y_sj = b_j + w_j0 x_s0 + w_j1 x_s1 + … left to right with separate
+/// multiplies and adds; tiling only changes which sums are in flight together, never the
+/// order inside one.
+///
+/// # Panics
+/// When the lengths disagree (`x.len()` not n × p with `transposed.len()` = p × units,
+/// `y.len()` not n × units, `tile` shorter than [`BATCH_TILE`] × p); with no sample or no
+/// unit there is nothing to do, and nothing is checked.
+#[inline]
+pub fn affine_batch(
+    transposed: &[f64],
+    biases: &[f64],
+    x: &[f64],
+    y: &mut [f64],
+    n: usize,
+    tile: &mut [f64],
+) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: `affine_batch_avx2` only requires the CPU to support AVX2, checked just above.
+        unsafe { affine_batch_avx2(transposed, biases, x, y, n, tile) };
+        return;
+    }
+    affine_batch_portable(transposed, biases, x, y, n, tile);
+}
+
+/// [`affine_batch_portable`] compiled for AVX2.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn affine_batch_avx2(
+    transposed: &[f64],
+    biases: &[f64],
+    x: &[f64],
+    y: &mut [f64],
+    n: usize,
+    tile: &mut [f64],
+) {
+    affine_batch_portable(transposed, biases, x, y, n, tile);
+}
+
+/// [`affine_batch`] for any CPU (inlined into callers that are themselves compiled for AVX2,
+/// such as the MLP's batched forward pass).
+#[inline(always)]
+pub(crate) fn affine_batch_portable(
+    transposed: &[f64],
+    biases: &[f64],
+    x: &[f64],
+    y: &mut [f64],
+    n: usize,
+    tile: &mut [f64],
+) {
+    let units = biases.len();
+    if units == 0 || n == 0 {
+        return;
+    }
+    let p = x.len() / n;
+    assert_eq!(x.len(), n * p, "batch inputs");
+    assert_eq!(y.len(), n * units, "batch outputs");
+    assert_eq!(transposed.len(), p * units, "batch weights");
+    assert!(tile.len() >= BATCH_TILE * p, "batch tile scratch");
+    let mut s = 0;
+    s = sample_tiles::<BATCH_TILE>(transposed, biases, x, y, (n, p), tile, s);
+    s = sample_tiles::<2>(transposed, biases, x, y, (n, p), tile, s);
+    sample_tiles::<1>(transposed, biases, x, y, (n, p), tile, s);
+}
+
+/// [`affine_batch`] for the samples s.. in whole tiles of `T`; returns where it stopped.
+#[inline(always)]
+fn sample_tiles<const T: usize>(
+    transposed: &[f64],
+    biases: &[f64],
+    x: &[f64],
+    y: &mut [f64],
+    (n, p): (usize, usize),
+    tile: &mut [f64],
+    mut s: usize,
+) -> usize {
+    let units = biases.len();
+    let xt = &mut tile[..T * p];
+    while s + T <= n {
+        // Input-major copy of the tile: the inner loop then reads one contiguous group of T
+        // inputs per step, without a bounds check per sample.
+        let xs = &x[s * p..(s + T) * p];
+        for (i, group) in xt.chunks_exact_mut(T).enumerate() {
+            for (t, v) in group.iter_mut().enumerate() {
+                *v = xs[t * p + i];
+            }
+        }
+        let ys = &mut y[s * units..(s + T) * units];
+        let mut j = 0;
+        j = unit_blocks::<T, 8>(transposed, biases, xt, ys, j);
+        j = unit_blocks::<T, 4>(transposed, biases, xt, ys, j);
+        j = unit_blocks::<T, 2>(transposed, biases, xt, ys, j);
+        unit_blocks::<T, 1>(transposed, biases, xt, ys, j);
+        s += T;
+    }
+    s
+}
+
+/// One tile of `T` samples (inputs `xt`, input-major) over the units j.. in whole blocks of
+/// `N`: the T × N sums stay in registers over all the inputs; returns where it stopped.
+#[inline(always)]
+fn unit_blocks<const T: usize, const N: usize>(
+    transposed: &[f64],
+    biases: &[f64],
+    xt: &[f64],
+    ys: &mut [f64],
+    mut j: usize,
+) -> usize {
+    let units = biases.len();
+    while j + N <= units {
+        let start: [f64; N] = biases[j..j + N].try_into().expect("N biases");
+        let mut acc = [start; T];
+        // `units` ≥ N ≥ 1 and every row has exactly `units` weights, so the slices below
+        // need no bounds check inside the loop.
+        for (row, group) in transposed.chunks_exact(units).zip(xt.chunks_exact(T)) {
+            let w: &[f64; N] = row[j..j + N].try_into().expect("N weights");
+            let group: &[f64; T] = group.try_into().expect("T inputs");
+            for t in 0..T {
+                for k in 0..N {
+                    acc[t][k] += w[k] * group[t];
+                }
+            }
+        }
+        for (t, sums) in acc.iter().enumerate() {
+            ys[t * units + j..t * units + j + N].copy_from_slice(sums);
+        }
+        j += N;
+    }
+    j
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -458,6 +607,59 @@ mod tests {
                 // SAFETY: AVX2 is supported (checked just above).
                 unsafe { kernel_avx2(&w, Some(&b), &x, &mut avx2) };
                 assert_eq!(bits(&portable), bits(&avx2), "{units} x {inputs}");
+            }
+        }
+    }
+
+    #[test]
+    fn batch_kernels_agree_with_single_sample_affine_bit_for_bit() {
+        // Every tile remainder (n mod 4) and block remainder (units mod 8), AVX2 and portable.
+        use crate::seed::{
+            below, stream, uniform, Generation, IndividualId, Purpose, Seed, TrialIndex,
+        };
+        let mut rng = stream(
+            Seed(46),
+            Purpose::Baseline,
+            Generation(0),
+            IndividualId(0),
+            TrialIndex(0),
+        );
+        let mut next = || {
+            let scale = libm::exp2(below(&mut rng, 41) as f64 - 20.0);
+            uniform(&mut rng, -0.5, 0.5) * scale
+        };
+        let bits = |v: &[f64]| v.iter().map(|f| f.to_bits()).collect::<Vec<_>>();
+        for (units, inputs) in [(1, 1), (3, 5), (15, 7), (16, 24), (100, 98), (37, 0)] {
+            let w: Vec<f64> = (0..units * inputs).map(|_| next()).collect();
+            let b: Vec<f64> = (0..units).map(|_| next()).collect();
+            let mut tile = vec![0.0; BATCH_TILE * inputs];
+            for n in [0, 1, 2, 3, 4, 5, 6, 7, 9, 16, 33] {
+                let x: Vec<f64> = (0..n * inputs).map(|_| next()).collect();
+                let mut expected = vec![0.0; n * units];
+                for (s, ys) in expected.chunks_exact_mut(units).enumerate() {
+                    affine(&w, &b, &x[s * inputs..(s + 1) * inputs], ys);
+                }
+                let mut portable = vec![0.0; n * units];
+                affine_batch_portable(&w, &b, &x, &mut portable, n, &mut tile);
+                assert_eq!(
+                    bits(&portable),
+                    bits(&expected),
+                    "{units} x {inputs}, n={n}"
+                );
+                let mut dispatched = vec![0.0; n * units];
+                affine_batch(&w, &b, &x, &mut dispatched, n, &mut tile);
+                assert_eq!(
+                    bits(&dispatched),
+                    bits(&expected),
+                    "{units} x {inputs}, n={n}"
+                );
+                #[cfg(target_arch = "x86_64")]
+                if std::arch::is_x86_feature_detected!("avx2") {
+                    let mut avx2 = vec![0.0; n * units];
+                    // SAFETY: AVX2 is supported (checked just above).
+                    unsafe { affine_batch_avx2(&w, &b, &x, &mut avx2, n, &mut tile) };
+                    assert_eq!(bits(&avx2), bits(&expected), "{units} x {inputs}, n={n}");
+                }
             }
         }
     }

@@ -188,18 +188,16 @@ impl Brain {
     /// (programming errors).
     pub fn activate_batch(&mut self, inputs: &[f64], outputs: &mut [f64]) {
         let (n_in, n_out) = (self.inputs(), self.outputs());
-        let n = inputs.len() / n_in.max(1);
+        // A brain without inputs (allowed, if useless) takes its batch size from the outputs.
+        let n = inputs
+            .len()
+            .checked_div(n_in)
+            .or_else(|| outputs.len().checked_div(n_out))
+            .unwrap_or(0);
         assert_eq!(inputs.len(), n * n_in, "brain batch input count");
         assert_eq!(outputs.len(), n * n_out, "brain batch output count");
         match self {
-            Brain::Mlp(b) => {
-                for (x, y) in inputs
-                    .chunks_exact(n_in.max(1))
-                    .zip(outputs.chunks_exact_mut(n_out))
-                {
-                    b.activate(x, y);
-                }
-            }
+            Brain::Mlp(b) => b.activate_batch(inputs, outputs),
             Brain::Recurrent(_) | Brain::Ctrnn(_) => {
                 panic!("a recurrent brain's state belongs to one life: it cannot run a batch")
             }
