@@ -417,11 +417,21 @@ fn sample_tiles<const T: usize>(
             }
         }
         let ys = &mut y[s * units..(s + T) * units];
-        let mut j = 0;
-        j = unit_blocks::<T, 8>(transposed, biases, xt, ys, j);
-        j = unit_blocks::<T, 4>(transposed, biases, xt, ys, j);
-        j = unit_blocks::<T, 2>(transposed, biases, xt, ys, j);
-        unit_blocks::<T, 1>(transposed, biases, xt, ys, j);
+        let j = unit_blocks::<T, 8>(transposed, biases, xt, ys, 0);
+        let j = unit_blocks::<T, 4>(transposed, biases, xt, ys, j);
+        if T >= 4 {
+            // Fewer than 4 units left (all of a 2- or 3-unit output layer): one register
+            // per unit across the tile's samples beats half-empty unit blocks.
+            match units - j {
+                1 => lane_block::<T, 1>(transposed, biases, xt, ys, j),
+                2 => lane_block::<T, 2>(transposed, biases, xt, ys, j),
+                3 => lane_block::<T, 3>(transposed, biases, xt, ys, j),
+                _ => {}
+            }
+        } else {
+            let j = unit_blocks::<T, 2>(transposed, biases, xt, ys, j);
+            unit_blocks::<T, 1>(transposed, biases, xt, ys, j);
+        }
         s += T;
     }
     s
@@ -441,9 +451,9 @@ fn unit_blocks<const T: usize, const N: usize>(
     while j + N <= units {
         let start: [f64; N] = biases[j..j + N].try_into().expect("N biases");
         let mut acc = [start; T];
-        // `units` ≥ N ≥ 1 and every row has exactly `units` weights, so the slices below
-        // need no bounds check inside the loop.
-        for (row, group) in transposed.chunks_exact(units).zip(xt.chunks_exact(T)) {
+        // One input: every sum of the tile gains its term. `units` ≥ N ≥ 1 and every row
+        // has exactly `units` weights, so the slices need no bounds check inside the loops.
+        let step = |acc: &mut [[f64; N]; T], row: &[f64], group: &[f64]| {
             let w: &[f64; N] = row[j..j + N].try_into().expect("N weights");
             let group: &[f64; T] = group.try_into().expect("T inputs");
             for t in 0..T {
@@ -451,6 +461,21 @@ fn unit_blocks<const T: usize, const N: usize>(
                     acc[t][k] += w[k] * group[t];
                 }
             }
+        };
+        // Two inputs per iteration (in index order) to halve the loop overhead.
+        let pairs = transposed
+            .chunks_exact(2 * units)
+            .zip(xt.chunks_exact(2 * T));
+        for (rows, groups) in pairs {
+            step(&mut acc, &rows[..units], &groups[..T]);
+            step(&mut acc, &rows[units..], &groups[T..]);
+        }
+        let done = transposed.len() / (2 * units) * 2;
+        if let (Some(row), Some(group)) = (
+            transposed.chunks_exact(units).nth(done),
+            xt.chunks_exact(T).nth(done),
+        ) {
+            step(&mut acc, row, group);
         }
         for (t, sums) in acc.iter().enumerate() {
             ys[t * units + j..t * units + j + N].copy_from_slice(sums);
@@ -458,6 +483,38 @@ fn unit_blocks<const T: usize, const N: usize>(
         j += N;
     }
     j
+}
+
+/// One tile of `T` samples (inputs `xt`, input-major) over the last `N` units j..j + N,
+/// with one register per unit holding the T samples' sums (the tile's inputs for one input
+/// index are contiguous in `xt`): for a handful of units this wastes no lanes.
+#[inline(always)]
+fn lane_block<const T: usize, const N: usize>(
+    transposed: &[f64],
+    biases: &[f64],
+    xt: &[f64],
+    ys: &mut [f64],
+    j: usize,
+) {
+    let units = biases.len();
+    let mut acc = [[0.0; T]; N];
+    for (k, sums) in acc.iter_mut().enumerate() {
+        *sums = [biases[j + k]; T];
+    }
+    for (row, group) in transposed.chunks_exact(units).zip(xt.chunks_exact(T)) {
+        let w: &[f64; N] = row[j..j + N].try_into().expect("N weights");
+        let group: &[f64; T] = group.try_into().expect("T inputs");
+        for k in 0..N {
+            for t in 0..T {
+                acc[k][t] += w[k] * group[t];
+            }
+        }
+    }
+    for (k, sums) in acc.iter().enumerate() {
+        for (t, &sum) in sums.iter().enumerate() {
+            ys[t * units + j + k] = sum;
+        }
+    }
 }
 
 #[cfg(test)]
@@ -629,7 +686,15 @@ mod tests {
             uniform(&mut rng, -0.5, 0.5) * scale
         };
         let bits = |v: &[f64]| v.iter().map(|f| f.to_bits()).collect::<Vec<_>>();
-        for (units, inputs) in [(1, 1), (3, 5), (15, 7), (16, 24), (100, 98), (37, 0)] {
+        for (units, inputs) in [
+            (1, 1),
+            (3, 5),
+            (10, 4),
+            (15, 7),
+            (16, 24),
+            (100, 98),
+            (37, 0),
+        ] {
             let w: Vec<f64> = (0..units * inputs).map(|_| next()).collect();
             let b: Vec<f64> = (0..units).map(|_| next()).collect();
             let mut tile = vec![0.0; BATCH_TILE * inputs];

@@ -164,6 +164,11 @@ impl Mlp {
             .unwrap_or(0);
         assert_eq!(inputs.len(), n * self.inputs, "mlp batch input count");
         assert_eq!(outputs.len(), n * self.outputs, "mlp batch output count");
+        if n == 1 {
+            // One sample: nothing to share, and the single pass skips the tile copy.
+            self.activate(inputs, outputs);
+            return;
+        }
         let needed = n * self.hidden.last().map_or(0, |layer| layer.out.end);
         if self.activations.len() < needed {
             self.activations.resize(needed, 0.0);
