@@ -403,9 +403,11 @@ pub const BATCH_TILE: usize = 4;
 ///
 /// The samples are taken in tiles of [`BATCH_TILE`] (then 2, then 1 for the remainder). A
 /// tile's inputs are first copied input-major into `tile` (the T values of input i side by
-/// side), then the units are taken in blocks of 8, 4, 2 and 1 as in [`accumulate`]: for one
-/// block, the tile × block sums live in registers while the inputs are walked in index order,
-/// so each row slice of weights is loaded once and multiplied by every sample's input i.
+/// side), then the units are taken in blocks of 8 and 4 (then 2 and 1 in smaller tiles) as in
+/// [`accumulate`]: for one block, the tile × block sums live in registers while the inputs
+/// are walked in index order (two per loop step), so each row slice of weights is loaded once
+/// and multiplied by every sample's input i. In a full tile the last 1–3 units (the motor
+/// outputs) instead get one register per unit holding the tile's samples.
 /// Every sum is still y_sj = b_j + w_j0 x_s0 + w_j1 x_s1 + … left to right with separate
 /// multiplies and adds; tiling only changes which sums are in flight together, never the
 /// order inside one.

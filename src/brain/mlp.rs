@@ -35,8 +35,8 @@
 //! then inputs left to right, separate multiply and add), so f32 results are deterministic
 //! too. Activations are applied by widening the f32 sum to f64, applying the f64 function
 //! ([`super::activation::tanh`] etc., so their error bounds still hold) and rounding back to
-//! f32; the outputs are widened to f64. With AVX2 an f32 unit block is 16 units (8 per
-//! register).
+//! f32; the outputs are widened to f64. With AVX2 a register holds 8 f32: a single pass
+//! takes 16 units per block, a batch tile 4 samples × 8 units.
 
 use super::activation::{
     affine_batch_portable, kernel_portable, transpose, Activation, Real, BATCH_TILE,
