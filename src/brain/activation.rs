@@ -34,8 +34,14 @@
 //! input-major (transposed) weight matrix. Each unit's sum keeps its own order, so the
 //! compiler can put several units in one SIMD register without reassociating anything (no
 //! relaxed floating-point flags), and the result is the same at any vector width.
+//!
+//! [`affine_batch`] does the same for several samples at once (the samples of a batch share
+//! each weight load; see its docs), with every sample's sums in the same order, so each sample
+//! gets the bits [`affine`] gives it alone. The kernels are generic over [`Real`] (f64, and
+//! f32 for `precision = "f32"` MLPs): `+` and `*` are rounded by IEEE 754 in either type.
 
 use serde::{Deserialize, Serialize};
+use std::ops::{Add, AddAssign, Mul};
 
 /// The activation function of hidden units (`brain.activation`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
@@ -206,6 +212,72 @@ pub fn nan_to_zero(x: f64) -> f64 {
     }
 }
 
+/// A float type the layer kernels compute in: f64, or f32 for an MLP with
+/// `precision = "f32"` (see [`crate::brain::mlp`]). Only `+` and `*` are used, each rounded
+/// by IEEE 754 in the type itself, so every sum has the same bits on every CPU in either type.
+pub trait Real:
+    Copy + std::fmt::Debug + Add<Output = Self> + Mul<Output = Self> + AddAssign + 'static
+{
+    /// Values per 256-bit AVX2 register (4 for f64, 8 for f32): the unit block sizes follow.
+    const LANES: usize;
+
+    /// A hidden layer's activation function on every element. f32 values are widened to f64,
+    /// go through the f64 function and are rounded back, so both types share one function.
+    fn activate(activation: Activation, y: &mut [Self]);
+
+    /// The output units' function ([`tanh_outputs`]: tanh, NaN to 0), widened and rounded
+    /// back the same way.
+    fn squash(y: &mut [Self]);
+}
+
+impl Real for f64 {
+    const LANES: usize = 4;
+
+    #[inline(always)]
+    fn activate(activation: Activation, y: &mut [f64]) {
+        activation.apply_slice(y);
+    }
+
+    #[inline(always)]
+    fn squash(y: &mut [f64]) {
+        tanh_outputs(y);
+    }
+}
+
+impl Real for f32 {
+    const LANES: usize = 8;
+
+    #[inline(always)]
+    fn activate(activation: Activation, y: &mut [f32]) {
+        // The match outside the loops keeps each loop branch-free (vectorised); plain loops,
+        // not closures, so that nothing leaves the caller's AVX2 compilation.
+        match activation {
+            Activation::Tanh => {
+                for v in y {
+                    *v = tanh(f64::from(*v)) as f32;
+                }
+            }
+            Activation::Sigmoid => {
+                for v in y {
+                    *v = logistic(f64::from(*v)) as f32;
+                }
+            }
+            Activation::Relu => {
+                for v in y {
+                    *v = relu(f64::from(*v)) as f32;
+                }
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn squash(y: &mut [f32]) {
+        for v in y {
+            *v = nan_to_zero(tanh(f64::from(*v))) as f32;
+        }
+    }
+}
+
 /// The input-major copy of a units × inputs row-major weight matrix (the genome's layout):
 /// element `[i * units + j]` is the weight from input i to unit j, so the weights leaving one
 /// input are contiguous (the rows [`accumulate`] reads).
@@ -273,34 +345,43 @@ unsafe fn kernel_avx2(transposed: &[f64], biases: Option<&[f64]>, x: &[f64], y: 
     kernel_portable(transposed, biases, x, y);
 }
 
-/// [`kernel`] for any CPU.
+/// [`kernel`] for any CPU, in either float type (f32 also takes blocks of 16 units: two
+/// AVX2 registers, like 8 f64).
 #[inline(always)]
-fn kernel_portable(transposed: &[f64], biases: Option<&[f64]>, x: &[f64], y: &mut [f64]) {
+pub(crate) fn kernel_portable<F: Real>(
+    transposed: &[F],
+    biases: Option<&[F]>,
+    x: &[F],
+    y: &mut [F],
+) {
     debug_assert_eq!(transposed.len(), y.len() * x.len());
     let mut j = 0;
-    j = blocks::<8>(transposed, biases, x, y, j);
-    j = blocks::<4>(transposed, biases, x, y, j);
-    j = blocks::<2>(transposed, biases, x, y, j);
-    blocks::<1>(transposed, biases, x, y, j);
+    if F::LANES == 8 {
+        j = blocks::<F, 16>(transposed, biases, x, y, j);
+    }
+    j = blocks::<F, 8>(transposed, biases, x, y, j);
+    j = blocks::<F, 4>(transposed, biases, x, y, j);
+    j = blocks::<F, 2>(transposed, biases, x, y, j);
+    blocks::<F, 1>(transposed, biases, x, y, j);
 }
 
 /// [`kernel`] for the units j.. in whole blocks of `N`; returns where it stopped.
 #[inline(always)]
-fn blocks<const N: usize>(
-    transposed: &[f64],
-    biases: Option<&[f64]>,
-    x: &[f64],
-    y: &mut [f64],
+fn blocks<F: Real, const N: usize>(
+    transposed: &[F],
+    biases: Option<&[F]>,
+    x: &[F],
+    y: &mut [F],
     mut j: usize,
 ) -> usize {
     let units = y.len();
     while j + N <= units {
-        let start: &[f64] = biases.unwrap_or(&*y);
-        let mut acc: [f64; N] = start[j..j + N].try_into().expect("N units");
+        let start: &[F] = biases.unwrap_or(&*y);
+        let mut acc: [F; N] = start[j..j + N].try_into().expect("N units");
         // `units` ≥ N ≥ 1 here, and every row has exactly `units` weights, so the slice
         // below needs no bounds check inside the loop.
         for (row, &xi) in transposed.chunks_exact(units).zip(x) {
-            let w: &[f64; N] = row[j..j + N].try_into().expect("N weights");
+            let w: &[F; N] = row[j..j + N].try_into().expect("N weights");
             for k in 0..N {
                 acc[k] += w[k] * xi;
             }
@@ -309,6 +390,221 @@ fn blocks<const N: usize>(
         j += N;
     }
     j
+}
+
+/// Samples per tile of [`affine_batch`]: the tile's sums for one block of units stay in
+/// registers while the inputs are walked, so each weight load serves this many samples.
+pub const BATCH_TILE: usize = 4;
+
+/// [`affine`] for `n` samples at once: `x` holds n input vectors one after another (n × p
+/// values, p = `x.len() / n`), `y` receives n output vectors (n × `biases.len()` values), and
+/// sample s gets exactly the bits [`affine`] gives it alone. `tile` is scratch space for at
+/// least [`BATCH_TILE`] × p values (the caller keeps it, so a batch allocates nothing).
+///
+/// The samples are taken in tiles of [`BATCH_TILE`] (then 2, then 1 for the remainder). A
+/// tile's inputs are first copied input-major into `tile` (the T values of input i side by
+/// side), then the units are taken in blocks of 8 and 4 (then 2 and 1 in smaller tiles) as in
+/// [`accumulate`]: for one block, the tile × block sums live in registers while the inputs
+/// are walked in index order (two per loop step), so each row slice of weights is loaded once
+/// and multiplied by every sample's input i. In a full tile the last 1–3 units (the motor
+/// outputs) instead get one register per unit holding the tile's samples.
+/// Every sum is still y_sj = b_j + w_j0 x_s0 + w_j1 x_s1 + … left to right with separate
+/// multiplies and adds; tiling only changes which sums are in flight together, never the
+/// order inside one.
+///
+/// # Panics
+/// When the lengths disagree (`x.len()` not n × p with `transposed.len()` = p × units,
+/// `y.len()` not n × units, `tile` shorter than [`BATCH_TILE`] × p); with no sample or no
+/// unit there is nothing to do, and nothing is checked.
+#[inline]
+pub fn affine_batch(
+    transposed: &[f64],
+    biases: &[f64],
+    x: &[f64],
+    y: &mut [f64],
+    n: usize,
+    tile: &mut [f64],
+) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: `affine_batch_avx2` only requires the CPU to support AVX2, checked just above.
+        unsafe { affine_batch_avx2(transposed, biases, x, y, n, tile) };
+        return;
+    }
+    affine_batch_portable(transposed, biases, x, y, n, tile);
+}
+
+/// [`affine_batch_portable`] compiled for AVX2.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn affine_batch_avx2(
+    transposed: &[f64],
+    biases: &[f64],
+    x: &[f64],
+    y: &mut [f64],
+    n: usize,
+    tile: &mut [f64],
+) {
+    affine_batch_portable(transposed, biases, x, y, n, tile);
+}
+
+/// [`affine_batch`] for any CPU (inlined into callers that are themselves compiled for AVX2,
+/// such as the MLP's batched forward pass).
+#[inline(always)]
+pub(crate) fn affine_batch_portable<F: Real>(
+    transposed: &[F],
+    biases: &[F],
+    x: &[F],
+    y: &mut [F],
+    n: usize,
+    tile: &mut [F],
+) {
+    let units = biases.len();
+    if units == 0 || n == 0 {
+        return;
+    }
+    let p = x.len() / n;
+    assert_eq!(x.len(), n * p, "batch inputs");
+    assert_eq!(y.len(), n * units, "batch outputs");
+    assert_eq!(transposed.len(), p * units, "batch weights");
+    assert!(tile.len() >= BATCH_TILE * p, "batch tile scratch");
+    let mut s = 0;
+    s = sample_tiles::<F, BATCH_TILE>(transposed, biases, x, y, (n, p), tile, s);
+    s = sample_tiles::<F, 2>(transposed, biases, x, y, (n, p), tile, s);
+    sample_tiles::<F, 1>(transposed, biases, x, y, (n, p), tile, s);
+}
+
+/// [`affine_batch`] for the samples s.. in whole tiles of `T`; returns where it stopped.
+#[inline(always)]
+fn sample_tiles<F: Real, const T: usize>(
+    transposed: &[F],
+    biases: &[F],
+    x: &[F],
+    y: &mut [F],
+    (n, p): (usize, usize),
+    tile: &mut [F],
+    mut s: usize,
+) -> usize {
+    let units = biases.len();
+    let xt = &mut tile[..T * p];
+    while s + T <= n {
+        // Input-major copy of the tile: the inner loop then reads one contiguous group of T
+        // inputs per step, without a bounds check per sample.
+        let xs = &x[s * p..(s + T) * p];
+        for (i, group) in xt.chunks_exact_mut(T).enumerate() {
+            for (t, v) in group.iter_mut().enumerate() {
+                *v = xs[t * p + i];
+            }
+        }
+        let ys = &mut y[s * units..(s + T) * units];
+        // Blocks of 8 units in either type (one AVX2 register of f32): a tile of 4 × 16
+        // would not be kept in registers by the compiler.
+        let j = unit_blocks::<F, T, 8>(transposed, biases, xt, ys, 0);
+        let j = unit_blocks::<F, T, 4>(transposed, biases, xt, ys, j);
+        if T >= 4 {
+            // Fewer than 4 units left (all of a 2- or 3-unit output layer): one register
+            // per unit across the tile's samples beats half-empty unit blocks.
+            match units - j {
+                1 => lane_block::<F, T, 1>(transposed, biases, xt, ys, j),
+                2 => lane_block::<F, T, 2>(transposed, biases, xt, ys, j),
+                3 => lane_block::<F, T, 3>(transposed, biases, xt, ys, j),
+                _ => {}
+            }
+        } else {
+            let j = unit_blocks::<F, T, 2>(transposed, biases, xt, ys, j);
+            unit_blocks::<F, T, 1>(transposed, biases, xt, ys, j);
+        }
+        s += T;
+    }
+    s
+}
+
+/// One tile of `T` samples (inputs `xt`, input-major) over the units j.. in whole blocks of
+/// `N`: the T × N sums stay in registers over all the inputs; returns where it stopped.
+#[inline(always)]
+fn unit_blocks<F: Real, const T: usize, const N: usize>(
+    transposed: &[F],
+    biases: &[F],
+    xt: &[F],
+    ys: &mut [F],
+    mut j: usize,
+) -> usize {
+    let units = biases.len();
+    while j + N <= units {
+        let start: [F; N] = biases[j..j + N].try_into().expect("N biases");
+        let mut acc = [start; T];
+        // `units` ≥ N ≥ 1 and every row has exactly `units` weights, so the slices need no
+        // bounds check inside the loops. Two inputs per iteration (in index order) halve the
+        // loop overhead.
+        let pairs = transposed
+            .chunks_exact(2 * units)
+            .zip(xt.chunks_exact(2 * T));
+        for (rows, groups) in pairs {
+            tile_step(&mut acc, &rows[j..j + N], &groups[..T]);
+            tile_step(&mut acc, &rows[units + j..units + j + N], &groups[T..]);
+        }
+        let done = transposed.len() / (2 * units) * 2;
+        if let (Some(row), Some(group)) = (
+            transposed.chunks_exact(units).nth(done),
+            xt.chunks_exact(T).nth(done),
+        ) {
+            tile_step(&mut acc, &row[j..j + N], group);
+        }
+        for (t, sums) in acc.iter().enumerate() {
+            ys[t * units + j..t * units + j + N].copy_from_slice(sums);
+        }
+        j += N;
+    }
+    j
+}
+
+/// One input of a tile: every sum gains its term, acc[t][k] += w[k] · x_t. (A function, not
+/// a closure: a closure is not `inline(always)`, and left out of line it would lose the AVX2
+/// compilation of its caller.)
+#[inline(always)]
+fn tile_step<F: Real, const T: usize, const N: usize>(acc: &mut [[F; N]; T], w: &[F], x: &[F]) {
+    let w: &[F; N] = w.try_into().expect("N weights");
+    let x: &[F; T] = x.try_into().expect("T inputs");
+    for t in 0..T {
+        for k in 0..N {
+            acc[t][k] += w[k] * x[t];
+        }
+    }
+}
+
+/// One tile of `T` samples (inputs `xt`, input-major) over the last `N` units j..j + N,
+/// with one register per unit holding the T samples' sums (the tile's inputs for one input
+/// index are contiguous in `xt`): for a handful of units this wastes no lanes.
+#[inline(always)]
+fn lane_block<F: Real, const T: usize, const N: usize>(
+    transposed: &[F],
+    biases: &[F],
+    xt: &[F],
+    ys: &mut [F],
+    j: usize,
+) {
+    let units = biases.len();
+    let mut acc = [[biases[j]; T]; N];
+    for (k, sums) in acc.iter_mut().enumerate() {
+        *sums = [biases[j + k]; T];
+    }
+    for (row, group) in transposed.chunks_exact(units).zip(xt.chunks_exact(T)) {
+        let w: &[F; N] = row[j..j + N].try_into().expect("N weights");
+        let group: &[F; T] = group.try_into().expect("T inputs");
+        for k in 0..N {
+            for t in 0..T {
+                acc[k][t] += w[k] * group[t];
+            }
+        }
+    }
+    for (k, sums) in acc.iter().enumerate() {
+        for (t, &sum) in sums.iter().enumerate() {
+            ys[t * units + j + k] = sum;
+        }
+    }
 }
 
 #[cfg(test)]
@@ -458,6 +754,67 @@ mod tests {
                 // SAFETY: AVX2 is supported (checked just above).
                 unsafe { kernel_avx2(&w, Some(&b), &x, &mut avx2) };
                 assert_eq!(bits(&portable), bits(&avx2), "{units} x {inputs}");
+            }
+        }
+    }
+
+    #[test]
+    fn batch_kernels_agree_with_single_sample_affine_bit_for_bit() {
+        // Every tile remainder (n mod 4) and block remainder (units mod 8), AVX2 and portable.
+        use crate::seed::{
+            below, stream, uniform, Generation, IndividualId, Purpose, Seed, TrialIndex,
+        };
+        let mut rng = stream(
+            Seed(46),
+            Purpose::Baseline,
+            Generation(0),
+            IndividualId(0),
+            TrialIndex(0),
+        );
+        let mut next = || {
+            let scale = libm::exp2(below(&mut rng, 41) as f64 - 20.0);
+            uniform(&mut rng, -0.5, 0.5) * scale
+        };
+        let bits = |v: &[f64]| v.iter().map(|f| f.to_bits()).collect::<Vec<_>>();
+        for (units, inputs) in [
+            (1, 1),
+            (3, 5),
+            (10, 4),
+            (15, 7),
+            (16, 24),
+            (100, 98),
+            (37, 0),
+        ] {
+            let w: Vec<f64> = (0..units * inputs).map(|_| next()).collect();
+            let b: Vec<f64> = (0..units).map(|_| next()).collect();
+            let mut tile = vec![0.0; BATCH_TILE * inputs];
+            for n in [0, 1, 2, 3, 4, 5, 6, 7, 9, 16, 33] {
+                let x: Vec<f64> = (0..n * inputs).map(|_| next()).collect();
+                let mut expected = vec![0.0; n * units];
+                for (s, ys) in expected.chunks_exact_mut(units).enumerate() {
+                    affine(&w, &b, &x[s * inputs..(s + 1) * inputs], ys);
+                }
+                let mut portable = vec![0.0; n * units];
+                affine_batch_portable(&w, &b, &x, &mut portable, n, &mut tile);
+                assert_eq!(
+                    bits(&portable),
+                    bits(&expected),
+                    "{units} x {inputs}, n={n}"
+                );
+                let mut dispatched = vec![0.0; n * units];
+                affine_batch(&w, &b, &x, &mut dispatched, n, &mut tile);
+                assert_eq!(
+                    bits(&dispatched),
+                    bits(&expected),
+                    "{units} x {inputs}, n={n}"
+                );
+                #[cfg(target_arch = "x86_64")]
+                if std::arch::is_x86_feature_detected!("avx2") {
+                    let mut avx2 = vec![0.0; n * units];
+                    // SAFETY: AVX2 is supported (checked just above).
+                    unsafe { affine_batch_avx2(&w, &b, &x, &mut avx2, n, &mut tile) };
+                    assert_eq!(bits(&avx2), bits(&expected), "{units} x {inputs}, n={n}");
+                }
             }
         }
     }

@@ -1,18 +1,47 @@
 //! The feed-forward multilayer perceptron: hidden layers of a configurable activation, then
 //! tanh output units.
 //!
-//! Each layer computes `y = act(b + W x)` with [`affine`]: starting from the biases, it adds
-//! each input's contribution to every unit at once, input by input in index order, so unit j's
-//! pre-activation is the plain left-to-right sum `b_j + w_j0 x_0 + w_j1 x_1 + …`. Then the
-//! activation runs over the whole layer ([`Activation::apply_slice`]). Both loops run across
-//! units, which the compiler vectorises without reassociating any sum.
+//! Each layer computes `y = act(b + W x)`: starting from the biases, it adds each input's
+//! contribution to every unit at once, input by input in index order, so unit j's
+//! pre-activation is the plain left-to-right sum `b_j + w_j0 x_0 + w_j1 x_1 + …` with separate
+//! multiplies and adds (never a fused multiply-add). Then the activation runs over the whole
+//! layer ([`Activation::apply_slice`]). Both loops run across units, which the compiler
+//! vectorises without reassociating any sum, so the bits are the same on every CPU.
 //!
 //! The genome keeps its layout (units × inputs row-major per layer, see
 //! [`crate::brain::Topology`]) and [`Mlp::parameters`] is an exact copy of it; the forward pass
 //! reads an input-major copy of each weight matrix ([`transpose`]) built once at construction,
 //! so that the weights leaving one input are contiguous.
+//!
+//! # Batches
+//!
+//! An MLP keeps no state, so one network can serve several trial worlds per tick:
+//! [`crate::brain::Brain::activate_batch`] runs n observations through each layer as one matrix-matrix
+//! product ([`super::activation::affine_batch`]). Samples go in tiles of 4 and units in
+//! blocks of 8 (two AVX2 registers of f64); a tile × block of sums stays in registers while
+//! the inputs are walked, so each weight load serves 4 samples, and for the last 1–3 units
+//! (the motor outputs) one register holds the 4 samples' sums of one unit. Every sum keeps
+//! the order above, so each sample's outputs are bit-identical to
+//! [`crate::brain::Brain::activate`] on it alone. The scratch buffers grow to the largest batch seen and are never shrunk: once
+//! warmed up, a batch allocates nothing.
+//!
+//! # Precision
+//!
+//! `precision = "f64"` (the default) computes as above in f64. `precision = "f32"` (opt-in:
+//! it changes results; meant for comparisons with float32 frameworks such as EvoJAX) keeps the
+//! genome in f64 but rounds the parameters to f32 once when the brain is built (a parameter
+//! beyond the f32 range becomes ±∞, which the output stage still maps into [-1, 1]) and the
+//! inputs on every pass; every sum is then done in f32 in the same documented order (bias,
+//! then inputs left to right, separate multiply and add), so f32 results are deterministic
+//! too. Activations are applied by widening the f32 sum to f64, applying the f64 function
+//! ([`super::activation::tanh`] etc., so their error bounds still hold) and rounding back to
+//! f32; the outputs are widened to f64. With AVX2 a register holds 8 f32: a single pass
+//! takes 16 units per block, a batch tile 4 samples × 8 units.
 
-use super::activation::{affine, tanh_outputs, transpose, Activation};
+use super::activation::{
+    affine_batch_portable, kernel_portable, transpose, Activation, Real, BATCH_TILE,
+};
+use super::spec::Precision;
 use std::ops::Range;
 
 /// One layer's place in the parameter vector, the transposed weights and the activation
@@ -24,8 +53,39 @@ struct Layer {
     weights: Range<usize>,
     /// The biases in the parameters.
     biases: Range<usize>,
-    /// Where the layer's activations are kept in `activations` (hidden layers only).
+    /// Where the layer's activations are kept in `activations` for one sample (hidden layers
+    /// only); a batch of n samples keeps them at n times this range.
     out: Range<usize>,
+}
+
+/// What the forward pass reads and writes, in the float type it computes in.
+#[derive(Debug, Clone, PartialEq)]
+struct Buffers<F> {
+    /// Every layer's weights, transposed to input-major order (derived from the parameters).
+    transposed: Vec<F>,
+    /// Every hidden layer's activations, one after another (preallocated scratch); a batch
+    /// of n samples uses n times as much (see [`Mlp::activate_batch`]).
+    activations: Vec<F>,
+    /// One tile of a batch's inputs to a layer, input-major ([`BATCH_TILE`] × the widest
+    /// layer input; scratch for [`affine_batch_portable`]).
+    tile: Vec<F>,
+}
+
+/// The float type of the pass and its buffers.
+#[derive(Debug, Clone, PartialEq)]
+enum Numbers {
+    /// `precision = "f64"`: biases are read from the parameters themselves.
+    F64(Buffers<f64>),
+    /// `precision = "f32"`.
+    F32 {
+        /// The parameters rounded to f32 (the biases are read from here).
+        parameters: Vec<f32>,
+        buffers: Buffers<f32>,
+        /// The inputs rounded to f32 (scratch, n × inputs for a batch of n).
+        inputs: Vec<f32>,
+        /// The f32 outputs before widening (scratch, n × outputs).
+        outputs: Vec<f32>,
+    },
 }
 
 /// A multilayer perceptron with its parameters and scratch buffers.
@@ -34,13 +94,11 @@ pub struct Mlp {
     inputs: usize,
     outputs: usize,
     activation: Activation,
+    /// The parameters exactly as given (the genome's f64 values, whatever the precision).
     parameters: Vec<f64>,
-    /// Every layer's weights, transposed to input-major order (derived from `parameters`).
-    transposed: Vec<f64>,
     hidden: Vec<Layer>,
     output: Layer,
-    /// Every hidden layer's activations, one after another (preallocated scratch).
-    activations: Vec<f64>,
+    numbers: Numbers,
 }
 
 impl Mlp {
@@ -51,6 +109,7 @@ impl Mlp {
         hidden: &[usize],
         outputs: usize,
         activation: Activation,
+        precision: Precision,
         parameters: &[f64],
     ) -> Mlp {
         let mut offset = 0;
@@ -79,15 +138,33 @@ impl Mlp {
         }
         let output = layer(outputs, previous, &mut 0);
         debug_assert_eq!(offset, parameters.len());
+        let tile = BATCH_TILE * hidden.iter().fold(inputs, |m, &h| m.max(h));
+        let numbers = match precision {
+            Precision::F64 => Numbers::F64(Buffers {
+                transposed,
+                activations: vec![0.0; buffer],
+                tile: vec![0.0; tile],
+            }),
+            // Rounding to nearest, once: `as` rounds f64 to the nearest f32 (ties to even).
+            Precision::F32 => Numbers::F32 {
+                parameters: parameters.iter().map(|&p| p as f32).collect(),
+                buffers: Buffers {
+                    transposed: transposed.iter().map(|&w| w as f32).collect(),
+                    activations: vec![0.0; buffer],
+                    tile: vec![0.0; tile],
+                },
+                inputs: vec![0.0; inputs],
+                outputs: vec![0.0; outputs],
+            },
+        };
         Mlp {
             inputs,
             outputs,
             activation,
             parameters: parameters.to_vec(),
-            transposed,
             hidden: layers,
             output,
-            activations: vec![0.0; buffer],
+            numbers,
         }
     }
 
@@ -111,19 +188,75 @@ impl Mlp {
         self.activation
     }
 
+    /// The float type the forward pass computes in.
+    pub fn precision(&self) -> Precision {
+        match self.numbers {
+            Numbers::F64(_) => Precision::F64,
+            Numbers::F32 { .. } => Precision::F32,
+        }
+    }
+
     /// One forward pass. `inputs` and `outputs` must have the network's sizes.
     ///
     /// On x86-64 CPUs with AVX2 the whole pass (sums and activation functions) runs compiled
     /// for AVX2; the operations per value are the same, so are the bits (see
-    /// [`super::activation`] and the test below).
+    /// [`super::activation`] and the tests below).
     pub(crate) fn activate(&mut self, inputs: &[f64], outputs: &mut [f64]) {
+        self.dispatch(inputs, outputs, 1);
+    }
+
+    /// [`Mlp::activate`] for n samples at once: `inputs` holds n input vectors one after
+    /// another, `outputs` receives n output vectors, and each sample's outputs have exactly the
+    /// bits [`Mlp::activate`] gives it alone (see the module docs).
+    ///
+    /// # Panics
+    /// When the lengths are not n × inputs and n × outputs for the same n.
+    pub(crate) fn activate_batch(&mut self, inputs: &[f64], outputs: &mut [f64]) {
+        // Without inputs (allowed, if useless) the batch size comes from the outputs.
+        let n = inputs
+            .len()
+            .checked_div(self.inputs)
+            .or_else(|| outputs.len().checked_div(self.outputs))
+            .unwrap_or(0);
+        assert_eq!(inputs.len(), n * self.inputs, "mlp batch input count");
+        assert_eq!(outputs.len(), n * self.outputs, "mlp batch output count");
+        self.grow(n);
+        self.dispatch(inputs, outputs, n);
+    }
+
+    /// Makes the scratch buffers hold a batch of n samples (never shrinks them).
+    fn grow(&mut self, n: usize) {
+        fn at_least<F: Copy + Default>(v: &mut Vec<F>, len: usize) {
+            if v.len() < len {
+                v.resize(len, F::default());
+            }
+        }
+        let hidden = n * self.hidden.last().map_or(0, |layer| layer.out.end);
+        match &mut self.numbers {
+            Numbers::F64(buffers) => at_least(&mut buffers.activations, hidden),
+            Numbers::F32 {
+                buffers,
+                inputs,
+                outputs,
+                ..
+            } => {
+                at_least(&mut buffers.activations, hidden);
+                at_least(inputs, n * self.inputs);
+                at_least(outputs, n * self.outputs);
+            }
+        }
+    }
+
+    /// Runs [`Mlp::forward`] compiled for AVX2 when the CPU has it.
+    #[inline]
+    fn dispatch(&mut self, inputs: &[f64], outputs: &mut [f64], n: usize) {
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: `forward_avx2` only requires the CPU to support AVX2, checked just above.
-            unsafe { self.forward_avx2(inputs, outputs) };
+            unsafe { self.forward_avx2(inputs, outputs, n) };
             return;
         }
-        self.forward(inputs, outputs);
+        self.forward(inputs, outputs, n);
     }
 
     /// [`Mlp::forward`] compiled for AVX2.
@@ -132,83 +265,338 @@ impl Mlp {
     /// The CPU must support AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn forward_avx2(&mut self, inputs: &[f64], outputs: &mut [f64]) {
-        self.forward(inputs, outputs);
+    unsafe fn forward_avx2(&mut self, inputs: &[f64], outputs: &mut [f64], n: usize) {
+        self.forward(inputs, outputs, n);
     }
 
-    /// The forward pass for any CPU.
+    /// The forward pass of n samples for any CPU, in the network's precision; the scratch
+    /// buffers must hold n samples (see [`Mlp::grow`]).
     #[inline(always)]
-    fn forward(&mut self, inputs: &[f64], outputs: &mut [f64]) {
-        let (params, weights) = (&self.parameters, &self.transposed);
-        let mut previous: Range<usize> = 0..0;
-        for (l, layer) in self.hidden.iter().enumerate() {
-            // Earlier layers sit before this one in the buffer: split to read and write.
-            let (done, rest) = self.activations.split_at_mut(layer.out.start);
-            let x = if l == 0 { inputs } else { &done[previous] };
-            let y = &mut rest[..layer.units];
-            affine(
-                &weights[layer.weights.clone()],
-                &params[layer.biases.clone()],
-                x,
-                y,
-            );
-            self.activation.apply_slice(y);
-            previous = layer.out.clone();
+    fn forward(&mut self, inputs: &[f64], outputs: &mut [f64], n: usize) {
+        let shape = (&self.hidden[..], &self.output, self.activation);
+        match &mut self.numbers {
+            Numbers::F64(buffers) => pass(shape, &self.parameters, buffers, inputs, outputs, n),
+            Numbers::F32 {
+                parameters,
+                buffers,
+                inputs: narrow_inputs,
+                outputs: narrow_outputs,
+            } => {
+                let x = &mut narrow_inputs[..inputs.len()];
+                for (narrow, &wide) in x.iter_mut().zip(inputs) {
+                    *narrow = wide as f32;
+                }
+                let y = &mut narrow_outputs[..outputs.len()];
+                pass(shape, parameters, buffers, x, y, n);
+                for (wide, &narrow) in outputs.iter_mut().zip(y.iter()) {
+                    *wide = f64::from(narrow);
+                }
+            }
         }
-        let x = if self.hidden.is_empty() {
-            inputs
-        } else {
-            &self.activations[previous]
-        };
-        let out = &self.output;
-        let y = &mut outputs[..out.units];
-        affine(
-            &weights[out.weights.clone()],
-            &params[out.biases.clone()],
-            x,
-            y,
+    }
+}
+
+/// The layers of an MLP for n samples in float type `F`: `params` holds the biases (at each
+/// layer's `biases` range), `buffers` the transposed weights and scratch; layer l's
+/// activations for the n samples occupy n × its `out` range (the ranges are prefix sums of the
+/// layer sizes, so scaling them by n keeps the layers apart).
+#[inline(always)]
+fn pass<F: Real>(
+    (hidden, output, activation): (&[Layer], &Layer, Activation),
+    params: &[F],
+    buffers: &mut Buffers<F>,
+    inputs: &[F],
+    outputs: &mut [F],
+    n: usize,
+) {
+    let weights = &buffers.transposed;
+    let mut previous: Range<usize> = 0..0;
+    for (l, layer) in hidden.iter().enumerate() {
+        let out = n * layer.out.start..n * layer.out.end;
+        // Earlier layers sit before this one in the buffer: split to read and write.
+        let (done, rest) = buffers.activations.split_at_mut(out.start);
+        let x = if l == 0 { inputs } else { &done[previous] };
+        let y = &mut rest[..out.len()];
+        let (w, b) = (
+            &weights[layer.weights.clone()],
+            &params[layer.biases.clone()],
         );
-        tanh_outputs(y);
+        affine_layer(w, b, x, y, n, &mut buffers.tile);
+        F::activate(activation, y);
+        previous = out;
+    }
+    let x = if hidden.is_empty() {
+        inputs
+    } else {
+        &buffers.activations[previous]
+    };
+    let (w, b) = (
+        &weights[output.weights.clone()],
+        &params[output.biases.clone()],
+    );
+    affine_layer(
+        w,
+        b,
+        x,
+        &mut outputs[..n * output.units],
+        n,
+        &mut buffers.tile,
+    );
+    F::squash(outputs);
+}
+
+/// One layer's sums for n samples: the single-sample kernel for one (no tile to share), the
+/// batch kernel otherwise. Both give the same bits per sample.
+#[inline(always)]
+fn affine_layer<F: Real>(w: &[F], b: &[F], x: &[F], y: &mut [F], n: usize, tile: &mut [F]) {
+    if n == 1 {
+        kernel_portable(w, Some(b), x, y);
+    } else {
+        affine_batch_portable(w, b, x, y, n, tile);
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::brain::activation::{nan_to_zero, tanh};
+    use crate::seed::{stream, uniform, Generation, IndividualId, Purpose, Rng, Seed, TrialIndex};
 
-    /// The AVX2 build of the forward pass gives the same bits as the portable one.
-    #[test]
-    fn dispatched_and_portable_passes_agree_bit_for_bit() {
-        use crate::seed::{stream, uniform, Generation, IndividualId, Purpose, Seed, TrialIndex};
-        let mut rng = stream(
-            Seed(42),
+    fn rng(seed: u64) -> Rng {
+        stream(
+            Seed(seed),
             Purpose::Baseline,
             Generation(0),
             IndividualId(0),
             TrialIndex(0),
-        );
-        let mut next = || uniform(&mut rng, -3.0, 3.0);
-        for (inputs, hidden, outputs) in [(24, vec![16], 2), (98, vec![100], 2), (5, vec![7, 3], 3)]
-        {
-            for activation in [Activation::Tanh, Activation::Sigmoid, Activation::Relu] {
-                let mut count = 0;
-                let mut previous = inputs;
-                for &h in &hidden {
-                    count += h * previous + h;
-                    previous = h;
+        )
+    }
+
+    fn parameter_count(inputs: usize, hidden: &[usize], outputs: usize) -> usize {
+        let mut count = 0;
+        let mut previous = inputs;
+        for &h in hidden {
+            count += h * previous + h;
+            previous = h;
+        }
+        count + outputs * previous + outputs
+    }
+
+    /// One random network of the shape per activation, parameters uniform in ±`bound`.
+    fn networks(
+        seed: u64,
+        (inputs, hidden, outputs): (usize, &[usize], usize),
+        precision: Precision,
+        bound: f64,
+    ) -> Vec<Mlp> {
+        let mut rng = rng(seed);
+        let count = parameter_count(inputs, hidden, outputs);
+        [Activation::Tanh, Activation::Sigmoid, Activation::Relu]
+            .into_iter()
+            .map(|activation| {
+                let parameters: Vec<f64> = (0..count)
+                    .map(|_| uniform(&mut rng, -bound, bound))
+                    .collect();
+                Mlp::new(inputs, hidden, outputs, activation, precision, &parameters)
+            })
+            .collect()
+    }
+
+    fn bits(v: &[f64]) -> Vec<u64> {
+        v.iter().map(|f| f.to_bits()).collect()
+    }
+
+    const SHAPES: [(usize, &[usize], usize); 6] = [
+        (24, &[16], 2),
+        (24, &[16], 3),
+        (98, &[100], 2),
+        (5, &[7, 3], 3),
+        (1, &[], 2),
+        (13, &[1, 15, 9], 7),
+    ];
+
+    /// A batch gives every sample the bits of a single pass, for batch sizes around the tile
+    /// size and its multiples and for unit counts that leave every block-size remainder, on
+    /// the dispatched (AVX2 where available) and the portable batch paths alike, in both
+    /// precisions.
+    #[test]
+    fn batch_matches_single_passes_bit_for_bit() {
+        let mut rng = rng(43);
+        let sizes: Vec<usize> = (0..=9).chain([16, 33]).collect();
+        for precision in [Precision::F64, Precision::F32] {
+            for shape @ (inputs, hidden, outputs) in SHAPES {
+                for mut mlp in networks(44, shape, precision, 3.0) {
+                    let mut single = mlp.clone();
+                    let mut portable = mlp.clone();
+                    // Sizes up and down: the scratch grows, then smaller batches reuse it.
+                    for &n in sizes.iter().chain(sizes.iter().rev()) {
+                        let x: Vec<f64> = (0..n * inputs)
+                            .map(|_| uniform(&mut rng, -3.0, 3.0))
+                            .collect();
+                        let mut expected = vec![0.0; n * outputs];
+                        for (xs, ys) in x
+                            .chunks_exact(inputs)
+                            .zip(expected.chunks_exact_mut(outputs))
+                        {
+                            single.activate(xs, ys);
+                        }
+                        let mut batch = vec![f64::NAN; n * outputs];
+                        mlp.activate_batch(&x, &mut batch);
+                        let what = format!(
+                            "{precision:?} {inputs} {hidden:?} {outputs} {:?} n={n}",
+                            mlp.activation
+                        );
+                        assert_eq!(bits(&batch), bits(&expected), "{what}");
+                        portable.grow(n);
+                        let mut by_portable = vec![f64::NAN; n * outputs];
+                        portable.forward(&x, &mut by_portable, n);
+                        assert_eq!(bits(&by_portable), bits(&expected), "portable {what}");
+                    }
                 }
-                count += outputs * previous + outputs;
-                let parameters: Vec<f64> = (0..count).map(|_| next()).collect();
-                let mut a = Mlp::new(inputs, &hidden, outputs, activation, &parameters);
-                let mut b = a.clone();
-                for _ in 0..20 {
-                    let x: Vec<f64> = (0..inputs).map(|_| next()).collect();
+            }
+        }
+    }
+
+    /// (activations length, tile length, activations address) of either precision.
+    fn scratch(mlp: &Mlp) -> (usize, usize, usize) {
+        match &mlp.numbers {
+            Numbers::F64(b) => (
+                b.activations.len(),
+                b.tile.len(),
+                b.activations.as_ptr() as usize,
+            ),
+            Numbers::F32 { buffers: b, .. } => (
+                b.activations.len(),
+                b.tile.len(),
+                b.activations.as_ptr() as usize,
+            ),
+        }
+    }
+
+    /// The batch scratch grows to the largest batch and is never shrunk, so a warmed-up brain
+    /// serves any smaller batch without allocating.
+    #[test]
+    fn batch_scratch_grows_to_the_largest_batch_only() {
+        for precision in [Precision::F64, Precision::F32] {
+            let mut mlp = networks(45, (6, &[10, 4], 2), precision, 1.0).swap_remove(0);
+            assert_eq!(scratch(&mlp).0, 14);
+            assert_eq!(scratch(&mlp).1, BATCH_TILE * 10);
+            let mut warm = None;
+            for (n, len) in [(3, 42), (32, 448), (5, 448), (0, 448), (32, 448)] {
+                let x = vec![0.25; n * 6];
+                let mut y = vec![0.0; n * 2];
+                mlp.activate_batch(&x, &mut y);
+                let (activations, tile, address) = scratch(&mlp);
+                assert_eq!(activations, len, "n = {n}");
+                assert_eq!(tile, BATCH_TILE * 10);
+                if n == 32 {
+                    // The same buffer once warmed up: no reallocation.
+                    assert_eq!(*warm.get_or_insert(address), address);
+                }
+            }
+        }
+    }
+
+    /// The AVX2 build of the forward pass gives the same bits as the portable one.
+    #[test]
+    fn dispatched_and_portable_passes_agree_bit_for_bit() {
+        let mut rng = rng(42);
+        for precision in [Precision::F64, Precision::F32] {
+            for shape @ (inputs, hidden, outputs) in SHAPES {
+                for mut a in networks(47, shape, precision, 3.0) {
+                    let mut b = a.clone();
+                    for _ in 0..20 {
+                        let x: Vec<f64> =
+                            (0..inputs).map(|_| uniform(&mut rng, -3.0, 3.0)).collect();
+                        let (mut ya, mut yb) = (vec![0.0; outputs], vec![0.0; outputs]);
+                        a.activate(&x, &mut ya);
+                        b.forward(&x, &mut yb, 1);
+                        assert_eq!(bits(&ya), bits(&yb), "{precision:?} {inputs} {hidden:?}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// f32 is exactly the documented computation: parameters and inputs rounded to f32, sums
+    /// in f32 from the bias, input by input, activations in f64 on the widened sum, rounded.
+    #[test]
+    fn f32_follows_the_documented_order_bit_for_bit() {
+        let mut rng = rng(48);
+        let (inputs, hidden, outputs) = (5, [7usize, 3], 3);
+        for mut mlp in networks(49, (inputs, &hidden, outputs), Precision::F32, 2.0) {
+            let act = mlp.activation;
+            let p: Vec<f32> = mlp.parameters.iter().map(|&v| v as f32).collect();
+            for _ in 0..50 {
+                let x: Vec<f64> = (0..inputs).map(|_| uniform(&mut rng, -3.0, 3.0)).collect();
+                let mut a: Vec<f32> = x.iter().map(|&v| v as f32).collect();
+                let mut offset = 0;
+                for (l, units) in hidden.iter().copied().chain([outputs]).enumerate() {
+                    let (w, rest) = p[offset..].split_at(units * a.len());
+                    let next: Vec<f32> = (0..units)
+                        .map(|j| {
+                            let mut sum = rest[j];
+                            for (i, &xi) in a.iter().enumerate() {
+                                sum += w[j * a.len() + i] * xi;
+                            }
+                            if l < hidden.len() {
+                                act.apply(f64::from(sum)) as f32
+                            } else {
+                                nan_to_zero(tanh(f64::from(sum))) as f32
+                            }
+                        })
+                        .collect();
+                    offset += units * a.len() + units;
+                    a = next;
+                }
+                let expected: Vec<f64> = a.iter().map(|&v| f64::from(v)).collect();
+                let mut y = vec![0.0; outputs];
+                mlp.activate(&x, &mut y);
+                assert_eq!(bits(&y), bits(&expected), "{act:?}");
+            }
+        }
+    }
+
+    /// f32 sums stay within 1e-4 of the f64 ones on ordinary networks (and differ from them:
+    /// the precision really changes).
+    #[test]
+    fn f32_outputs_are_close_to_f64_outputs() {
+        let mut rng = rng(50);
+        let mut differ = 0;
+        for shape @ (inputs, _, outputs) in SHAPES {
+            let wide = networks(51, shape, Precision::F64, 0.5);
+            let narrow = networks(51, shape, Precision::F32, 0.5);
+            for (mut a, mut b) in wide.into_iter().zip(narrow) {
+                for _ in 0..50 {
+                    let x: Vec<f64> = (0..inputs).map(|_| uniform(&mut rng, -1.0, 1.0)).collect();
                     let (mut ya, mut yb) = (vec![0.0; outputs], vec![0.0; outputs]);
                     a.activate(&x, &mut ya);
-                    b.forward(&x, &mut yb);
-                    let bits = |v: &[f64]| v.iter().map(|f| f.to_bits()).collect::<Vec<_>>();
-                    assert_eq!(bits(&ya), bits(&yb), "{inputs} {hidden:?} {activation:?}");
+                    b.activate(&x, &mut yb);
+                    for (u, v) in ya.iter().zip(&yb) {
+                        assert!((u - v).abs() <= 1e-4, "{shape:?}: {u} vs {v}");
+                        differ += usize::from(u != v);
+                    }
                 }
+            }
+        }
+        assert!(differ > 0, "f32 gave the f64 bits everywhere");
+    }
+
+    /// Parameters beyond the f32 range round to ±∞; the outputs stay in [-1, 1] (NaN sums
+    /// become 0), as for every f64 brain.
+    #[test]
+    fn f32_brains_with_huge_parameters_stay_total() {
+        let shape = (4, &[3][..], 2);
+        let mut p = vec![0.5; parameter_count(4, &[3], 2)];
+        p[0] = 1e300;
+        p[1] = -1e300;
+        p[20] = f64::MAX;
+        for activation in [Activation::Tanh, Activation::Sigmoid, Activation::Relu] {
+            let mut mlp = Mlp::new(shape.0, shape.1, shape.2, activation, Precision::F32, &p);
+            for x in [[1.0, 1.0, 0.0, -2.0], [0.0; 4], [1e300, -1e300, 3.0, 0.5]] {
+                let mut y = [f64::NAN; 2];
+                mlp.activate(&x, &mut y);
+                assert!(y.iter().all(|v| (-1.0..=1.0).contains(v)), "{y:?}");
             }
         }
     }

@@ -7,6 +7,7 @@
 //! kind = "mlp"          # "mlp" | "recurrent" | "ctrnn"
 //! hidden = [16]         # mlp, recurrent
 //! activation = "tanh"   # mlp, recurrent: "tanh" | "sigmoid" | "relu"
+//! precision = "f64"     # mlp only: "f64" (default) | "f32" (opt-in, changes results)
 //!
 //! # or
 //! [brain]
@@ -76,6 +77,30 @@ impl BrainKind {
     }
 }
 
+/// The float type an MLP computes in (`brain.precision`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Precision {
+    /// Double precision throughout (the default).
+    #[default]
+    F64,
+    /// Single precision sums: parameters and inputs rounded to f32, every sum in f32, the
+    /// activation functions in f64 on the widened sum, rounded back (see
+    /// [`crate::brain::mlp`]). Opt-in, for comparisons with float32 peers such as EvoJAX: it
+    /// changes results.
+    F32,
+}
+
+impl Precision {
+    /// The name used in TOML (`"f64"`, `"f32"`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Precision::F64 => "f64",
+            Precision::F32 => "f32",
+        }
+    }
+}
+
 /// The `[brain]` table: which network turns a creature's observation into motor outputs.
 ///
 /// Every field but `kind` is optional; a missing field takes the default of the chosen kind
@@ -96,6 +121,12 @@ pub struct BrainSpec {
     /// `"relu"` (default: `"tanh"`). Output units always use tanh, so outputs are in [-1, 1].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub activation: Option<Activation>,
+    /// mlp: the float type of the forward pass, `"f64"` (default) or `"f32"` (sums in single
+    /// precision, as float32 frameworks compute; it changes results, so it is opt-in). Recurrent
+    /// and ctrnn brains always compute in f64 and refuse `"f32"`. Left out of files when unset,
+    /// so files written before the key existed still read the same.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub precision: Option<Precision>,
     /// ctrnn: the number of neurons N, fully connected, 1 to 4096 and at least the number of
     /// motor outputs (default: 8). Motors are read from neurons 0, 1 (and 2 for eating).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -155,6 +186,7 @@ pub(crate) enum Architecture {
     Mlp {
         hidden: Vec<usize>,
         activation: Activation,
+        precision: Precision,
     },
     Recurrent {
         hidden: usize,
@@ -192,6 +224,16 @@ impl BrainSpec {
                     "kind = \"mlp\" or \"recurrent\" (ctrnn neurons use the logistic function)",
                 ));
             }
+        }
+        if kind != BrainKind::Mlp && self.precision == Some(Precision::F32) {
+            return Err(InvalidValue::new(
+                "brain.precision",
+                format!(
+                    "\"f32\" applies only to kind = \"mlp\", but this brain is kind = \"{}\", \
+                     which always computes in f64; remove it or set \"f64\"",
+                    kind.name()
+                ),
+            ));
         }
         if kind != BrainKind::Ctrnn {
             let ctrnn_fields = [
@@ -288,6 +330,7 @@ impl BrainSpec {
             BrainKind::Mlp => Architecture::Mlp {
                 hidden: hidden.to_vec(),
                 activation,
+                precision: self.precision.unwrap_or_default(),
             },
             BrainKind::Recurrent => Architecture::Recurrent {
                 hidden: hidden.first().copied().unwrap_or(0),

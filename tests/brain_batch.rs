@@ -1,0 +1,233 @@
+//! Batched MLP forward passes through the public API: `Brain::activate_batch` and
+//! `BrainController::act_batch` give every observation the bits of a single pass, for every
+//! activation and many batch sizes, and allocate nothing once warmed up; and
+//! `precision = "f32"`: batch bits, closeness to f64, the TOML key, its refusal outside MLPs,
+//! and genome files carrying it.
+
+use berry_evolve::brain::{Brain, BrainController, BrainSpec, Precision, Topology};
+use berry_evolve::seed::{stream, uniform, Generation, IndividualId, Purpose, Seed, TrialIndex};
+use berry_evolve::sim::controller::{Controller, MotorCommand};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+
+// Allocation counting per thread (tests run on several threads at once).
+struct CountingAllocator;
+
+thread_local! {
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+unsafe impl GlobalAlloc for CountingAllocator {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.with(|c| c.set(c.get() + 1));
+        System.alloc(layout)
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        System.dealloc(ptr, layout)
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.with(|c| c.set(c.get() + 1));
+        System.realloc(ptr, layout, new_size)
+    }
+}
+
+#[global_allocator]
+static GLOBAL: CountingAllocator = CountingAllocator;
+
+fn allocations() -> usize {
+    ALLOCATIONS.with(|c| c.get())
+}
+
+fn values(seed: u64, count: usize, bound: f64) -> Vec<f64> {
+    let mut rng = stream(
+        Seed(seed),
+        Purpose::Baseline,
+        Generation(0),
+        IndividualId(0),
+        TrialIndex(0),
+    );
+    (0..count)
+        .map(|_| uniform(&mut rng, -bound, bound))
+        .collect()
+}
+
+fn brain(toml_text: &str, inputs: usize, outputs: usize, seed: u64) -> Brain {
+    let spec: BrainSpec = toml::from_str(toml_text).expect("spec");
+    let topology = Topology::new(spec, inputs, outputs).expect("topology");
+    let parameters = values(seed, topology.parameter_count(), 2.0);
+    Brain::new(&topology, &parameters).expect("brain")
+}
+
+fn bits(v: &[f64]) -> Vec<u64> {
+    v.iter().map(|f| f.to_bits()).collect()
+}
+
+#[test]
+fn brain_batches_match_single_passes_bit_for_bit() {
+    let shapes = [
+        ("hidden = [16]", 24, 2),
+        ("hidden = [16]", 24, 3),
+        ("hidden = [100]", 98, 2),
+        ("hidden = [7, 3]", 5, 3),
+        ("hidden = []", 1, 2),
+    ];
+    for (k, (hidden, inputs, outputs)) in shapes.into_iter().enumerate() {
+        for activation in ["tanh", "sigmoid", "relu"] {
+            let text = format!("kind = \"mlp\"\n{hidden}\nactivation = \"{activation}\"");
+            let mut batch = brain(&text, inputs, outputs, 100 + k as u64);
+            let mut single = batch.clone();
+            for n in (0..=9).chain([16, 33, 32, 5]) {
+                let x = values(1000 + n as u64, n * inputs, 4.0);
+                let mut y = vec![f64::NAN; n * outputs];
+                batch.activate_batch(&x, &mut y);
+                let mut expected = vec![0.0; n * outputs];
+                for (xs, ys) in x
+                    .chunks_exact(inputs)
+                    .zip(expected.chunks_exact_mut(outputs))
+                {
+                    single.activate(xs, ys);
+                }
+                assert_eq!(bits(&y), bits(&expected), "{text} n={n}");
+            }
+        }
+    }
+}
+
+#[test]
+fn warmed_up_batches_allocate_nothing() {
+    let mut controller = BrainController::new(brain("hidden = [16]", 24, 3, 7), 0.5, true);
+    let x = values(8, 32 * 24, 1.0);
+    let mut commands = vec![MotorCommand::default(); 32];
+    // Warm-up: the largest batch sizes every buffer.
+    controller.act_batch(&x, &mut commands);
+    let before = allocations();
+    for n in [32, 17, 8, 1, 0, 32, 5] {
+        controller.act_batch(&x[..n * 24], &mut commands[..n]);
+    }
+    assert_eq!(allocations(), before, "allocations after warm-up");
+    // Every command is still the one `act` gives alone.
+    let mut single = BrainController::new(controller.brain().clone(), 0.5, true);
+    controller.act_batch(&x, &mut commands);
+    for (k, command) in commands.iter().enumerate() {
+        assert_eq!(
+            *command,
+            single.act(&x[k * 24..(k + 1) * 24]),
+            "observation {k}"
+        );
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// precision = "f32"
+
+#[test]
+fn f32_batches_match_single_passes_bit_for_bit_and_stay_near_f64() {
+    for (hidden, inputs, outputs) in [("hidden = [16]", 24, 3), ("hidden = [100]", 98, 2)] {
+        for activation in ["tanh", "sigmoid", "relu"] {
+            let text = format!("{hidden}\nactivation = \"{activation}\"");
+            let narrow_text = format!("{text}\nprecision = \"f32\"");
+            let mut narrow = brain(&narrow_text, inputs, outputs, 11);
+            let mut single = narrow.clone();
+            let mut wide = brain(&text, inputs, outputs, 11);
+            for n in [1, 3, 8, 13, 32] {
+                let x = values(2000 + n as u64, n * inputs, 1.0);
+                let mut y = vec![f64::NAN; n * outputs];
+                narrow.activate_batch(&x, &mut y);
+                let mut expected = vec![0.0; n * outputs];
+                let mut reference = vec![0.0; n * outputs];
+                wide.activate_batch(&x, &mut reference);
+                for (xs, ys) in x
+                    .chunks_exact(inputs)
+                    .zip(expected.chunks_exact_mut(outputs))
+                {
+                    single.activate(xs, ys);
+                }
+                assert_eq!(bits(&y), bits(&expected), "{narrow_text} n={n}");
+                // Weights in ±2 make saturated units; unsaturated sums differ by ~1e-6.
+                for (a, b) in y.iter().zip(&reference) {
+                    assert!((a - b).abs() <= 1e-4, "{narrow_text} n={n}: {a} vs {b}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn precision_round_trips_through_toml_and_defaults_to_f64_unwritten() {
+    let narrow: BrainSpec = toml::from_str("kind = \"mlp\"\nprecision = \"f32\"").expect("f32");
+    assert_eq!(narrow.precision, Some(Precision::F32));
+    let text = toml::to_string(&narrow).expect("serialises");
+    assert!(text.contains("precision = \"f32\""), "{text}");
+    let back: BrainSpec = toml::from_str(&text).expect("reads back");
+    assert_eq!(back, narrow);
+    let explicit: BrainSpec = toml::from_str("precision = \"f64\"").expect("f64");
+    assert_eq!(explicit.precision, Some(Precision::F64));
+    // A spec without the key (every file written before it existed) reads as before and
+    // writes no key, so its bytes and config hashes do not change.
+    let old: BrainSpec = toml::from_str("kind = \"mlp\"\nhidden = [16]").expect("old spec");
+    assert_eq!(old.precision, None);
+    assert!(!toml::to_string(&old)
+        .expect("serialises")
+        .contains("precision"));
+    let json = serde_json::to_string(&old).expect("json");
+    assert!(!json.contains("precision"), "{json}");
+    assert!(toml::from_str::<BrainSpec>("precision = \"f16\"").is_err());
+    // The brain built from it computes in f32; the default in f64 with unchanged bits.
+    let narrow_brain = brain("precision = \"f32\"", 24, 2, 3);
+    let Brain::Mlp(mlp) = &narrow_brain else {
+        panic!("not an mlp")
+    };
+    assert_eq!(mlp.precision(), Precision::F32);
+    let (mut a, mut b) = (brain("", 24, 2, 3), brain("precision = \"f64\"", 24, 2, 3));
+    let x = values(4, 24, 1.0);
+    let (mut ya, mut yb) = ([0.0; 2], [0.0; 2]);
+    a.activate(&x, &mut ya);
+    b.activate(&x, &mut yb);
+    assert_eq!(bits(&ya), bits(&yb));
+}
+
+#[test]
+fn f32_is_refused_on_recurrent_and_ctrnn_brains() {
+    for kind in ["recurrent", "ctrnn"] {
+        let spec: BrainSpec =
+            toml::from_str(&format!("kind = \"{kind}\"\nprecision = \"f32\"")).expect("parses");
+        let message = spec.validate().expect_err("refused").to_string();
+        assert!(message.contains("brain.precision"), "{message}");
+        assert!(message.contains("mlp"), "{message}");
+        assert!(Topology::new(spec, 4, 2).is_err());
+        // "f64" is what they compute anyway: accepted.
+        let spec: BrainSpec =
+            toml::from_str(&format!("kind = \"{kind}\"\nprecision = \"f64\"")).expect("parses");
+        spec.validate().expect("f64 accepted");
+    }
+}
+
+#[test]
+fn precision_travels_with_genome_files() {
+    use berry_evolve::record::genome_file::{GenomeFile, Origin, GENOME_FORMAT};
+    use std::path::Path;
+    let spec: BrainSpec = toml::from_str("hidden = [3]\nprecision = \"f32\"").expect("spec");
+    let topology = Topology::new(spec.clone(), 2, 2).expect("topology");
+    let file = GenomeFile {
+        format: GENOME_FORMAT,
+        brain: spec,
+        inputs: vec!["a".into(), "b".into()],
+        outputs: vec!["left".into(), "right".into()],
+        parameters: values(5, topology.parameter_count(), 1.0),
+        step_size: None,
+        origin: Origin::default(),
+    };
+    let json = file.to_json();
+    assert!(String::from_utf8_lossy(&json).contains("\"precision\": \"f32\""));
+    let back = GenomeFile::from_slice(&json, Path::new("g.json")).expect("reads back");
+    assert_eq!(back, file);
+    assert_eq!(back.brain.precision, Some(Precision::F32));
+    // A recurrent genome claiming f32 is refused when read.
+    let mut recurrent = file.clone();
+    recurrent.brain = toml::from_str("kind = \"recurrent\"\nhidden = [3]").expect("spec");
+    recurrent.brain.precision = Some(Precision::F32);
+    let error = GenomeFile::from_slice(&recurrent.to_json(), Path::new("r.json"))
+        .expect_err("refused")
+        .to_string();
+    assert!(error.contains("brain.precision"), "{error}");
+}
