@@ -17,7 +17,8 @@ use crate::evo::lockstep;
 use crate::experiment::{Aggregate, Experiment};
 use crate::seed::{stream, Generation, IndividualId, Purpose, Rng, TrialIndex};
 use crate::sim::controller::{Controller, MotorCommand};
-use crate::sim::world::World;
+use crate::sim::world::{ValidSpecs, World};
+use crate::sim::PlacementError;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -157,14 +158,43 @@ pub(crate) fn trial_world(
     group: u64,
     trial: TrialIndex,
 ) -> Result<World, EvaluationError> {
+    let specs = valid_specs(experiment, generation, trial)?;
+    build_trial_world(specs, experiment, creatures, generation, group, trial)
+}
+
+/// The experiment's world and creature specifications, validated (the error names `trial`).
+pub(crate) fn valid_specs(
+    experiment: &Experiment,
+    generation: Generation,
+    trial: TrialIndex,
+) -> Result<ValidSpecs<'_>, EvaluationError> {
+    ValidSpecs::new(&experiment.world, &experiment.creature)
+        .map_err(|error| world_error(generation, trial, error))
+}
+
+/// [`trial_world`] from specifications validated once for several trials.
+pub(crate) fn build_trial_world(
+    specs: ValidSpecs<'_>,
+    experiment: &Experiment,
+    creatures: usize,
+    generation: Generation,
+    group: u64,
+    trial: TrialIndex,
+) -> Result<World, EvaluationError> {
     let rng = trial_stream(experiment, generation, group, trial);
-    World::new(&experiment.world, &experiment.creature, creatures, rng).map_err(|error| {
-        EvaluationError::World {
-            generation: generation.0,
-            trial: trial.0,
-            error,
-        }
-    })
+    World::build(specs, creatures, rng).map_err(|error| world_error(generation, trial, error))
+}
+
+fn world_error(
+    generation: Generation,
+    trial: TrialIndex,
+    error: PlacementError,
+) -> EvaluationError {
+    EvaluationError::World {
+        generation: generation.0,
+        trial: trial.0,
+        error,
+    }
 }
 
 /// The score bookkeeping after one tick: every living creature whose life is still valid

@@ -13,7 +13,8 @@ use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
 use crate::brain::{Brain, BrainController};
 use crate::evo::evaluate::{
-    controllers, finite_command, outcomes, record_tick, trial_world, EvaluationError, TrialOutcome,
+    build_trial_world, controllers, finite_command, outcomes, record_tick, valid_specs,
+    EvaluationError, TrialOutcome,
 };
 use crate::evo::fitness::LifeScore;
 use crate::experiment::Experiment;
@@ -160,8 +161,12 @@ pub fn run_trials(
     trials: Range<u64>,
 ) -> Result<Vec<Vec<TrialOutcome>>, EvaluationError> {
     let mut controllers = controllers(experiment, topology, genomes, group)?;
+    let specs = valid_specs(experiment, generation, TrialIndex(trials.start))?;
     let worlds = trials
-        .map(|t| trial_world(experiment, genomes.len(), generation, group, TrialIndex(t)))
+        .map(|t| {
+            let trial = TrialIndex(t);
+            build_trial_world(specs, experiment, genomes.len(), generation, group, trial)
+        })
         .collect::<Result<Vec<_>, _>>()?;
     Ok(live_trials(experiment, worlds, &mut controllers))
 }
@@ -208,6 +213,7 @@ pub(crate) fn live_trials<B: BatchController>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::evo::evaluate::trial_world;
     use crate::evo::evaluate::{live_trial, CheckedController};
     use crate::sim::controller::Controller;
     use std::path::Path;

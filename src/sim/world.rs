@@ -188,6 +188,27 @@ pub struct World {
     flyers: Vec<Flyer>,
 }
 
+/// A world and a creature specification validated together: the proof [`World::build`] asks
+/// for. Evaluation builds many worlds from the same specifications (a lockstep job builds up
+/// to 16), and validating them costs as much as building a small world's grid.
+#[derive(Debug, Clone, Copy)]
+pub struct ValidSpecs<'a> {
+    world: &'a WorldSpec,
+    creature: &'a CreatureSpec,
+}
+
+impl<'a> ValidSpecs<'a> {
+    /// Validates `creature`, then `world` for it.
+    pub fn new(
+        world: &'a WorldSpec,
+        creature: &'a CreatureSpec,
+    ) -> Result<ValidSpecs<'a>, PlacementError> {
+        creature.validate()?;
+        world.validate(creature)?;
+        Ok(ValidSpecs { world, creature })
+    }
+}
+
 impl World {
     /// Builds a trial world: validates both specifications, places the explicit objects, the
     /// placement rules' objects and `creatures` creatures with `rng` (in that order), then
@@ -196,10 +217,18 @@ impl World {
         world: &WorldSpec,
         creature: &CreatureSpec,
         creatures: usize,
+        rng: Rng,
+    ) -> Result<World, PlacementError> {
+        World::build(ValidSpecs::new(world, creature)?, creatures, rng)
+    }
+
+    /// [`World::new`] from specifications already validated.
+    pub fn build(
+        specs: ValidSpecs<'_>,
+        creatures: usize,
         mut rng: Rng,
     ) -> Result<World, PlacementError> {
-        creature.validate()?;
-        world.validate(creature)?;
+        let ValidSpecs { world, creature } = specs;
         let walls = Walls::build(world);
         let objects = place_objects(world, walls.blocking(), &mut rng)?;
         let radius = creature.radius();
