@@ -470,7 +470,8 @@ unsafe fn affine_batch_avx2(
 }
 
 /// [`affine_batch`] for any CPU (inlined into callers that are themselves compiled for AVX2,
-/// such as the MLP's batched forward pass).
+/// such as the MLP's batched forward pass), in either float type; f32 takes blocks of 16
+/// units before those of 8, and adds each term with a fused multiply-add.
 #[inline(always)]
 pub(crate) fn affine_batch_portable<F: Real>(
     transposed: &[F],
@@ -520,6 +521,11 @@ fn sample_tiles<F: Real, const T: usize>(
         let ys = &mut y[s * units..(s + T) * units];
         let mut j = 0;
         if F::LANES == 8 {
+            // f32: blocks of 16 units (4 × 16 sums = 8 accumulator registers). With fused
+            // multiply-adds a term needs no register for its product, so the tile fits the 16
+            // AVX2 registers with the two weight registers and a broadcast input. Measured
+            // with callgrind on 98 → 100 → 2 (batch of 32): 4,700 instructions per sample,
+            // against 6,800 with the earlier unfused 4 × 8 tiles; 4 × 24 saved only 1% more.
             j = unit_blocks::<F, T, 16>(transposed, biases, xt, ys, j);
         }
         let j = unit_blocks::<F, T, 8>(transposed, biases, xt, ys, j);
