@@ -1,8 +1,8 @@
 //! Batched MLP forward passes through the public API: `Brain::activate_batch` and
 //! `BrainController::act_batch` give every observation the bits of a single pass, for every
 //! activation and many batch sizes, and allocate nothing once warmed up; and
-//! `precision = "f32"`: batch bits, closeness to f64, the TOML key, its refusal outside MLPs,
-//! and genome files carrying it.
+//! `precision = "f32"`: batch bits, closeness to f64, fused multiply-add sums, the TOML key,
+//! its refusal outside MLPs, and genome files carrying it.
 
 use berry_evolve::brain::{Brain, BrainController, BrainSpec, Precision, Topology};
 use berry_evolve::seed::{stream, uniform, Generation, IndividualId, Purpose, Seed, TrialIndex};
@@ -150,6 +150,27 @@ fn f32_batches_match_single_passes_bit_for_bit_and_stay_near_f64() {
             }
         }
     }
+}
+
+/// Through the public API, an f32 sum is a fused multiply-add: with w = x = 1 + 2⁻¹² and bias
+/// −1 the exact sum 2⁻¹¹ + 2⁻²⁴ survives (a separate f32 multiply would round w·x to
+/// 1 + 2⁻¹¹, leaving 2⁻¹¹), in single passes and batches alike.
+#[test]
+fn f32_sums_are_fused_through_the_public_api() {
+    let spec: BrainSpec = toml::from_str("hidden = []\nprecision = \"f32\"").expect("spec");
+    let topology = Topology::new(spec, 1, 2).expect("topology");
+    let w = 1.0 + 2f64.powi(-12);
+    let mut brain = Brain::new(&topology, &[w, w, -1.0, -1.0]).expect("brain");
+    let fused = 2f64.powi(-11) + 2f64.powi(-24);
+    let expected = f64::from(berry_evolve::brain::activation::tanh(fused) as f32);
+    let unfused = f64::from(berry_evolve::brain::activation::tanh(2f64.powi(-11)) as f32);
+    assert_ne!(expected, unfused);
+    let mut y = [f64::NAN; 2];
+    brain.activate(&[w], &mut y);
+    assert_eq!(bits(&y), bits(&[expected; 2]));
+    let mut batch = [f64::NAN; 10];
+    brain.activate_batch(&[w; 5], &mut batch);
+    assert_eq!(bits(&batch), bits(&[expected; 10]));
 }
 
 #[test]

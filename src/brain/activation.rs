@@ -38,10 +38,10 @@
 //! [`affine_batch`] does the same for several samples at once (the samples of a batch share
 //! each weight load; see its docs), with every sample's sums in the same order, so each sample
 //! gets the bits [`affine`] gives it alone. The kernels are generic over [`Real`] (f64, and
-//! f32 for `precision = "f32"` MLPs): `+` and `*` are rounded by IEEE 754 in either type.
+//! f32 for `precision = "f32"` MLPs): in f64 each term is a multiply then an add, in f32 one
+//! fused multiply-add ([`Real::add_product`]); IEEE 754 specifies the result of each exactly.
 
 use serde::{Deserialize, Serialize};
-use std::ops::{Add, AddAssign, Mul};
 
 /// The activation function of hidden units (`brain.activation`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
@@ -213,13 +213,18 @@ pub fn nan_to_zero(x: f64) -> f64 {
 }
 
 /// A float type the layer kernels compute in: f64, or f32 for an MLP with
-/// `precision = "f32"` (see [`crate::brain::mlp`]). Only `+` and `*` are used, each rounded
-/// by IEEE 754 in the type itself, so every sum has the same bits on every CPU in either type.
-pub trait Real:
-    Copy + std::fmt::Debug + Add<Output = Self> + Mul<Output = Self> + AddAssign + 'static
-{
+/// `precision = "f32"` (see [`crate::brain::mlp`]). Each term of a sum is added by
+/// [`Real::add_product`], whose result IEEE 754 specifies exactly in either type, so every sum
+/// has the same bits on every CPU.
+pub trait Real: Copy + std::fmt::Debug + 'static {
     /// Values per 256-bit AVX2 register (4 for f64, 8 for f32): the unit block sizes follow.
     const LANES: usize;
+
+    /// One term of a sum: `self + w · x`. f64: a multiply, then an add (two roundings, never
+    /// fused, so the bits do not depend on whether the CPU has FMA). f32: one fused
+    /// multiply-add (IEEE 754 fusedMultiplyAdd, a single rounding), which is exactly specified
+    /// too, so the FMA instruction and `f32::mul_add`'s software fallback give the same bits.
+    fn add_product(self, w: Self, x: Self) -> Self;
 
     /// A hidden layer's activation function on every element. f32 values are widened to f64,
     /// go through the f64 function and are rounded back, so both types share one function.
@@ -234,6 +239,11 @@ impl Real for f64 {
     const LANES: usize = 4;
 
     #[inline(always)]
+    fn add_product(self, w: f64, x: f64) -> f64 {
+        self + w * x
+    }
+
+    #[inline(always)]
     fn activate(activation: Activation, y: &mut [f64]) {
         activation.apply_slice(y);
     }
@@ -246,6 +256,14 @@ impl Real for f64 {
 
 impl Real for f32 {
     const LANES: usize = 8;
+
+    #[inline(always)]
+    fn add_product(self, w: f32, x: f32) -> f32 {
+        // Fused on purpose: the f32 precision is defined with fused multiply-adds (one
+        // rounding, exactly specified by IEEE 754, so deterministic on every CPU), which the
+        // AVX2+FMA build runs as vfmadd on 8 lanes.
+        w.mul_add(x, self)
+    }
 
     #[inline(always)]
     fn activate(activation: Activation, y: &mut [f32]) {
@@ -383,7 +401,7 @@ fn blocks<F: Real, const N: usize>(
         for (row, &xi) in transposed.chunks_exact(units).zip(x) {
             let w: &[F; N] = row[j..j + N].try_into().expect("N weights");
             for k in 0..N {
-                acc[k] += w[k] * xi;
+                acc[k] = acc[k].add_product(w[k], xi);
             }
         }
         y[j..j + N].copy_from_slice(&acc);
@@ -452,7 +470,8 @@ unsafe fn affine_batch_avx2(
 }
 
 /// [`affine_batch`] for any CPU (inlined into callers that are themselves compiled for AVX2,
-/// such as the MLP's batched forward pass).
+/// such as the MLP's batched forward pass), in either float type; f32 takes blocks of 16
+/// units before those of 8, and adds each term with a fused multiply-add.
 #[inline(always)]
 pub(crate) fn affine_batch_portable<F: Real>(
     transposed: &[F],
@@ -500,9 +519,16 @@ fn sample_tiles<F: Real, const T: usize>(
             }
         }
         let ys = &mut y[s * units..(s + T) * units];
-        // Blocks of 8 units in either type (one AVX2 register of f32): a tile of 4 × 16
-        // would not be kept in registers by the compiler.
-        let j = unit_blocks::<F, T, 8>(transposed, biases, xt, ys, 0);
+        let mut j = 0;
+        if F::LANES == 8 {
+            // f32: blocks of 16 units (4 × 16 sums = 8 accumulator registers). With fused
+            // multiply-adds a term needs no register for its product, so the tile fits the 16
+            // AVX2 registers with the two weight registers and a broadcast input. Measured
+            // with callgrind on 98 → 100 → 2 (batch of 32): 4,700 instructions per sample,
+            // against 6,800 with the earlier unfused 4 × 8 tiles; 4 × 24 saved only 1% more.
+            j = unit_blocks::<F, T, 16>(transposed, biases, xt, ys, j);
+        }
+        let j = unit_blocks::<F, T, 8>(transposed, biases, xt, ys, j);
         let j = unit_blocks::<F, T, 4>(transposed, biases, xt, ys, j);
         if T >= 4 {
             // Fewer than 4 units left (all of a 2- or 3-unit output layer): one register
@@ -561,7 +587,8 @@ fn unit_blocks<F: Real, const T: usize, const N: usize>(
     j
 }
 
-/// One input of a tile: every sum gains its term, acc[t][k] += w[k] · x_t. (A function, not
+/// One input of a tile: every sum gains its term w[k] · x_t ([`Real::add_product`]: a
+/// multiply and an add in f64, a fused multiply-add in f32). (A function, not
 /// a closure: a closure is not `inline(always)`, and left out of line it would lose the AVX2
 /// compilation of its caller.)
 #[inline(always)]
@@ -570,7 +597,7 @@ fn tile_step<F: Real, const T: usize, const N: usize>(acc: &mut [[F; N]; T], w: 
     let x: &[F; T] = x.try_into().expect("T inputs");
     for t in 0..T {
         for k in 0..N {
-            acc[t][k] += w[k] * x[t];
+            acc[t][k] = acc[t][k].add_product(w[k], x[t]);
         }
     }
 }
@@ -596,7 +623,7 @@ fn lane_block<F: Real, const T: usize, const N: usize>(
         let group: &[F; T] = group.try_into().expect("T inputs");
         for k in 0..N {
             for t in 0..T {
-                acc[k][t] += w[k] * group[t];
+                acc[k][t] = acc[k][t].add_product(w[k], group[t]);
             }
         }
     }

@@ -32,11 +32,16 @@
 //! genome in f64 but rounds the parameters to f32 once when the brain is built (a parameter
 //! beyond the f32 range becomes ±∞, which the output stage still maps into [-1, 1]) and the
 //! inputs on every pass; every sum is then done in f32 in the same documented order (bias,
-//! then inputs left to right, separate multiply and add), so f32 results are deterministic
-//! too. Activations are applied by widening the f32 sum to f64, applying the f64 function
+//! then inputs left to right), each term added by a fused multiply-add: s = b_j, then
+//! s = fma(w_ji, x_i, s) for i = 0, 1, … (IEEE 754 fusedMultiplyAdd, one rounding per term).
+//! An FMA is exactly specified, so the FMA instruction and `f32::mul_add`'s software fallback
+//! give the same bits, and f32 results are deterministic across CPUs and thread counts too.
+//! On x86-64 CPUs with AVX2 and FMA the pass is compiled for both (8 f32 per register, one
+//! vfmadd per 8 terms); elsewhere the portable build calls `f32::mul_add` (same bits,
+//! slower). Activations are applied by widening the f32 sum to f64, applying the f64 function
 //! ([`super::activation::tanh`] etc., so their error bounds still hold) and rounding back to
-//! f32; the outputs are widened to f64. With AVX2 a register holds 8 f32: a single pass
-//! takes 16 units per block, a batch tile 4 samples × 8 units.
+//! f32; the outputs are widened to f64. A single pass takes 16 units per block, a batch tile
+//! 4 samples × 16 units (8 accumulator registers).
 
 use super::activation::{
     affine_batch_portable, kernel_portable, transpose, Activation, Real, BATCH_TILE,
@@ -247,25 +252,54 @@ impl Mlp {
         }
     }
 
-    /// Runs [`Mlp::forward`] compiled for AVX2 when the CPU has it.
+    /// Runs [`Mlp::forward`] compiled for AVX2 when the CPU has it (f64), or for AVX2 and FMA
+    /// when it has both (f32: its fused multiply-adds then become vfmadd instructions instead
+    /// of calls to the software `fmaf`); otherwise the portable build. Each build computes the
+    /// same IEEE 754 operations, so all give the same bits.
     #[inline]
     fn dispatch(&mut self, inputs: &[f64], outputs: &mut [f64], n: usize) {
         #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: `forward_avx2` only requires the CPU to support AVX2, checked just above.
-            unsafe { self.forward_avx2(inputs, outputs, n) };
-            return;
+        match self.numbers {
+            Numbers::F64(_) => {
+                if std::arch::is_x86_feature_detected!("avx2") {
+                    // SAFETY: `forward_avx2` only requires AVX2, checked just above.
+                    unsafe { self.forward_avx2(inputs, outputs, n) };
+                    return;
+                }
+            }
+            Numbers::F32 { .. } => {
+                if std::arch::is_x86_feature_detected!("avx2")
+                    && std::arch::is_x86_feature_detected!("fma")
+                {
+                    // SAFETY: `forward_avx2_fma` only requires AVX2 and FMA, checked just
+                    // above.
+                    unsafe { self.forward_avx2_fma(inputs, outputs, n) };
+                    return;
+                }
+            }
         }
         self.forward(inputs, outputs, n);
     }
 
-    /// [`Mlp::forward`] compiled for AVX2.
+    /// [`Mlp::forward`] compiled for AVX2 (f64 networks: compiled without FMA, although Rust
+    /// would not fuse their separate multiplies and adds anyway).
     ///
     /// # Safety
     /// The CPU must support AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     unsafe fn forward_avx2(&mut self, inputs: &[f64], outputs: &mut [f64], n: usize) {
+        self.forward(inputs, outputs, n);
+    }
+
+    /// [`Mlp::forward`] compiled for AVX2 and FMA (f32 networks: `f32::mul_add` becomes one
+    /// vfmadd per 8 lanes).
+    ///
+    /// # Safety
+    /// The CPU must support AVX2 and FMA.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    unsafe fn forward_avx2_fma(&mut self, inputs: &[f64], outputs: &mut [f64], n: usize) {
         self.forward(inputs, outputs, n);
     }
 
@@ -519,7 +553,8 @@ mod tests {
     }
 
     /// f32 is exactly the documented computation: parameters and inputs rounded to f32, sums
-    /// in f32 from the bias, input by input, activations in f64 on the widened sum, rounded.
+    /// in f32 from the bias, input by input, each term a fused multiply-add, activations in
+    /// f64 on the widened sum, rounded.
     #[test]
     fn f32_follows_the_documented_order_bit_for_bit() {
         let mut rng = rng(48);
@@ -537,7 +572,7 @@ mod tests {
                         .map(|j| {
                             let mut sum = rest[j];
                             for (i, &xi) in a.iter().enumerate() {
-                                sum += w[j * a.len() + i] * xi;
+                                sum = w[j * a.len() + i].mul_add(xi, sum);
                             }
                             if l < hidden.len() {
                                 act.apply(f64::from(sum)) as f32
@@ -554,6 +589,45 @@ mod tests {
                 mlp.activate(&x, &mut y);
                 assert_eq!(bits(&y), bits(&expected), "{act:?}");
             }
+        }
+    }
+
+    /// The f32 sums are fused: with w = x = 1 + 2⁻¹² and bias −1, w·x = 1 + 2⁻¹¹ + 2⁻²⁴
+    /// exactly, which a separate f32 multiply rounds (a tie, to even) to 1 + 2⁻¹¹, so an
+    /// unfused sum gives 2⁻¹¹ while the fused one keeps 2⁻¹¹ + 2⁻²⁴. Nineteen output units
+    /// (a block of 16 and the remainders) see it in single passes and batches of every tile
+    /// remainder, on the dispatched (AVX2+FMA where available) and the portable paths.
+    #[test]
+    fn f32_sums_are_fused_multiply_adds() {
+        let w = 1.0 + libm::exp2(-12.0);
+        let fused = libm::exp2(-11.0) + libm::exp2(-24.0);
+        let unfused = ((w as f32) * (w as f32)) + -1.0f32;
+        assert_eq!(
+            f64::from(unfused),
+            libm::exp2(-11.0),
+            "the case needs fusing"
+        );
+        let output = |sum: f64| f64::from(nan_to_zero(tanh(sum)) as f32);
+        assert_ne!(
+            output(fused).to_bits(),
+            output(f64::from(unfused)).to_bits()
+        );
+        let units = 19;
+        let parameters: Vec<f64> = [vec![w; units], vec![-1.0; units]].concat();
+        let mut mlp = Mlp::new(1, &[], units, Activation::Tanh, Precision::F32, &parameters);
+        let mut portable = mlp.clone();
+        for n in 1..=9 {
+            let x = vec![w; n];
+            let expected = vec![output(fused).to_bits(); n * units];
+            let mut y = vec![f64::NAN; n * units];
+            mlp.activate_batch(&x, &mut y);
+            assert_eq!(bits(&y), expected, "batch of {n}");
+            mlp.activate(&x[..1], &mut y[..units]);
+            assert_eq!(bits(&y[..units]), expected[..units], "single");
+            portable.grow(n);
+            let mut by_portable = vec![f64::NAN; n * units];
+            portable.forward(&x, &mut by_portable, n);
+            assert_eq!(bits(&by_portable), expected, "portable batch of {n}");
         }
     }
 

@@ -28,8 +28,10 @@
 //! `precision = "f32"` (MLP only, opt-in because it changes results) computes the MLP's sums
 //! in single precision, as float32 frameworks such as EvoJAX do: parameters rounded to f32
 //! once at construction (the genome stays f64), inputs rounded on every pass, the same
-//! summation order, activation functions in f64 on the widened sum, rounded back. It is as
-//! deterministic as f64 and runs 8 lanes per AVX2 register ([`mlp`] documents the details).
+//! summation order with each term a fused multiply-add (one rounding, exactly specified by
+//! IEEE 754), activation functions in f64 on the widened sum, rounded back. It is as
+//! deterministic as f64 and runs 8 lanes per AVX2+FMA register ([`mlp`] documents the
+//! details).
 //! The key belongs to the `[brain]` table, so genome files and checkpointed experiments
 //! carry it; left unset it is not written, so older files read and hash as before.
 

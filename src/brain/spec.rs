@@ -84,8 +84,9 @@ pub enum Precision {
     /// Double precision throughout (the default).
     #[default]
     F64,
-    /// Single precision sums: parameters and inputs rounded to f32, every sum in f32, the
-    /// activation functions in f64 on the widened sum, rounded back (see
+    /// Single precision sums: parameters and inputs rounded to f32, every sum in f32 with
+    /// fused multiply-adds (one rounding per term), the activation functions in f64 on the
+    /// widened sum, rounded back (see
     /// [`crate::brain::mlp`]). Opt-in, for comparisons with float32 peers such as EvoJAX: it
     /// changes results.
     F32,
@@ -122,7 +123,8 @@ pub struct BrainSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub activation: Option<Activation>,
     /// mlp: the float type of the forward pass, `"f64"` (default) or `"f32"` (sums in single
-    /// precision, as float32 frameworks compute; it changes results, so it is opt-in). Recurrent
+    /// precision with fused multiply-adds, as float32 frameworks compute; it changes results,
+    /// so it is opt-in). Recurrent
     /// and ctrnn brains always compute in f64 and refuse `"f32"`. Left out of files when unset,
     /// so files written before the key existed still read the same.
     #[serde(default, skip_serializing_if = "Option::is_none")]
