@@ -12,9 +12,9 @@
 //! H ≥ eye_height. On equal distance the first surface in the order walls, food, aversive
 //! objects, creatures wins.
 //!
-//! Cylinders are ray-tested only against the columns near their angular extent (one atan2
-//! and one asin per object instead of a ray test per column), and walls farther than the
-//! eye's range are not ray-tested at all; the exact ray test still decides, and a test checks
+//! Cylinders are ray-tested only against the columns within their angular extent widened by
+//! a small slack (two polynomial arctangents per object instead of a ray test per column),
+//! and walls farther than the eye's range are not ray-tested at all; the exact ray test still decides, and a test checks
 //! that culling never changes a pixel. Everything is allocated
 //! when the eye is built; rendering allocates nothing.
 
@@ -24,6 +24,39 @@ use crate::sim::gadgets::Thing;
 use crate::sim::spec::EyeSpec;
 use crate::sim::wall::Wall;
 use crate::sim::world::Creature;
+
+/// Margin in radians added on each side of a cylinder's approximate angular extent. It must
+/// dominate the error of the bearing and of the angular radius (each ≤ 1.2e-5 rad from
+/// [`atan2_bound`], plus rounding far below that, even for an eye just outside the cylinder),
+/// so that no column whose ray can meet the cylinder is left out. It is small against the
+/// narrowest column (a 4,096-pixel retina over a full turn: 1.5e-3 rad), so it rarely adds
+/// a column to be tested.
+const ANGLE_SLACK: f64 = 1e-4;
+
+/// atan2(y, x) in (−π, π] within 1.2e-5 rad, for the column range of a cylinder: the
+/// 9th-degree polynomial of Abramowitz & Stegun 4.4.47 (error about 1e-5 on [0, 1]) after
+/// reducing to the first octant; a test measures the bound over all directions. Both zero gives NaN (0/0), which the
+/// caller treats as "no range known".
+#[inline]
+fn atan2_bound(y: f64, x: f64) -> f64 {
+    let (ax, ay) = (x.abs(), y.abs());
+    let t = ax.min(ay) / ax.max(ay);
+    let t2 = t * t;
+    let mut a = t
+        * (0.999_866_0
+            + t2 * (-0.330_299_5 + t2 * (0.180_141_0 + t2 * (-0.085_133_0 + t2 * 0.020_835_1))));
+    if ay > ax {
+        a = std::f64::consts::FRAC_PI_2 - a;
+    }
+    if x < 0.0 {
+        a = std::f64::consts::PI - a;
+    }
+    if y < 0.0 {
+        -a
+    } else {
+        a
+    }
+}
 
 /// What the eye can see.
 pub struct Scene<'a> {
@@ -58,9 +91,12 @@ pub struct Eye {
     background: [f64; 3],
     /// Largest distance seen, +∞ when unlimited.
     range: f64,
-    /// Half the horizontal field of view and the angle between columns, in radians.
-    half_fov: f64,
-    step: f64,
+    /// Columns per radian (width / fov), the column index looking straight ahead
+    /// (fov/2 / step − ½), and columns per full turn: they map a bearing to the (fractional)
+    /// index of the column looking that way.
+    columns_per_radian: f64,
+    column_offset: f64,
+    columns_per_turn: f64,
     /// Scratch: each column's ray direction for the current render.
     dirs: Vec<Vec2>,
     /// Scratch: distance of what each pixel shows, row-major.
@@ -104,8 +140,9 @@ impl Eye {
             eye_height: spec.eye_height,
             background: spec.background,
             range: spec.range.unwrap_or(f64::INFINITY),
-            half_fov: 0.5 * fov,
-            step: fov / width as f64,
+            columns_per_radian: width as f64 / fov,
+            column_offset: 0.5 * width as f64 - 0.5,
+            columns_per_turn: std::f64::consts::TAU * width as f64 / fov,
             dirs: vec![Vec2::X; width],
             depth: vec![f64::INFINITY; width * height],
         }
@@ -220,9 +257,10 @@ impl Eye {
     }
 
     /// Paints a cylinder (radius > 0; points are never seen) into every column whose ray
-    /// meets it. With culling, only the columns within one column of its angular extent
+    /// meets it. With culling, only the columns within ANGLE_SLACK of its angular extent
     /// (and of the same extent a full turn away, for wide fields of view) are ray-tested:
-    /// the margin covers rounding in the angle, and `ray_circle` decides exactly.
+    /// the slack covers the error of the approximate angles, and `ray_circle` decides
+    /// exactly.
     fn cylinder(
         &mut self,
         out: &mut [f64],
@@ -254,20 +292,60 @@ impl Eye {
         if d - radius > self.range {
             return;
         }
-        // The cylinder's bearing from the heading (positive clockwise) and angular radius.
-        let alpha = libm::atan2(look.heading.perp_dot(m), look.heading.dot(m));
-        let half = libm::asin((radius / d).min(1.0));
+        // The cylinder's bearing from the heading (positive clockwise) and angular radius
+        // asin(radius / d), both from a polynomial arctangent whose error (≤ 1.2e-5 rad each)
+        // is dominated by ANGLE_SLACK, so the column range below can only come out wider
+        // than the exact one. libm's atan2 and asin cost several times as much.
+        let alpha = atan2_bound(look.heading.perp_dot(m), look.heading.dot(m));
+        let half = atan2_bound(radius, (d2 - radius * radius).sqrt());
+        // In column units: column i looks at −fov/2 + (i + ½)·step, i.e. at u = i.
+        let mid = alpha * self.columns_per_radian + self.column_offset;
+        let spread = (half + ANGLE_SLACK) * self.columns_per_radian;
+        let (lo, hi) = (mid - spread, mid + spread);
+        if !(lo.is_finite() && hi.is_finite()) {
+            // A zero or non-finite heading, or coordinates so large that squares overflow:
+            // no range can be trusted, so every column decides by ray test.
+            self.columns_hit(
+                out,
+                look.position,
+                0..self.width,
+                centre,
+                radius,
+                height,
+                colour,
+            );
+            return;
+        }
         let max = (self.width - 1) as f64;
-        for shift in [0.0, -std::f64::consts::TAU, std::f64::consts::TAU] {
-            let (lo, hi) = (alpha + shift - half, alpha + shift + half);
-            if hi < -self.half_fov - self.step || lo > self.half_fov + self.step {
+        // The extent as seen, and the same extent a full turn to either side (it can reach
+        // into a wide field of view from behind). The three never share a column, as the
+        // extent is at most half a turn wide; a shared column would only be painted twice
+        // with the same distance, which changes nothing.
+        for shift in [0.0, -self.columns_per_turn, self.columns_per_turn] {
+            let (a, b) = (lo + shift, hi + shift);
+            if b < 0.0 || a > max {
                 continue;
             }
-            // Column i looks at −fov/2 + (i + ½)·step; one column of margin on each side.
-            let first = ((lo + self.half_fov) / self.step - 0.5).floor() - 1.0;
-            let last = ((hi + self.half_fov) / self.step - 0.5).ceil() + 1.0;
-            let columns = first.clamp(0.0, max) as usize..last.clamp(0.0, max) as usize + 1;
-            self.columns_hit(out, look.position, columns, centre, radius, height, colour);
+            // First column i ≥ a and last i ≤ b, within the retina. Here a ≤ max and b ≥ 0,
+            // so the truncating casts are floors of non-negative values in range.
+            let first = if a <= 0.0 {
+                0
+            } else {
+                let t = a as usize;
+                t + usize::from((t as f64) < a)
+            };
+            let last = if b >= max { self.width - 1 } else { b as usize };
+            if first <= last {
+                self.columns_hit(
+                    out,
+                    look.position,
+                    first..last + 1,
+                    centre,
+                    radius,
+                    height,
+                    colour,
+                );
+            }
         }
     }
 
@@ -403,6 +481,132 @@ mod tests {
         assert_eq!(differing, 0);
         assert!(
             seen > 100,
+            "too few food pixels ({seen}) for the test to mean much"
+        );
+    }
+
+    /// The polynomial arctangent stays within the error that ANGLE_SLACK must dominate
+    /// (twice: bearing and angular radius), over all octants, the axes and near them.
+    #[test]
+    fn atan2_bound_error_is_dominated_by_the_slack() {
+        let mut worst: f64 = 0.0;
+        let n = 200_000;
+        for k in 0..n {
+            let a = -std::f64::consts::PI + std::f64::consts::TAU * k as f64 / n as f64;
+            for r in [1e-3, 1.0, 7.5, 1e6] {
+                let (y, x) = (r * libm::sin(a), r * libm::cos(a));
+                let err = (atan2_bound(y, x) - libm::atan2(y, x)).abs();
+                // ±π are the same direction.
+                let err = err.min((err - std::f64::consts::TAU).abs());
+                worst = worst.max(err);
+            }
+        }
+        for (y, x) in [(0.0, 1.0), (1.0, 0.0), (0.0, -1.0), (-1.0, 0.0), (1.0, 1.0)] {
+            let err = (atan2_bound(y, x) - libm::atan2(y, x)).abs();
+            worst = worst.max(err.min((err - std::f64::consts::TAU).abs()));
+        }
+        assert!(worst <= 1.2e-5, "atan2_bound error {worst}");
+        assert!(4.0 * worst < ANGLE_SLACK);
+        assert!(atan2_bound(0.0, 0.0).is_nan());
+    }
+
+    /// Culling changes nothing on wide retinas (up to 4,096 columns, whose columns are far
+    /// narrower than the slack's worth of extra columns matters), full turns, 1-row and
+    /// multi-row retinas, an eye inside or just outside a cylinder, and objects exactly at
+    /// the eye's range.
+    #[test]
+    fn culling_changes_nothing_on_wide_retinas_and_edge_cases() {
+        let mut rng = stream(
+            Seed(11),
+            Purpose::TrialWorld,
+            Generation(0),
+            IndividualId(0),
+            TrialIndex(0),
+        );
+        let mut differing = 0;
+        let mut seen = 0;
+        for trial in 0..60 {
+            let spec = EyeSpec {
+                fov: [360.0, 359.0, 180.0, 1.0, 360.0, 90.0][trial % 6],
+                width: [4096, 1000, 30, 1, 777, 2][trial % 5],
+                height: [1, 3, 1, 2][trial % 4],
+                range: (trial % 3 != 2).then_some(40.0),
+                ..EyeSpec::default()
+            };
+            let mut eye = Eye::new(&spec);
+            let position = Vec2::new(uniform(&mut rng, 20.0, 80.0), uniform(&mut rng, 20.0, 80.0));
+            let a = uniform(&mut rng, -4.0, 4.0);
+            let heading = Vec2::new(libm::cos(a), libm::sin(a));
+            let mut food: Vec<Food> = (0..25)
+                .map(|k| {
+                    let kind = FoodKind {
+                        radius: uniform(&mut rng, 0.0, 6.0),
+                        colour: Some([0.0, 1.0, (k % 2) as f64]),
+                        height: Some(uniform(&mut rng, 0.0, 12.0)),
+                        ..FoodKind::default()
+                    };
+                    let p = Vec2::new(uniform(&mut rng, 0.0, 100.0), uniform(&mut rng, 0.0, 100.0));
+                    Food::new(0, &kind, p)
+                })
+                .collect();
+            // Around the eye: exactly at the range (centre at range + radius), the eye
+            // inside, on the rim and just outside.
+            for (k, (distance, radius)) in [
+                (40.0 + 3.0, 3.0),
+                (40.0 + 0.5, 0.5),
+                (1.0, 4.0),
+                (2.0, 2.0),
+                (2.0 + 1e-12, 2.0),
+                (5.0, 4.999_999),
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                let b = uniform(&mut rng, -4.0, 4.0);
+                let kind = FoodKind {
+                    radius,
+                    colour: Some([0.0, 1.0, (k % 2) as f64]),
+                    height: Some(10.0),
+                    ..FoodKind::default()
+                };
+                let p = position + distance * Vec2::new(libm::cos(b), libm::sin(b));
+                food.push(Food::new(0, &kind, p));
+            }
+            let aversives: Vec<Aversive> = (0..8)
+                .map(|_| {
+                    let kind = AversiveKind {
+                        radius: uniform(&mut rng, 0.5, 4.0),
+                        ..AversiveKind::default()
+                    };
+                    let p = Vec2::new(uniform(&mut rng, 0.0, 100.0), uniform(&mut rng, 0.0, 100.0));
+                    Aversive::new(0, &kind, p)
+                })
+                .collect();
+            let scene = Scene {
+                walls: &[],
+                food: &food,
+                aversives: &aversives,
+                creatures: &[],
+                things: &[],
+                creature_radius: 3.0,
+                creature_colour: [0.0, 0.0, 1.0],
+                creature_height: 6.0,
+            };
+            let mut culled = vec![0.0; eye.len()];
+            let mut full = vec![1.0; eye.len()];
+            eye.render_with(&scene, position, heading, usize::MAX, &mut culled, true);
+            eye.render_with(&scene, position, heading, usize::MAX, &mut full, false);
+            if culled != full {
+                differing += 1;
+            }
+            seen += culled
+                .chunks(3)
+                .filter(|p| p[1] == 1.0 && p[0] == 0.0)
+                .count();
+        }
+        assert_eq!(differing, 0);
+        assert!(
+            seen > 1000,
             "too few food pixels ({seen}) for the test to mean much"
         );
     }
