@@ -5,16 +5,25 @@
 # the ratio to EvoJAX 0.2.17's WaterWorld on the same machine class (44,000 agent-steps/s for
 # whole generations, measured with EvoJAX's own code and settings; see the issue).
 #
-#   bash scripts/bench-waterworld.sh      # about 2 minutes on 2 cores
+#   bash scripts/bench-waterworld.sh      # about 5 minutes on 2 cores
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
 uname -m; nproc
 grep -m1 'model name' /proc/cpuinfo || true
-out=$(target/release/berry-evolve bench --repeat 3 --world experiments/bench/waterworld.toml \
-    --ticks 2000 --scaling 0 --evolution experiments/bench/waterworld.toml --generations 1 "$@")
-echo "$out"
-echo "$out" | awk '/^evolution .* on 2 thread/ {
-    for (i = 1; i <= NF; i++) if ($(i + 1) == "creature-ticks/s") rate = $i
-    printf "whole generations on 2 threads: %d agent-steps/s = %.1fx EvoJAX WaterWorld (44,000)\n", rate, rate / 44000
-}'
+# The file computes its brains in f32, as EvoJAX does; a copy with precision = "f64" (the
+# default precision) is measured the same way.
+f64=$(mktemp --suffix=.toml)
+trap 'rm -f "$f64"' EXIT
+sed 's/^precision = "f32".*/precision = "f64"/' experiments/bench/waterworld.toml >"$f64"
+for experiment in experiments/bench/waterworld.toml "$f64"; do
+    precision=$(grep -m1 -o '^precision = "f[0-9]*"' "$experiment")
+    echo "== $precision"
+    out=$(target/release/berry-evolve bench --repeat 3 --world "$experiment" \
+        --ticks 2000 --scaling 0 --evolution "$experiment" --generations 1 "$@")
+    echo "$out"
+    echo "$out" | awk -v p="$precision" '/^evolution .* on 2 thread/ {
+        for (i = 1; i <= NF; i++) if ($(i + 1) == "creature-ticks/s") rate = $i
+        printf "whole generations on 2 threads (%s): %d agent-steps/s = %.1fx EvoJAX WaterWorld (44,000)\n", p, rate, rate / 44000
+    }'
+done

@@ -35,8 +35,8 @@ const ANGLE_SLACK: f64 = 1e-4;
 
 /// atan2(y, x) in (−π, π] within 1.2e-5 rad, for the column range of a cylinder: the
 /// 9th-degree polynomial of Abramowitz & Stegun 4.4.47 (error about 1e-5 on [0, 1]) after
-/// reducing to the first octant; a test measures the bound over all directions. Both zero gives NaN (0/0), which the
-/// caller treats as "no range known".
+/// reducing to the first octant; a test measures the bound over all directions. Both zero
+/// gives NaN (0/0), which the caller treats as "no range known".
 #[inline]
 fn atan2_bound(y: f64, x: f64) -> f64 {
     let (ax, ay) = (x.abs(), y.abs());
