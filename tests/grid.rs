@@ -269,6 +269,24 @@ fn random_world(seed: u64) -> String {
         r.uniform(0.05, 1.0)
     )
     .unwrap();
+    // Most worlds' creatures also see: the eye takes its food and aversive objects from the
+    // grid when its range is finite.
+    if r.chance(0.7) {
+        writeln!(
+            t,
+            "[creature.inputs]\neye = true\n[creature.eye]\nfov = {:.3}\nwidth = {}\n\
+             height = {}\n{}",
+            r.uniform(10.0, 360.0),
+            1 + r.below(40),
+            1 + r.below(3),
+            if r.chance(0.85) {
+                format!("range = {:.3}", r.uniform(2.0, 300.0))
+            } else {
+                String::new()
+            }
+        )
+        .unwrap();
+    }
     t
 }
 
