@@ -14,39 +14,9 @@ use berry_evolve::seed::{
     below, chance, gaussian, stream, unit, Generation, IndividualId, Purpose, Rng, Seed, TrialIndex,
 };
 use berry_evolve::sim::controller::Controller;
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 
-// ---------------------------------------------------------------------------------------------
-// Allocation counting: every allocation made by the current thread is counted, so a test can
-// check that a stretch of code allocates nothing (tests run on several threads at once).
-
-struct CountingAllocator;
-
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for CountingAllocator {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.with(|c| c.set(c.get() + 1));
-        System.alloc(layout)
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.with(|c| c.set(c.get() + 1));
-        System.realloc(ptr, layout, new_size)
-    }
-}
-
-#[global_allocator]
-static GLOBAL: CountingAllocator = CountingAllocator;
-
-fn allocations() -> usize {
-    ALLOCATIONS.with(|c| c.get())
-}
+mod alloc_common;
+use alloc_common::allocations;
 
 // ---------------------------------------------------------------------------------------------
 // Helpers

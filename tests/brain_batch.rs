@@ -7,36 +7,9 @@
 use berry_evolve::brain::{Brain, BrainController, BrainSpec, Precision, Topology};
 use berry_evolve::seed::{stream, uniform, Generation, IndividualId, Purpose, Seed, TrialIndex};
 use berry_evolve::sim::controller::{Controller, MotorCommand};
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 
-// Allocation counting per thread (tests run on several threads at once).
-struct CountingAllocator;
-
-thread_local! {
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for CountingAllocator {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.with(|c| c.set(c.get() + 1));
-        System.alloc(layout)
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.with(|c| c.set(c.get() + 1));
-        System.realloc(ptr, layout, new_size)
-    }
-}
-
-#[global_allocator]
-static GLOBAL: CountingAllocator = CountingAllocator;
-
-fn allocations() -> usize {
-    ALLOCATIONS.with(|c| c.get())
-}
+mod alloc_common;
+use alloc_common::allocations;
 
 fn values(seed: u64, count: usize, bound: f64) -> Vec<f64> {
     let mut rng = stream(

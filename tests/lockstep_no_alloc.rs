@@ -9,42 +9,10 @@ use berry_evolve::evo::state::first_population;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
 use berry_evolve::sim::world::World;
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
-struct Counting;
-
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-thread_local! {
-    // Only the test thread's allocations inside the measured loop count.
-    static ACTIVE: Cell<bool> = const { Cell::new(false) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if ACTIVE.try_with(Cell::get).unwrap_or(false) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if ACTIVE.try_with(Cell::get).unwrap_or(false) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
+mod alloc_common;
+use alloc_common::allocations;
 
 #[test]
 fn lockstep_tick_does_not_allocate() {
@@ -82,7 +50,7 @@ fn lockstep_tick_does_not_allocate() {
     let mut invalid = vec![false; n * creatures];
     // One tick outside the count: the brains' batch buffers grow to the largest batch then.
     lockstep.tick(&mut worlds, &running, &mut controllers, &mut invalid);
-    ACTIVE.with(|a| a.set(true));
+    let before = allocations();
     for tick in 0..600 {
         lockstep.tick(&mut worlds, &running, &mut controllers, &mut invalid);
         // Deaths and stopped worlds shrink the batches.
@@ -92,12 +60,8 @@ fn lockstep_tick_does_not_allocate() {
             running[(3 * k + 1) % n] = false;
         }
     }
-    ACTIVE.with(|a| a.set(false));
-    let allocations = ALLOCATIONS.load(Ordering::Relaxed);
-    assert_eq!(
-        allocations, 0,
-        "{allocations} heap allocations in 600 ticks"
-    );
+    let allocated = allocations() - before;
+    assert_eq!(allocated, 0, "{allocated} heap allocations in 600 ticks");
     assert!(
         worlds
             .iter()

@@ -4,41 +4,9 @@
 
 mod sim_common;
 use berry_evolve::sim::scripted::ScriptedSpec;
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
-struct Counting;
-
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-thread_local! {
-    // Only the test thread's allocations inside the measured loop count.
-    static ACTIVE: Cell<bool> = const { Cell::new(false) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if ACTIVE.try_with(Cell::get).unwrap_or(false) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if ACTIVE.try_with(Cell::get).unwrap_or(false) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
+mod alloc_common;
+use alloc_common::allocations;
 
 const WORLD: &str = r#"
 [[world.walls]]
@@ -167,12 +135,11 @@ fn step_does_not_allocate() {
     let mut controllers = vec![spec.build(w.layout()).unwrap(); 5];
     // One tick outside the count, in case anything lazy happens on first use.
     w.step(&mut controllers);
-    ACTIVE.with(|a| a.set(true));
+    let before = allocations();
     for _ in 0..2_000 {
         w.step(&mut controllers);
     }
-    ACTIVE.with(|a| a.set(false));
-    let n = ALLOCATIONS.load(Ordering::Relaxed);
+    let n = allocations() - before;
     assert_eq!(n, 0, "{n} heap allocations in 2000 ticks");
     assert!(
         w.creatures().iter().any(|c| c.travelled > 10.0),
