@@ -397,6 +397,25 @@ mod tests {
     use crate::seed::{stream, uniform, Generation, IndividualId, Purpose, Seed, TrialIndex};
     use crate::sim::spec::{AversiveKind, FoodKind};
 
+    /// Renders `scene` with and without culling: whether the retinas are the same, and how
+    /// many pure green (food) pixels the culled one shows.
+    fn render_both_ways(
+        eye: &mut Eye,
+        scene: &Scene<'_>,
+        position: Vec2,
+        heading: Vec2,
+    ) -> (bool, usize) {
+        let mut culled = vec![0.0; eye.len()];
+        let mut full = vec![1.0; eye.len()];
+        eye.render_with(scene, position, heading, usize::MAX, &mut culled, true);
+        eye.render_with(scene, position, heading, usize::MAX, &mut full, false);
+        let food = culled
+            .chunks(3)
+            .filter(|p| p[1] == 1.0 && p[0] == 0.0)
+            .count();
+        (culled == full, food)
+    }
+
     /// Culling must never change a pixel: random scenes, poses and eyes (fields of view up to
     /// a full turn, objects around, beside and on top of the eye) render bit-identically with
     /// and without it.
@@ -466,17 +485,9 @@ mod tests {
             let position = Vec2::new(uniform(&mut rng, 0.0, 100.0), uniform(&mut rng, 0.0, 100.0));
             let a = uniform(&mut rng, -4.0, 4.0);
             let heading = Vec2::new(libm::cos(a), libm::sin(a));
-            let mut culled = vec![0.0; eye.len()];
-            let mut full = vec![1.0; eye.len()];
-            eye.render_with(&scene, position, heading, usize::MAX, &mut culled, true);
-            eye.render_with(&scene, position, heading, usize::MAX, &mut full, false);
-            if culled != full {
-                differing += 1;
-            }
-            seen += culled
-                .chunks(3)
-                .filter(|p| p[1] == 1.0 && p[0] == 0.0)
-                .count();
+            let (same, food_pixels) = render_both_ways(&mut eye, &scene, position, heading);
+            differing += usize::from(!same);
+            seen += food_pixels;
         }
         assert_eq!(differing, 0);
         assert!(
@@ -592,17 +603,9 @@ mod tests {
                 creature_colour: [0.0, 0.0, 1.0],
                 creature_height: 6.0,
             };
-            let mut culled = vec![0.0; eye.len()];
-            let mut full = vec![1.0; eye.len()];
-            eye.render_with(&scene, position, heading, usize::MAX, &mut culled, true);
-            eye.render_with(&scene, position, heading, usize::MAX, &mut full, false);
-            if culled != full {
-                differing += 1;
-            }
-            seen += culled
-                .chunks(3)
-                .filter(|p| p[1] == 1.0 && p[0] == 0.0)
-                .count();
+            let (same, food_pixels) = render_both_ways(&mut eye, &scene, position, heading);
+            differing += usize::from(!same);
+            seen += food_pixels;
         }
         assert_eq!(differing, 0);
         assert!(
