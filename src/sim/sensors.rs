@@ -234,12 +234,20 @@ impl Surroundings<'_> {
             })
     }
 
-    /// [`Surroundings::whisker_touches`] for both whiskers from `from` to `tips` at once: one
-    /// grid query over the box of both whiskers hands out the candidates (a superset of each
-    /// whisker's own, and a yes/no answer does not depend on extra candidates or their
-    /// order), each candidate is tested against each whisker not yet touching, and the search
-    /// stops once both touch.
-    pub fn whisker_pair(&self, me: usize, body: &Body, from: Vec2, tips: [Vec2; 2]) -> [bool; 2] {
+    /// [`Surroundings::whisker_touches`] for both whiskers from `from` (the body's centre) to
+    /// `tips`, and [`Surroundings::food_detectors_all`] for the body of radius `radius` there, in
+    /// one pass. One grid query over the box of both whiskers and the body hands out the food
+    /// candidates of both senses (a superset of each one's own: a yes/no answer, or an "or"
+    /// over the detected types, does not depend on extra candidates or their order). Each
+    /// candidate is tested against each whisker not yet touching; the other kinds of things
+    /// only matter to the whiskers and are skipped once both touch.
+    pub fn whiskers_and_food(
+        &self,
+        me: usize,
+        body: &Body,
+        from: Vec2,
+        tips: [Vec2; 2],
+    ) -> ([bool; 2], [bool; 4]) {
         let whiskers = [Segment::new(from, tips[0]), Segment::new(from, tips[1])];
         let lo = [from.min(tips[0]), from.min(tips[1])];
         let hi = [from.max(tips[0]), from.max(tips[1])];
@@ -261,12 +269,9 @@ impl Surroundings<'_> {
             }
             touch[0] && touch[1]
         };
-        if index.any_fixed_wall(ulo, uhi, |k| wall(&self.walls[k]))
-            || self.walls[index.fixed_felt()..].iter().any(&mut wall)
-        {
-            return touch;
-        }
-        let mut circle = |centre: Vec2, radius: f64| {
+        let _ = index.any_fixed_wall(ulo, uhi, |k| wall(&self.walls[k]))
+            || self.walls[index.fixed_felt()..].iter().any(&mut wall);
+        let circle = |touch: &mut [bool; 2], centre: Vec2, radius: f64| {
             for i in 0..2 {
                 if !touch[i] && segment_touches_circle(&whiskers[i], centre, radius) {
                     touch[i] = true;
@@ -274,23 +279,41 @@ impl Surroundings<'_> {
             }
             touch[0] && touch[1]
         };
-        let _ = self
-            .creatures
-            .iter()
-            .enumerate()
-            .any(|(j, c)| j != me && c.alive && circle(c.pose.position, body.radius))
+        let _ = touch[0] && touch[1]
+            || self.creatures.iter().enumerate().any(|(j, c)| {
+                j != me && c.alive && circle(&mut touch, c.pose.position, body.radius)
+            })
             || index.any_aversive(ulo, uhi, |k| {
                 let a = &self.aversives[k];
-                a.radius > 0.0 && circle(a.position, a.radius)
-            })
-            || index.any_food(ulo, uhi, |k| {
-                let f = &self.food[k];
-                f.radius > 0.0 && circle(f.position, f.radius)
-            })
-            || self.things.iter().enumerate().any(|(k, t)| {
-                k != self.skip_thing && t.felt && t.radius > 0.0 && circle(t.position, t.radius)
+                a.radius > 0.0 && circle(&mut touch, a.position, a.radius)
             });
-        touch
+        // The food pass serves the detectors too, so it runs whatever the whiskers found.
+        let (position, radius) = (from, body.radius);
+        let mut detected = [false; 4];
+        index.any_food(
+            ulo.min(position - radius),
+            uhi.max(position + radius),
+            |k| {
+                let f = &self.food[k];
+                if f.radius > 0.0 && !(touch[0] && touch[1]) {
+                    circle(&mut touch, f.position, f.radius);
+                }
+                if circles_touch(position, radius, f.position, f.radius) {
+                    for (t, d) in detected.iter_mut().enumerate() {
+                        *d |= f.holds(t);
+                    }
+                }
+                false
+            },
+        );
+        let _ = touch[0] && touch[1]
+            || self.things.iter().enumerate().any(|(k, t)| {
+                k != self.skip_thing
+                    && t.felt
+                    && t.radius > 0.0
+                    && circle(&mut touch, t.position, t.radius)
+            });
+        (touch, detected)
     }
 
     /// [`Surroundings::smell_at_all`] at both receptors `tips`: the food and aversive objects
@@ -353,23 +376,6 @@ impl Surroundings<'_> {
         acc
     }
 
-    /// [`Surroundings::food_detectors_all`] on the food objects the grid finds around the
-    /// body.
-    pub fn food_detectors(&self, position: Vec2, radius: f64) -> [bool; 4] {
-        let mut detected = [false; 4];
-        let (lo, hi) = (position - radius, position + radius);
-        self.index.any_food(lo, hi, |k| {
-            let f = &self.food[k];
-            if circles_touch(position, radius, f.position, f.radius) {
-                for (t, d) in detected.iter_mut().enumerate() {
-                    *d |= f.holds(t);
-                }
-            }
-            false
-        });
-        detected
-    }
-
     /// Everything creature `me` senses now (the grid's version of
     /// [`Surroundings::sense_all`], with the same answers). Smell is computed only when
     /// `smell` is true (the controller receives it, or a trace wants it), and not at all while
@@ -384,7 +390,7 @@ impl Surroundings<'_> {
     ) -> Senses {
         let pose = self.creatures[me].pose;
         let tips = body.whisker_tips(pose.position, pose.heading);
-        let whiskers = self.whisker_pair(me, body, pose.position, tips);
+        let (whiskers, food) = self.whiskers_and_food(me, body, pose.position, tips);
         let inhibited = inhibit_smell && (whiskers[0] || whiskers[1]);
         let smell = if smell && !inhibited {
             self.smell_pair(me, body, tips, scratch)
@@ -394,7 +400,7 @@ impl Surroundings<'_> {
         Senses {
             whiskers,
             smell,
-            food: self.food_detectors(pose.position, body.radius),
+            food,
         }
     }
 }
