@@ -1226,14 +1226,14 @@ fn pushing_against_walls_matches_the_reference_bit_for_bit() {
     assert!(blocked > 2000, "{blocked}");
 }
 
-/// The shortcut for a body pushing against one wall (every midpoint touching, proved once)
-/// at its edges, against the reference bit for bit: bodies resting within rounding of the
+/// The shortcut for a body pushing against a wall (every midpoint touching, proved once) at
+/// its edges, against the reference bit for bit: bodies resting within rounding of the
 /// contact distance after a blocked move and pushing again at every angle, moves so short
 /// that the last midpoints barely reach (or just miss) the wall, pushes past a wall's end
-/// and against zero-length walls, tiny and huge radii, coordinates far from the origin, and
-/// 0 to 40 halvings.
+/// and against zero-length walls, corners and nearby bodies, tiny and huge radii,
+/// coordinates far from the origin, and 0 to 40 halvings.
 #[test]
-fn pushing_against_one_wall_at_the_edges_matches_the_reference_bit_for_bit() {
+fn pushing_against_a_wall_at_the_edges_matches_the_reference_bit_for_bit() {
     let mut r = ChaCha8Rng::seed_from_u64(0x5e1f_2026);
     let (mut blocked, mut stayed, mut crept) = (0, 0, 0);
     for case in 0..4_000 {
@@ -1271,8 +1271,26 @@ fn pushing_against_one_wall_at_the_edges_matches_the_reference_bit_for_bit() {
                 foot + along * uniform(&mut r, 0.0, 300.0),
             ),
         };
-        let list = [wall];
-        let b = walls(&list);
+        // Sometimes a corner: a second wall through the foot, or another wall nearby, and
+        // sometimes a body.
+        let mut list = vec![wall];
+        match below(&mut r, 6) {
+            0 => {
+                let d = random_heading(&mut r) * uniform(&mut r, 0.0, 20.0);
+                list.insert(below(&mut r, 2) as usize, Segment::new(foot, foot + d));
+            }
+            1 => list.push(random_wall(&mut r, start, rad)),
+            _ => {}
+        }
+        let bodies: Vec<Circle> = if chance(&mut r, 0.15) {
+            vec![random_body(&mut r, start, rad)]
+        } else {
+            Vec::new()
+        };
+        let b = Blockers {
+            segments: &list,
+            circles: &bodies,
+        };
         let params = MotionParams {
             wheel: match below(&mut r, 5) {
                 0 => uniform(&mut r, 1e-9, 1e-4),

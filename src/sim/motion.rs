@@ -66,6 +66,9 @@
 //!
 //! A midpoint that touches blocks in the single-wall search whatever the path test would say,
 //! with a wall as its verdict, so the result is the start and a wall, as the search gives.
+//! With several walls and bodies (a corner) the same holds when one wall not touched at the
+//! start is touched at every midpoint: walls are tested before bodies, so every verdict is
+//! a wall, whichever wall answers first.
 //!
 //! # M near d_L = d_R
 //!
@@ -767,6 +770,15 @@ fn prepared_search(
         }
     }
     let (pw, pc) = (&pw[..nw], &pc[..nc]);
+    // A body pushing into a corner: one wall every midpoint touches blocks them all (walls
+    // are tested first, so each verdict is a wall whichever wall answers first).
+    if steps > 0
+        && pw
+            .iter()
+            .any(|w| !w.touching && w.every_midpoint_touches(start, target, radius, steps))
+    {
+        return Some((start, Verdict::Wall));
+    }
     Some(search(start, target, steps, cause, |p1| {
         if pw.iter().any(|w| w.blocks(start, p1, r2)) {
             Verdict::Wall
