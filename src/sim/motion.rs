@@ -46,19 +46,20 @@
 //! move left it) pushes into it again, every midpoint touches the wall and the search ends at
 //! the start. That is proved once instead of testing all midpoints, and only when it is
 //! certain; otherwise the search runs as usual. The midpoints the search tests, if each is
-//! blocked, are m₁ = (s + t)·0.5 and mₖ = (s + mₖ₋₁)·0.5 up to mₙ, n = `search_steps`; m₁ and
-//! mₙ are computed exactly so, and the shortcut is taken when the wall's float distance of
-//! each, computed as the search computes it, is at most r − δ, with δ = 10⁻¹²·(1 + scale + r),
-//! scale being the largest coordinate magnitude of s, t and the wall (at most 10¹⁰⁰, so
-//! nothing overflows; r > 2δ). Every midpoint then touches:
+//! blocked, are m₁ = (s + t)·0.5 and mₖ = (s + mₖ₋₁)·0.5 up to mₙ, n = `search_steps`. The
+//! shortcut is taken when the wall's float distance, computed as the search computes it, is
+//! at most r − δ at m₁ (computed as the search does) and at pₙ = s + (t − s)·2⁻ⁿ (the power
+//! of two exact, n ≤ 1000), with δ = 10⁻¹²·(1 + scale + r), scale being the largest
+//! coordinate magnitude of s, t and the wall (at most 10¹⁰⁰, so nothing overflows; r > 2δ).
+//! Every midpoint then touches:
 //!
 //! - The float distance of p is its distance to a computed point within 10ε·scale (ε = 2⁻⁵³)
 //!   of a point a + (b − a)·t̂ of the wall (t̂ ∈ [0, 1]), with a few ε of relative rounding:
-//!   the true distance D to the wall is at most r − δ + 20ε·(scale + r) at m₁ and mₙ.
-//! - Each float midpoint lies within 4ε·scale of the exact point s + (t − s)/2ᵏ (one rounded
-//!   addition per halving, its error halved by the next), and those exact points lie on the
-//!   segment between the exact m₁ and mₙ. D is convex along a segment and 1-Lipschitz, so
-//!   D ≤ r − δ + 30ε·(scale + r) at every midpoint.
+//!   the true distance D to the wall is at most r − δ + 20ε·(scale + r) at m₁ and pₙ.
+//! - Each float midpoint mₖ, and pₙ, lies within 4ε·scale of the exact point eₖ = s +
+//!   (t − s)/2ᵏ (mₖ: one rounded addition per halving, its error halved by the next; pₙ:
+//!   two rounded operations), and e₂ … eₙ₋₁ lie on the segment from e₁ to eₙ. D is convex
+//!   along a segment and 1-Lipschitz, so D ≤ r − δ + 30ε·(scale + r) at every midpoint.
 //! - A point with D ≤ r − δ + 30ε·(scale + r) lies inside the wall's box grown by r as
 //!   computed, and its float distance is within 60ε·(scale + r) of D (the projection t̂ errs
 //!   by a few ε·|p − a|/|b − a|, the closest point by a few ε·scale), so the search finds it
@@ -564,20 +565,20 @@ impl PreparedWall {
             .max_element();
         // Far above every rounding error of the argument (each below 100 ε (scale + r)).
         let margin = 1e-12 * (1.0 + scale + r);
-        // Keeps every square below overflow and the margin meaningful; NaN fails too.
+        // Keeps every square below overflow and the margin meaningful, and 2^-steps a
+        // normal float; NaN fails too.
         let finite = a.is_finite() && b.is_finite();
-        if !(finite && scale <= 1e100 && r <= 1e100 && r > 2.0 * margin) {
+        if !(finite && scale <= 1e100 && r <= 1e100 && r > 2.0 * margin && steps <= 1000) {
             return false;
         }
         let reach = r - margin;
         let reach2 = reach * reach;
         let first = (start + target) * 0.5;
-        // The first, then (only when it touches) the last: NaN fails both.
+        // The first, then (only when it touches) a point within rounding of the last:
+        // start + (target − start)·2^-steps, the power of two built exactly. NaN fails both.
         self.distance_squared(first) <= reach2 && {
-            let mut last = first;
-            for _ in 1..steps {
-                last = (start + last) * 0.5;
-            }
+            let last_scale = f64::from_bits((1023 - u64::from(steps)) << 52);
+            let last = start + (target - start) * last_scale;
             self.distance_squared(last) <= reach2
         }
     }
