@@ -56,7 +56,7 @@
 //! - The float distance of p is its distance to a computed point within 10ε·scale (ε = 2⁻⁵³)
 //!   of a point a + (b − a)·t̂ of the wall (t̂ ∈ [0, 1]), with a few ε of relative rounding:
 //!   the true distance D to the wall is at most r − δ + 20ε·(scale + r) at m₁ and pₙ.
-//! - Each float midpoint mₖ, and pₙ, lies within 4ε·scale of the exact point eₖ = s +
+//! - Each float midpoint mₖ, and pₙ, lies within 5ε·scale of the exact point eₖ = s +
 //!   (t − s)/2ᵏ (mₖ: one rounded addition per halving, its error halved by the next; pₙ:
 //!   two rounded operations), and e₂ … eₙ₋₁ lie on the segment from e₁ to eₙ. D is convex
 //!   along a segment and 1-Lipschitz, so D ≤ r − δ + 30ε·(scale + r) at every midpoint.
