@@ -1225,3 +1225,121 @@ fn pushing_against_walls_matches_the_reference_bit_for_bit() {
     }
     assert!(blocked > 2000, "{blocked}");
 }
+
+/// The shortcut for a body pushing against a wall (every midpoint touching, proved once) at
+/// its edges, against the reference bit for bit: bodies resting within rounding of the
+/// contact distance after a blocked move and pushing again at every angle, moves so short
+/// that the last midpoints barely reach (or just miss) the wall, pushes past a wall's end
+/// and against zero-length walls, corners and nearby bodies, tiny and huge radii,
+/// coordinates far from the origin, and 0 to 40 halvings.
+#[test]
+fn pushing_against_a_wall_at_the_edges_matches_the_reference_bit_for_bit() {
+    let mut r = ChaCha8Rng::seed_from_u64(0x5e1f_2026);
+    let (mut blocked, mut stayed, mut crept) = (0, 0, 0);
+    for case in 0..4_000 {
+        let rad = match below(&mut r, 10) {
+            0 => uniform(&mut r, 1e-9, 1e-3),
+            1 => uniform(&mut r, 1e3, 1e6),
+            2 => 0.0,
+            _ => uniform(&mut r, 0.5, 6.0),
+        };
+        let scale = match below(&mut r, 6) {
+            0 => 1e6,
+            1 => 1e12,
+            _ => 1.0,
+        };
+        let start = near(&mut r, v(0.0, 0.0), 300.0) * scale;
+        // The wall: long, short, or a point; ahead of the start at about the radius.
+        let normal = random_heading(&mut r);
+        let gap = match below(&mut r, 5) {
+            0 => 0.0,
+            1 => uniform(&mut r, 0.0, 1e-12) * (scale + rad),
+            2 => uniform(&mut r, 0.0, 1e-6) * (1.0 + rad),
+            _ => uniform(&mut r, 0.0, 3.0),
+        };
+        let foot = start + normal * (rad + gap);
+        let along = v(-normal.y, normal.x);
+        let wall = match below(&mut r, 4) {
+            0 => Segment::new(foot, foot),
+            // The foot near one end: pushes pass the end.
+            1 => Segment::new(
+                foot - along * uniform(&mut r, -2.0, 2.0),
+                foot + along * uniform(&mut r, 0.0, 30.0),
+            ),
+            _ => Segment::new(
+                foot - along * uniform(&mut r, 0.0, 300.0),
+                foot + along * uniform(&mut r, 0.0, 300.0),
+            ),
+        };
+        // Sometimes a corner: a second wall through the foot, or another wall nearby, and
+        // sometimes a body.
+        let mut list = vec![wall];
+        match below(&mut r, 6) {
+            0 => {
+                let d = random_heading(&mut r) * uniform(&mut r, 0.0, 20.0);
+                list.insert(below(&mut r, 2) as usize, Segment::new(foot, foot + d));
+            }
+            1 => list.push(random_wall(&mut r, start, rad)),
+            _ => {}
+        }
+        let bodies: Vec<Circle> = if chance(&mut r, 0.15) {
+            vec![random_body(&mut r, start, rad)]
+        } else {
+            Vec::new()
+        };
+        let b = Blockers {
+            segments: &list,
+            circles: &bodies,
+        };
+        let params = MotionParams {
+            wheel: match below(&mut r, 5) {
+                0 => uniform(&mut r, 1e-9, 1e-4),
+                1 => uniform(&mut r, 10.0, 1e4),
+                _ => 2.0,
+            },
+            search_steps: match below(&mut r, 4) {
+                0 => below(&mut r, 41) as u32,
+                _ => 20,
+            },
+            slippery_walls: chance(&mut r, 0.3),
+            ..MotionParams::default()
+        };
+        // Facing the wall, or at a slant, or along it.
+        let heading = match below(&mut r, 3) {
+            0 => normal,
+            1 => along * if chance(&mut r, 0.5) { 1.0 } else { -1.0 },
+            _ => random_heading(&mut r),
+        };
+        let mut p = Pose {
+            position: start,
+            heading,
+        };
+        for tick in 0..8 {
+            let (left, right) = match below(&mut r, 4) {
+                0 => (1.0, 1.0),
+                1 => {
+                    let x = uniform(&mut r, 1e-7, 1.0);
+                    (x, x)
+                }
+                2 => {
+                    let x = uniform(&mut r, 0.0, 1.0);
+                    (x, x + uniform(&mut r, -1e-3, 1e-3))
+                }
+                _ => (uniform(&mut r, -1.0, 1.0), uniform(&mut r, -1.0, 1.0)),
+            };
+            let got = plan_move(p, left, right, rad, &params, &b);
+            let want = reference::plan_move(p, left, right, rad, &params, &b);
+            assert!(
+                same_bits(&got, &want),
+                "case {case} tick {tick}: {got:?} vs reference {want:?}"
+            );
+            blocked += usize::from(want.blocked);
+            stayed += usize::from(want.blocked && want.travelled == 0.0);
+            crept += usize::from(want.blocked && want.travelled > 0.0);
+            p = want.pose;
+        }
+    }
+    // Both ends of the shortcut: searches that end at the start and searches that move.
+    assert!(stayed > 5000, "{stayed} of {blocked}");
+    assert!(crept > 2000, "{crept} of {blocked}");
+}

@@ -40,6 +40,37 @@
 //! blocked move that travelled 0) are not computed: libm returns exactly ±0 and 1 for them.
 //! The tests compare all of this with a plain copy of the original algorithm bit for bit.
 //!
+//! # A body pushing against a wall
+//!
+//! The commonest search by far: a body resting just clear of one wall (where its last blocked
+//! move left it) pushes into it again, every midpoint touches the wall and the search ends at
+//! the start. That is proved once instead of testing all midpoints, and only when it is
+//! certain; otherwise the search runs as usual. The midpoints the search tests, if each is
+//! blocked, are m₁ = (s + t)·0.5 and mₖ = (s + mₖ₋₁)·0.5 up to mₙ, n = `search_steps`. The
+//! shortcut is taken when the wall's float distance, computed as the search computes it, is
+//! at most r − δ at m₁ (computed as the search does) and at pₙ = s + (t − s)·2⁻ⁿ (the power
+//! of two exact, n ≤ 1000), with δ = 10⁻¹²·(1 + scale + r), scale being the largest
+//! coordinate magnitude of s, t and the wall (at most 10¹⁰⁰, so nothing overflows; r > 2δ).
+//! Every midpoint then touches:
+//!
+//! - The float distance of p is its distance to a computed point within 10ε·scale (ε = 2⁻⁵³)
+//!   of a point a + (b − a)·t̂ of the wall (t̂ ∈ [0, 1]), with a few ε of relative rounding:
+//!   the true distance D to the wall is at most r − δ + 20ε·(scale + r) at m₁ and pₙ.
+//! - Each float midpoint mₖ, and pₙ, lies within 5ε·scale of the exact point eₖ = s +
+//!   (t − s)/2ᵏ (mₖ: one rounded addition per halving, its error halved by the next; pₙ:
+//!   two rounded operations), and e₂ … eₙ₋₁ lie on the segment from e₁ to eₙ. D is convex
+//!   along a segment and 1-Lipschitz, so D ≤ r − δ + 30ε·(scale + r) at every midpoint.
+//! - A point with D ≤ r − δ + 30ε·(scale + r) lies inside the wall's box grown by r as
+//!   computed, and its float distance is within 60ε·(scale + r) of D (the projection t̂ errs
+//!   by a few ε·|p − a|/|b − a|, the closest point by a few ε·scale), so the search finds it
+//!   touching (at most r·r as computed): 90ε < 10⁻¹⁴ is far below δ.
+//!
+//! A midpoint that touches blocks in the single-wall search whatever the path test would say,
+//! with a wall as its verdict, so the result is the start and a wall, as the search gives.
+//! With several walls and bodies (a corner) the same holds when one wall not touched at the
+//! start is touched at every midpoint: walls are tested before bodies, so every verdict is
+//! a wall, whichever wall answers first.
+//!
 //! # M near d_L = d_R
 //!
 //! eq. 30 divides by d_L − d_R. It is rewritten as M = (d_L + d_R)/2 · sinc(φ/2), with
@@ -518,6 +549,40 @@ impl PreparedWall {
         p.distance_squared(closest)
     }
 
+    /// Does the body touch the wall at every midpoint the search of start → target tests
+    /// when each one is blocked (`(start + target) * 0.5`, then `(start + previous) * 0.5`,
+    /// `steps` of them)? `true` only when it is certain: see "A body pushing against a wall"
+    /// in the module docs for the argument and its margins. A `true` means `blocks` holds for
+    /// every one of those midpoints, so the search would end at the start.
+    #[inline]
+    fn every_midpoint_touches(&self, start: Vec2, target: Vec2, r: f64, steps: u32) -> bool {
+        let (a, b) = (self.wall.a, self.wall.b);
+        let scale = start
+            .abs()
+            .max(target.abs())
+            .max(a.abs())
+            .max(b.abs())
+            .max_element();
+        // Far above every rounding error of the argument (each below 100 ε (scale + r)).
+        let margin = 1e-12 * (1.0 + scale + r);
+        // Keeps every square below overflow and the margin meaningful, and 2^-steps a
+        // normal float; NaN fails too.
+        let finite = a.is_finite() && b.is_finite();
+        if !(finite && scale <= 1e100 && r <= 1e100 && r > 2.0 * margin && steps <= 1000) {
+            return false;
+        }
+        let reach = r - margin;
+        let reach2 = reach * reach;
+        let first = (start + target) * 0.5;
+        // The first, then (only when it touches) a point within rounding of the last:
+        // start + (target − start)·2^-steps, the power of two built exactly. NaN fails both.
+        self.distance_squared(first) <= reach2 && {
+            let last_scale = f64::from_bits((1023 - u64::from(steps)) << 52);
+            let last = start + (target - start) * last_scale;
+            self.distance_squared(last) <= reach2
+        }
+    }
+
     /// `wall_blocks`'s box rejection of the path start → p1 (see `start_lo_x`).
     #[inline(always)]
     fn path_misses(&self, p1: Vec2) -> bool {
@@ -669,6 +734,11 @@ fn prepared_search(
             .any(|c| circle_may_block(lo, hi, radius, c))
         {
             let w = PreparedWall::new(only, start, radius);
+            if steps > 0 && !w.touching && w.every_midpoint_touches(start, target, radius, steps) {
+                // Every midpoint blocked: `search` would end at the start, each midpoint's
+                // verdict a wall.
+                return Some((start, Verdict::Wall));
+            }
             return Some(search(start, target, steps, cause, |p1| {
                 if w.blocks(start, p1, r2) {
                     Verdict::Wall
@@ -701,6 +771,15 @@ fn prepared_search(
         }
     }
     let (pw, pc) = (&pw[..nw], &pc[..nc]);
+    // A body pushing into a corner: one wall every midpoint touches blocks them all (walls
+    // are tested first, so each verdict is a wall whichever wall answers first).
+    if steps > 0
+        && pw
+            .iter()
+            .any(|w| !w.touching && w.every_midpoint_touches(start, target, radius, steps))
+    {
+        return Some((start, Verdict::Wall));
+    }
     Some(search(start, target, steps, cause, |p1| {
         if pw.iter().any(|w| w.blocks(start, p1, r2)) {
             Verdict::Wall

@@ -657,7 +657,9 @@ impl World {
             }
         }
         let start = self.creatures[i].pose.position;
-        let travel = self.max_travel(command.left, command.right, self.motion.max_rpt);
+        // The signals are clamped already (not NaN, within ±max_rpt): `max_travel`'s own
+        // clamping would leave their magnitudes as they are.
+        let travel = self.travel_bound(command.left.abs().max(command.right.abs()));
         self.walls_near(start, travel);
         let blockers = Blockers {
             segments: &self.scratch.blocking,
@@ -691,7 +693,13 @@ impl World {
                 x.min(m).max(-m).abs()
             }
         };
-        let d = std::f64::consts::TAU * self.motion.wheel.abs() * clamp(left).max(clamp(right));
+        self.travel_bound(clamp(left).max(clamp(right)))
+    }
+
+    /// [`World::max_travel`] for the larger clamped signal magnitude `rpt`.
+    #[inline]
+    fn travel_bound(&self, rpt: f64) -> f64 {
+        let d = std::f64::consts::TAU * self.motion.wheel.abs() * rpt;
         if d.is_finite() {
             d * (1.0 + 1e-9) + 1e-9
         } else {
