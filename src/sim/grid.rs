@@ -869,6 +869,7 @@ fn term(f: f64, v: f64, o: f64) -> f64 {
 /// Builds the [`SmellGrid`] of `sources` (id, centre, range θ; finite ranges only, in id
 /// order) over an arena `w` × `h` whose largest side is `extent`. `near_walls` gives the
 /// fixed opaque walls (indices into `opaque`) that may meet a box.
+#[allow(clippy::needless_range_loop)] // indexing both bounds tables by cell is clearer
 fn smell_grid(
     sources: &[(u32, Vec2, f64)],
     (w, h, extent): (f64, f64, f64),
@@ -924,18 +925,34 @@ fn smell_grid(
                 .filter_map(|&k| Hider::new(k, &opaque[k as usize], p, r, slack, bound)),
         );
         let c = grid.geometry.cells(lo, hi);
-        for (y, &(ylo, yhi)) in ys.iter().enumerate().take(c.y1 + 1).skip(c.y0) {
+        // Plain comparisons rather than f64::min/max (which handle NaN at a cost): only a
+        // finite p can be in range of a receptor, and its lists are what matters.
+        let gap = |lo: f64, hi: f64, v: f64| {
+            if v < lo {
+                lo - v
+            } else if v > hi {
+                v - hi
+            } else {
+                0.0
+            }
+        };
+        let low = |a: f64, b: f64| if b < a { b } else { a };
+        let high = |a: f64, b: f64| if b > a { b } else { a };
+        for y in c.y0..=c.y1 {
+            let (ylo, yhi) = ys[y];
             // Distance from p to the cell's box (0 inside it), by axis.
-            let dy = (ylo - p.y).max(p.y - yhi).max(0.0);
-            for (x, &(xlo, xhi)) in xs.iter().enumerate().take(c.x1 + 1).skip(c.x0) {
-                let dx = (xlo - p.x).max(p.x - xhi).max(0.0);
+            let dy = gap(ylo, yhi, p.y);
+            for x in c.x0..=c.x1 {
+                let (xlo, xhi) = xs[x];
+                let dx = gap(xlo, xhi, p.x);
                 let reaches = dx * dx + dy * dy <= r * r;
                 if !reaches {
                     continue;
                 }
                 let (clo, chi) = (Vec2::new(xlo, ylo), Vec2::new(xhi, yhi));
                 let w0 = grid.walls.len() as u32;
-                let (hlo, hhi) = (clo.min(p), chi.max(p));
+                let hlo = Vec2::new(low(xlo, p.x), low(ylo, p.y));
+                let hhi = Vec2::new(high(xhi, p.x), high(yhi, p.y));
                 for h in &hiders {
                     if h.may_meet(clo, chi, hlo, hhi) {
                         grid.walls.push(h.k);
