@@ -444,3 +444,95 @@ count = 25
     assert!(4 * nx * ny > 4 * items, "{nx} x {ny} cells");
     assert!(index.cell_size() >= 600.0 / nx as f64);
 }
+
+/// The smell grid's lists against plain loops, at random points in and around random worlds
+/// (hundreds of objects, unlimited ranges, aversive objects, doors, transparent walls): each
+/// point's cell lists, in increasing id order, every object of finite range whose smell
+/// reaches the point, and for each the fixed opaque walls crossing the segment from the point
+/// to it; the objects of unlimited range are listed apart, in order.
+#[test]
+fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
+    use berry_evolve::geometry::{segments_intersect, Segment};
+    let (mut checked, mut listed_in_range) = (0, 0);
+    for seed in 0..40u64 {
+        let text = random_world(seed);
+        let setup = sim_common::setup(&text);
+        let Ok(w) = World::new(&setup.world, &setup.creature, 1, sim_common::rng(seed)) else {
+            continue;
+        };
+        checked += 1;
+        let index = w.index();
+        let opaque: Vec<Segment> = w
+            .walls()
+            .iter()
+            .filter(|w| w.opaque)
+            .map(|w| w.segment)
+            .take(index.fixed_opaque())
+            .collect();
+        let n = w.food().len();
+        let smells: Vec<(Vec2, _)> = w
+            .food()
+            .iter()
+            .map(|f| (f.position, f.smell))
+            .chain(w.aversives().iter().map(|a| (a.position, a.smell)))
+            .collect();
+        let always: Vec<u32> = (0..smells.len() as u32)
+            .filter(|&k| {
+                let s = &smells[k as usize].1;
+                !s.silent && s.range_squared == f64::INFINITY
+            })
+            .collect();
+        assert_eq!(index.smell_always(), &always[..], "seed {seed}");
+        assert_eq!(index.food_count(), n);
+        let [aw, ah] = w.arena();
+        let mut r = Mix(seed ^ 0x5E11);
+        for t in 0..2000 {
+            // Half the points anywhere, half near an object (on cell borders now and then).
+            let p = if t % 2 == 0 || smells.is_empty() {
+                Vec2::new(
+                    r.uniform(-0.2 * aw, 1.2 * aw),
+                    r.uniform(-0.2 * ah, 1.2 * ah),
+                )
+            } else {
+                let (c, _) = smells[r.below(smells.len() as u64) as usize];
+                let p = c + Vec2::new(r.uniform(-100.0, 100.0), r.uniform(-100.0, 100.0));
+                let cell = index.smell_dimensions().1;
+                if r.chance(0.1) {
+                    (p / cell).round() * cell
+                } else {
+                    p
+                }
+            };
+            let list = index.smell_sources(index.smell_cell(p));
+            assert!(list.windows(2).all(|s| s[0].id < s[1].id), "seed {seed}");
+            for (k, (centre, smell)) in smells.iter().enumerate() {
+                let finite = !smell.silent && smell.range_squared.is_finite();
+                let entry = list.iter().find(|s| s.id as usize == k);
+                if !finite {
+                    assert!(entry.is_none(), "seed {seed}: object {k} listed");
+                    continue;
+                }
+                if p.distance_squared(*centre) >= smell.range_squared {
+                    continue;
+                }
+                let entry = entry.unwrap_or_else(|| panic!("seed {seed}: {k} not listed at {p}"));
+                listed_in_range += 1;
+                let walls = index.source_walls(entry);
+                let line = Segment::new(p, *centre);
+                for (j, wall) in opaque.iter().enumerate() {
+                    if segments_intersect(&line, wall) {
+                        assert!(
+                            walls.contains(&(j as u32)),
+                            "seed {seed}: wall {j} hides {k} from {p} but is not listed"
+                        );
+                    }
+                }
+            }
+        }
+    }
+    assert!(checked >= 20, "only {checked} random worlds could be built");
+    assert!(
+        listed_in_range > 10_000,
+        "{listed_in_range} objects in range"
+    );
+}

@@ -1,19 +1,36 @@
 //! The spatial index of what never moves: a uniform grid over the arena that holds the food
 //! objects, the aversive objects and the fixed walls (boundary and interior walls; doors open
-//! and close, so they stay in short linear lists that the senses test after the grid's walls).
+//! and close, so they stay in short linear lists that the senses test after the grid's walls),
+//! and a second grid with the smell sources each receptor position may smell.
 //! Built once per world; a query allocates nothing (its scratch space is a [`Scratch`] the
 //! world preallocates).
 //!
 //! It only narrows down *which* objects a sense tests; the tests themselves are the same
-//! functions as before, so results do not change. Where order matters (the smell sums and
-//! eating, which add floats in object order), a query yields candidate indices in increasing
-//! index order: the cells mark their objects in a bitset over object indices, and the bitset
-//! is read back word by word (deduplicating walls that span several cells on the way).
+//! functions as before, so results do not change. Where order matters (eating, which adds
+//! floats in object order), a query yields candidate indices in increasing index order: the
+//! cells mark their objects in a bitset over object indices, and the bitset is read back word
+//! by word (deduplicating walls that span several cells on the way).
+//!
+//! # Smell grid
+//! Smell, the widest and most frequent query, has a grid of its own, whose lists are worked
+//! out when the index is built so that a receptor's query is two slice reads: each cell lists,
+//! in increasing id order (food, then aversive objects, the order of the smell sums), every
+//! smelly food or aversive object of finite range θ that may reach a receptor in the cell
+//! (the cell's box, widened by a rounding slack and unbounded on the grid's border sides where
+//! outside points are clamped in, lies within θ of it), and with each object the fixed opaque
+//! walls that may meet the convex hull of the cell's box and the object's centre: a segment
+//! from a receptor in the cell to the centre lies in that hull, so no other fixed wall can
+//! hide the object from there (doors open and close, so they are tested apart). Most lists of
+//! walls are empty. Its cells are half the largest finite θ wide ([`SMELL_CELLS_PER_RANGE`]),
+//! and at most [`CELLS_PER_ITEM`] per listed object (at least [`MIN_CELLS`]): each object is
+//! listed in about (2θ / cell + 1)² cells, so narrower cells would hand a receptor fewer
+//! objects but cost more to build, and the grid is built for every trial world. Objects of
+//! unlimited range are in a short list apart, merged into every query in id order.
 //!
 //! # Cell size
-//! The widest query is smell's: every food or aversive object whose finite range θ may reach
-//! a receptor, i.e. whose centre lies within the largest finite θ of it. A cell as wide as
-//! that largest θ makes such a query cover 3 × 3 to 4 × 4 cells. Narrower cells trim the
+//! The widest query on this grid is the smell box (the opaque walls within the largest finite
+//! θ of a pair of receptors, for the smell sources the smell grid does not list). A cell as
+//! wide as that largest θ makes such a query cover 3 × 3 to 4 × 4 cells. Narrower cells trim the
 //! square query's corners but add per-cell overhead to every query, whiskers' included:
 //! half-width cells cost 6% more instructions on the foraging benchmark (callgrind). Wider
 //! cells would hand the range test objects far out of range. Cells are never narrower than
@@ -23,13 +40,10 @@
 //! holds (at least [`MIN_CELLS`]): the grid is built anew for every trial world, at a few
 //! instructions per cell, and a world without smell would otherwise get cells as narrow as
 //! the whisker reach (WaterWorld's 54 objects and walls got 14,400 cells, whose building was
-//! a tenth of a 500-tick trial's instructions). Objects with an unlimited range (θ = +∞)
-//! cannot be cut off by distance: they sit in a short always-visited list, merged into every
-//! smell query in index order. Worlds with
-//! at most [`FEW_WALLS`] fixed walls filter the wall list directly instead of visiting cells,
-//! which is cheaper at that size.
+//! a tenth of a 500-tick trial's instructions). Worlds with at most [`FEW_WALLS`] fixed walls
+//! filter the wall list directly instead of visiting cells, which is cheaper at that size.
 
-use crate::geometry::{Segment, Vec2};
+use crate::geometry::{point_segment_distance_squared, Segment, Vec2};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::smell::{Shade, Smell};
 use crate::sim::wall::{BoxedSegment, Walls};
@@ -40,6 +54,9 @@ pub const FEW_WALLS: usize = 32;
 
 /// Cells per largest finite smell range (see the module docs).
 const CELLS_PER_RANGE: f64 = 1.0;
+
+/// Cells of the smell grid per largest finite smell range (see the module docs).
+const SMELL_CELLS_PER_RANGE: f64 = 2.0;
 
 /// Most cells a grid may have (memory per world stays below a few hundred KiB).
 pub const MAX_CELLS: usize = 1 << 16;
@@ -170,8 +187,6 @@ pub struct Scratch {
     bits: Vec<u64>,
     /// Food candidates of the last query, in increasing index order.
     pub food: Vec<u32>,
-    /// Aversive candidates of the last smell query, in increasing index order.
-    pub aversives: Vec<u32>,
     /// The opaque walls (fixed and closed doors) that may meet the smell box of the last
     /// [`StaticIndex::near_opaque`] query.
     pub near: Vec<BoxedSegment>,
@@ -205,9 +220,10 @@ pub struct StaticIndex {
     opaque: CellLists,
     fixed_felt: usize,
     fixed_opaque: usize,
-    /// Smelly food and aversive objects of unlimited range: visited by every smell query.
-    food_always: Vec<u32>,
-    aversive_always: Vec<u32>,
+    /// The smell sources of finite range, per cell of their own grid.
+    smell: SmellGrid,
+    /// Smelly food and aversive objects of unlimited range, as [`Source`] ids, increasing.
+    smell_always: Vec<u32>,
     /// The largest finite smell range θ of the food and aversive objects (0 when none).
     smell_reach: f64,
     /// Largest food and aversive radius.
@@ -303,7 +319,10 @@ impl StaticIndex {
         let aversive_lists = points(&mut aversives.iter().map(|a| a.position));
         let felt_lists = segment_lists(&geometry, &felt[..fixed_felt], slack);
         let opaque_lists = segment_lists(&geometry, &opaque[..fixed_opaque], slack);
-        StaticIndex {
+        let food_count = food.len();
+        let mut smell_always = food_always;
+        smell_always.extend(aversive_always.iter().map(|&k| k + food_count as u32));
+        let mut index = StaticIndex {
             geometry,
             food: food_lists,
             aversives: aversive_lists,
@@ -311,15 +330,48 @@ impl StaticIndex {
             opaque: opaque_lists,
             fixed_felt,
             fixed_opaque,
-            food_always,
-            aversive_always,
+            smell: SmellGrid::empty(extent),
+            smell_always,
             smell_reach,
             food_radius,
             aversive_radius,
             slack,
-            food_count: food.len(),
+            food_count,
             aversive_count: aversives.len(),
-        }
+        };
+        // The smelly objects of finite range, in id order (food, then aversive objects).
+        let finite = |id: usize, p: Vec2, s: &Smell| {
+            (!s.silent && s.range_squared.is_finite())
+                .then(|| (id as u32, p, s.range_squared.sqrt()))
+        };
+        let sources: Vec<(u32, Vec2, f64)> = food
+            .iter()
+            .enumerate()
+            .filter_map(|(k, f)| finite(k, f.position, &f.smell))
+            .chain(
+                aversives
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(k, a)| finite(food_count + k, a.position, &a.smell)),
+            )
+            .collect();
+        let fixed = &opaque[..fixed_opaque];
+        let mut bits = vec![0u64; fixed_opaque / 64 + 1];
+        let smell = smell_grid(&sources, (w, h, extent), fixed, slack, |lo, hi, out| {
+            if fixed_opaque <= FEW_WALLS {
+                out.extend(
+                    (0..fixed_opaque as u32).filter(|&k| fixed[k as usize].may_meet(lo, hi)),
+                );
+            } else {
+                index.each_wall(&index.opaque, lo, hi, &mut bits, |k| {
+                    if fixed[k].may_meet(lo, hi) {
+                        out.push(k as u32);
+                    }
+                });
+            }
+        });
+        index.smell = smell;
+        index
     }
 
     /// Scratch space big enough for every query on this index; `opaque_total` counts every
@@ -334,7 +386,6 @@ impl StaticIndex {
             blocking: Vec::with_capacity(walls_total),
             bits: vec![0; n / 64 + 1],
             food: Vec::with_capacity(self.food_count),
-            aversives: Vec::with_capacity(self.aversive_count),
             near: Vec::with_capacity(opaque_total),
             shades: [
                 Vec::with_capacity(opaque_total),
@@ -425,69 +476,6 @@ impl StaticIndex {
         self.any(&self.aversives, lo - r, hi + r, hit)
     }
 
-    /// Marks in `bits` the objects of `lists` in the cells meeting `[lo, hi]` and the objects
-    /// of `always`, then moves them to `out` in increasing index order, leaving `bits` zero.
-    fn collect(
-        &self,
-        lists: &CellLists,
-        lo: Vec2,
-        hi: Vec2,
-        always: &[u32],
-        bits: &mut [u64],
-        out: &mut Vec<u32>,
-    ) {
-        out.clear();
-        if lists.items.is_empty() {
-            return;
-        }
-        let g = &self.geometry;
-        let c = g.cells(lo, hi);
-        if bits.len() == 1 {
-            // Fewer than 64 objects: the bitset is one word, kept in a register (no first/last
-            // word bookkeeping, no stores to clear it).
-            let mut b = 0u64;
-            for y in c.y0..=c.y1 {
-                for &k in lists.row(g.nx, y, c.x0, c.x1) {
-                    b |= 1u64 << (k & 63);
-                }
-            }
-            for &k in always {
-                b |= 1u64 << (k & 63);
-            }
-            while b != 0 {
-                out.push(b.trailing_zeros());
-                b &= b - 1;
-            }
-            return;
-        }
-        let (mut first, mut last) = (usize::MAX, 0);
-        let mut mark = |k: u32| {
-            let w = (k >> 6) as usize;
-            bits[w] |= 1u64 << (k & 63);
-            first = first.min(w);
-            last = last.max(w);
-        };
-        for y in c.y0..=c.y1 {
-            for &k in lists.row(g.nx, y, c.x0, c.x1) {
-                mark(k);
-            }
-        }
-        for &k in always {
-            mark(k);
-        }
-        if first > last {
-            return;
-        }
-        for (w, word) in bits.iter_mut().enumerate().take(last + 1).skip(first) {
-            let mut b = *word;
-            *word = 0;
-            while b != 0 {
-                out.push(((w as u32) << 6) | b.trailing_zeros());
-                b &= b - 1;
-            }
-        }
-    }
-
     /// Into `scratch.food`, in index order: the food objects whose body may meet the box
     /// `[lo, hi]` and for which `keep` holds. Few pass `keep` (a body touches one or two
     /// objects), so they are sorted directly rather than through the bitset.
@@ -516,27 +504,48 @@ impl StaticIndex {
         }
     }
 
-    /// The food and aversive objects whose smell may reach a receptor in the box `[lo, hi]`,
-    /// each in index order, into `scratch.food` and `scratch.aversives`: those within the
-    /// largest finite range of the box, and every smelly one of unlimited range.
-    pub fn smell_sources(&self, lo: Vec2, hi: Vec2, scratch: &mut Scratch) {
-        let r = self.smell_reach + self.slack;
-        self.collect(
-            &self.food,
-            lo - r,
-            hi + r,
-            &self.food_always,
-            &mut scratch.bits,
-            &mut scratch.food,
-        );
-        self.collect(
-            &self.aversives,
-            lo - r,
-            hi + r,
-            &self.aversive_always,
-            &mut scratch.bits,
-            &mut scratch.aversives,
-        );
+    /// The cell of the smell grid holding a receptor at `p` (any point: outside points go to
+    /// the nearest border cell, NaN to cell 0).
+    #[inline]
+    pub fn smell_cell(&self, p: Vec2) -> usize {
+        let g = &self.smell.geometry;
+        g.row(p.y) * g.nx + g.col(p.x)
+    }
+
+    /// Every food or aversive object of finite range whose smell may reach a receptor in
+    /// smell cell `cell` (a finite receptor strictly within the range of such an object is
+    /// in a cell listing it), in increasing [`Source::id`] order.
+    #[inline]
+    pub fn smell_sources(&self, cell: usize) -> &[Source] {
+        let s = &self.smell;
+        &s.sources[s.start[cell] as usize..s.start[cell + 1] as usize]
+    }
+
+    /// The fixed opaque walls (indices among the first [`StaticIndex::fixed_opaque`] opaque
+    /// walls) that may cross a segment from a point of the cell listing `source` to its
+    /// centre: no other fixed wall can hide it from a receptor in that cell.
+    #[inline]
+    pub fn source_walls(&self, source: &Source) -> &[u32] {
+        &self.smell.walls[source.w0 as usize..source.w1 as usize]
+    }
+
+    /// The smelly food and aversive objects of unlimited range, as [`Source::id`]s in
+    /// increasing order: every receptor may smell them.
+    #[inline]
+    pub fn smell_always(&self) -> &[u32] {
+        &self.smell_always
+    }
+
+    /// How many food objects the index holds ([`Source::id`]s from it on are aversive).
+    #[inline]
+    pub fn food_count(&self) -> usize {
+        self.food_count
+    }
+
+    /// Columns and rows of the smell grid, and the side of its cells.
+    pub fn smell_dimensions(&self) -> ([usize; 2], f64) {
+        let g = &self.smell.geometry;
+        ([g.nx, g.ny], g.cell)
     }
 
     /// The smell box of receptors in the box `[lo, hi]` (the largest finite range around it)
@@ -692,4 +701,288 @@ fn may_cross_cell(
     let all_above = corners.iter().all(|&v| v > tol);
     let all_below = corners.iter().all(|&v| v < -tol);
     !(all_above || all_below)
+}
+
+/// One smell source listed in a cell of the [`SmellGrid`]: `id` is the food object's index,
+/// or the food count plus the aversive object's index (so that increasing ids are the order
+/// of [`crate::sim::sensors::Surroundings::smell_at_all`]: food, then aversive objects), and
+/// `walls[w0..w1]` of the grid are the fixed opaque walls that may cross a segment from a
+/// point of the cell to the source's centre.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Source {
+    /// Food index, or food count + aversive index.
+    pub id: u32,
+    w0: u32,
+    w1: u32,
+}
+
+/// Per cell, the food and aversive objects of finite range whose smell may reach a receptor
+/// in the cell, in increasing id order, each with the fixed opaque walls that may hide it
+/// from there (see the module docs).
+#[derive(Debug, Clone, PartialEq)]
+struct SmellGrid {
+    geometry: Geometry,
+    /// The sources of cell k are `sources[start[k]..start[k + 1]]`.
+    start: Vec<u32>,
+    sources: Vec<Source>,
+    /// Indices into the fixed opaque walls, referenced by [`Source`] ranges.
+    walls: Vec<u32>,
+}
+
+impl SmellGrid {
+    /// An empty grid of one cell (no smelly object of finite range).
+    fn empty(extent: f64) -> SmellGrid {
+        SmellGrid {
+            geometry: Geometry {
+                origin: Vec2::ZERO,
+                inv_cell: 1.0 / extent,
+                cell: extent,
+                nx: 1,
+                ny: 1,
+                last_x: 0.0,
+                last_y: 0.0,
+            },
+            start: vec![0, 0],
+            sources: Vec::new(),
+            walls: Vec::new(),
+        }
+    }
+
+    /// The bounds of the cells' columns (or rows): cell k spans `[b[k], b[k + 1]]`, widened by
+    /// `slack` so that every point the map from coordinate to cell puts in it lies inside
+    /// despite rounding, and unbounded on the grid's border sides, where points outside the
+    /// grid are clamped in.
+    fn bounds(&self, n: usize, origin: f64, slack: f64) -> Vec<(f64, f64)> {
+        let cell = self.geometry.cell;
+        (0..n)
+            .map(|k| {
+                let lo = if k == 0 {
+                    f64::NEG_INFINITY
+                } else {
+                    origin + k as f64 * cell - slack
+                };
+                let hi = if k + 1 == n {
+                    f64::INFINITY
+                } else {
+                    origin + (k + 1) as f64 * cell + slack
+                };
+                (lo, hi)
+            })
+            .collect()
+    }
+}
+
+/// A fixed opaque wall as seen from a smell source's centre `p`, prepared for the test "can
+/// the wall meet the convex hull of a cell's box and `p`?" (a segment from a point of the
+/// cell to `p` lies in that hull, so a wall that cannot meet it does not cross the segment).
+struct Hider {
+    /// Index among the fixed opaque walls.
+    k: u32,
+    lo: Vec2,
+    hi: Vec2,
+    /// The wall's line: the side of a point q is `ax (q.x − a.x) + ay (q.y − a.y)`.
+    a: Vec2,
+    ax: f64,
+    ay: f64,
+    tol: f64,
+    /// +1 or −1 when `p` is strictly on that side of the line by more than `tol`, else 0.
+    p_side: i8,
+}
+
+impl Hider {
+    /// `wall` seen from `p`, or `None` when it cannot cross a segment of length at most `r`
+    /// ending at `p` (it is farther than `r` from `p`). `r` and `tol` include a slack far
+    /// above rounding errors as long as `p` and the wall's ends lie within `bound` of the
+    /// origin; otherwise only the box test is used.
+    fn new(k: u32, wall: &BoxedSegment, p: Vec2, r: f64, slack: f64, bound: f64) -> Option<Hider> {
+        let (a, b) = (wall.segment.a, wall.segment.b);
+        let near = |v: Vec2| v.x.abs() <= bound && v.y.abs() <= bound;
+        let bounded = near(a) && near(b) && near(p);
+        if bounded && point_segment_distance_squared(p, &wall.segment) > r * r {
+            return None;
+        }
+        let d = b - a;
+        let (ax, ay) = (-d.y, d.x);
+        let tol = slack * (d.x.abs() + d.y.abs());
+        let at_p = term(ax, p.x, a.x) + term(ay, p.y, a.y);
+        let p_side = if !bounded {
+            0
+        } else if at_p > tol {
+            1
+        } else if at_p < -tol {
+            -1
+        } else {
+            0
+        };
+        Some(Hider {
+            k,
+            lo: wall.lo,
+            hi: wall.hi,
+            a,
+            ax,
+            ay,
+            tol,
+            p_side,
+        })
+    }
+
+    /// Can the wall meet the convex hull of the box `[lo, hi]` (bounds may be infinite) and
+    /// `p`, whose box is `[hlo, hhi]`? False only when the wall's box misses the hull's box,
+    /// or the box and `p` lie strictly on one side of the wall's line by more than `tol`.
+    /// The side of a point is affine, so its least and greatest values over the box are at
+    /// the corners picked by the signs of `ax` and `ay`.
+    #[inline]
+    fn may_meet(&self, lo: Vec2, hi: Vec2, hlo: Vec2, hhi: Vec2) -> bool {
+        if self.hi.x < hlo.x || hhi.x < self.lo.x || self.hi.y < hlo.y || hhi.y < self.lo.y {
+            return false;
+        }
+        let (ax, ay, a) = (self.ax, self.ay, self.a);
+        match self.p_side {
+            1 => {
+                let least = term(ax, if ax > 0.0 { lo.x } else { hi.x }, a.x)
+                    + term(ay, if ay > 0.0 { lo.y } else { hi.y }, a.y);
+                let apart = least > self.tol;
+                !apart
+            }
+            -1 => {
+                let most = term(ax, if ax > 0.0 { hi.x } else { lo.x }, a.x)
+                    + term(ay, if ay > 0.0 { hi.y } else { lo.y }, a.y);
+                let apart = most < -self.tol;
+                !apart
+            }
+            _ => true,
+        }
+    }
+}
+
+/// `f (v − o)`, or 0 when `f` is 0 (so that an unbounded side of a box along a wall's line
+/// adds nothing rather than a NaN).
+#[inline]
+fn term(f: f64, v: f64, o: f64) -> f64 {
+    if f == 0.0 {
+        0.0
+    } else {
+        f * (v - o)
+    }
+}
+
+/// Builds the [`SmellGrid`] of `sources` (id, centre, range θ; finite ranges only, in id
+/// order) over an arena `w` × `h` whose largest side is `extent`. `near_walls` gives the
+/// fixed opaque walls (indices into `opaque`) that may meet a box.
+#[allow(clippy::needless_range_loop)] // indexing both bounds tables by cell is clearer
+fn smell_grid(
+    sources: &[(u32, Vec2, f64)],
+    (w, h, extent): (f64, f64, f64),
+    opaque: &[BoxedSegment],
+    slack: f64,
+    mut near_walls: impl FnMut(Vec2, Vec2, &mut Vec<u32>),
+) -> SmellGrid {
+    let reach = sources.iter().fold(0.0f64, |acc, s| acc.max(s.2));
+    if sources.is_empty() || !(reach.is_finite() && reach > 0.0) {
+        return SmellGrid::empty(extent);
+    }
+    // Narrower cells hand each receptor fewer sources but cost more to build (each source
+    // is listed in about (2θ / cell + 1)² cells, with its walls sorted out for each).
+    let mut cell = reach / SMELL_CELLS_PER_RANGE;
+    let side = |len: f64, cell: f64| ((len / cell).ceil() as usize).max(1);
+    let most = (CELLS_PER_ITEM * sources.len()).clamp(MIN_CELLS, MAX_CELLS);
+    while side(w, cell) * side(h, cell) > most {
+        cell *= 2.0;
+    }
+    let (nx, ny) = (side(w, cell), side(h, cell));
+    let mut grid = SmellGrid {
+        geometry: Geometry {
+            origin: Vec2::ZERO,
+            inv_cell: 1.0 / cell,
+            cell,
+            nx,
+            ny,
+            last_x: (nx - 1) as f64,
+            last_y: (ny - 1) as f64,
+        },
+        start: vec![0; nx * ny + 1],
+        sources: Vec::new(),
+        walls: Vec::new(),
+    };
+    let bound = 1e6 * (1.0 + extent + reach);
+    let xs = grid.bounds(nx, grid.geometry.origin.x, slack);
+    let ys = grid.bounds(ny, grid.geometry.origin.y, slack);
+    // About (2θ / cell + 1)² cells per source, each listing a wall or two.
+    let per = (2.0 * SMELL_CELLS_PER_RANGE + 2.0) as usize;
+    let mut pairs: Vec<(u32, Source)> = Vec::with_capacity(sources.len() * per * per);
+    grid.walls.reserve(2 * pairs.capacity());
+    let mut near = Vec::new();
+    let mut hiders: Vec<Hider> = Vec::new();
+    for &(id, p, theta) in sources {
+        let r = theta + slack;
+        let (lo, hi) = (p - r, p + r);
+        near.clear();
+        near_walls(lo, hi, &mut near);
+        // Only walls within θ of p can cross a segment from a receptor in range to p.
+        hiders.clear();
+        hiders.extend(
+            near.iter()
+                .filter_map(|&k| Hider::new(k, &opaque[k as usize], p, r, slack, bound)),
+        );
+        let c = grid.geometry.cells(lo, hi);
+        // Plain comparisons rather than f64::min/max (which handle NaN at a cost): only a
+        // finite p can be in range of a receptor, and its lists are what matters.
+        let gap = |lo: f64, hi: f64, v: f64| {
+            if v < lo {
+                lo - v
+            } else if v > hi {
+                v - hi
+            } else {
+                0.0
+            }
+        };
+        let low = |a: f64, b: f64| if b < a { b } else { a };
+        let high = |a: f64, b: f64| if b > a { b } else { a };
+        for y in c.y0..=c.y1 {
+            let (ylo, yhi) = ys[y];
+            // Distance from p to the cell's box (0 inside it), by axis.
+            let dy = gap(ylo, yhi, p.y);
+            for x in c.x0..=c.x1 {
+                let (xlo, xhi) = xs[x];
+                let dx = gap(xlo, xhi, p.x);
+                let reaches = dx * dx + dy * dy <= r * r;
+                if !reaches {
+                    continue;
+                }
+                let (clo, chi) = (Vec2::new(xlo, ylo), Vec2::new(xhi, yhi));
+                let w0 = grid.walls.len() as u32;
+                let hlo = Vec2::new(low(xlo, p.x), low(ylo, p.y));
+                let hhi = Vec2::new(high(xhi, p.x), high(yhi, p.y));
+                for h in &hiders {
+                    if h.may_meet(clo, chi, hlo, hhi) {
+                        grid.walls.push(h.k);
+                    }
+                }
+                let w1 = grid.walls.len() as u32;
+                pairs.push(((y * nx + x) as u32, Source { id, w0, w1 }));
+            }
+        }
+    }
+    // A counting sort by cell, stable: each cell's sources keep their increasing id order.
+    for &(cell, _) in &pairs {
+        grid.start[cell as usize + 1] += 1;
+    }
+    for k in 0..nx * ny {
+        grid.start[k + 1] += grid.start[k];
+    }
+    let mut next = grid.start.clone();
+    grid.sources = vec![
+        Source {
+            id: 0,
+            w0: 0,
+            w1: 0
+        };
+        pairs.len()
+    ];
+    for (cell, s) in pairs {
+        let slot = &mut next[cell as usize];
+        grid.sources[*slot as usize] = s;
+        *slot += 1;
+    }
+    grid
 }

@@ -14,8 +14,10 @@ use crate::sim::area::Area;
 use crate::sim::controller::{ObservationLayout, SensorGroup};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::Thing;
-use crate::sim::grid::{Scratch, StaticIndex};
-use crate::sim::smell::{accumulate, accumulate_pair, saturate, Shade, Smell};
+use crate::sim::grid::{Scratch, SmellBox, Source, StaticIndex};
+use crate::sim::smell::{
+    accumulate, accumulate_listed, add_pair, falloff_pair, saturate, Shade, Smell,
+};
 use crate::sim::wall::BoxedSegment;
 use crate::sim::world::Creature;
 
@@ -316,12 +318,16 @@ impl Surroundings<'_> {
         (touch, detected)
     }
 
-    /// [`Surroundings::smell_at_all`] at both receptors `tips`: the food and aversive objects
-    /// come from the grid (those within the largest finite range of either receptor, and
-    /// those of unlimited range), in index order; a source inside the smell box of the pair
-    /// (the largest finite range around both receptors) is tested for occlusion against the
-    /// opaque walls that meet that box only. One pass over the sources serves both receptors;
-    /// each receptor still adds its terms in the order of [`Surroundings::smell_at_all`].
+    /// [`Surroundings::smell_at_all`] at both receptors `tips`. The food and aversive objects
+    /// of finite range come from the index's smell grid: the cell of each receptor lists,
+    /// in index order, the objects that may reach it and, for each, the fixed opaque walls
+    /// that may hide it from there, so such an object is tested for occlusion against those
+    /// walls and the closed doors only. The objects of unlimited range, the areas, things
+    /// and creatures are tested against the opaque walls that meet the smell box of the pair
+    /// (the largest finite range around both receptors) when their centre lies in it, else
+    /// against every opaque wall; those walls are only gathered when such a source is in
+    /// range. One pass over the sources serves both receptors; each receptor still adds its
+    /// terms in the order of [`Surroundings::smell_at_all`].
     pub fn smell_pair(
         &self,
         me: usize,
@@ -330,50 +336,108 @@ impl Surroundings<'_> {
         scratch: &mut Scratch,
     ) -> [[f64; 8]; 2] {
         let index = self.index;
-        let (lo, hi) = (tips[0].min(tips[1]), tips[0].max(tips[1]));
-        index.smell_sources(lo, hi, scratch);
-        let bx = index.near_opaque(lo, hi, self.opaque, scratch);
-        let Scratch { near, shades, .. } = scratch;
-        for (shades, &tip) in shades.iter_mut().zip(tips.iter()) {
-            shades.clear();
-            shades.extend(near.iter().map(|w| Shade::new(tip, w)));
-        }
-        let scratch = &*scratch;
         let mut acc = [[0.0; 8]; 2];
-        let (c, all) = (self.smell_c, self.opaque);
-        let near = (
-            bx.lo,
-            bx.hi,
-            [&scratch.shades[0][..], &scratch.shades[1][..]],
-        );
-        for &k in &scratch.food {
-            let f = &self.food[k as usize];
-            let scale = || f.smell_scale();
-            accumulate_pair(&mut acc, tips, f.position, &f.smell, scale, c, near, all);
-        }
-        for &k in &scratch.aversives {
-            let a = &self.aversives[k as usize];
-            accumulate_pair(&mut acc, tips, a.position, &a.smell, || 1.0, c, near, all);
+        let all = self.opaque;
+        let walls = all.split_at(index.fixed_opaque());
+        let cells = [index.smell_cell(tips[0]), index.smell_cell(tips[1])];
+        let lists = [index.smell_sources(cells[0]), index.smell_sources(cells[1])];
+        let always = index.smell_always();
+        let food_count = index.food_count();
+        let mut near = Near::new(tips);
+        let listed = |acc: &mut [[f64; 8]; 2], id: u32, w: [Option<&[u32]>; 2]| {
+            self.listed(acc, tips, id, w, walls);
+        };
+        if cells[0] == cells[1] && always.is_empty() {
+            for s in lists[0] {
+                let w = Some(index.source_walls(s));
+                listed(&mut acc, s.id, [w, w]);
+            }
+        } else {
+            // A three-way merge of both cells' lists and the unlimited-range objects, in
+            // increasing id order (an id is either listed or of unlimited range).
+            let same = cells[0] == cells[1];
+            let (mut i, mut j, mut k) = (0, 0, 0);
+            let id = |l: &[Source], i: usize| l.get(i).map_or(u32::MAX, |s| s.id);
+            loop {
+                let a = id(lists[0], i);
+                let b = if same { a } else { id(lists[1], j) };
+                let u = always.get(k).copied().unwrap_or(u32::MAX);
+                let m = a.min(b).min(u);
+                if m == u32::MAX {
+                    break;
+                }
+                if m == u {
+                    k += 1;
+                    let x = m as usize;
+                    if x < food_count {
+                        let f = &self.food[x];
+                        near.source(
+                            self,
+                            &mut acc,
+                            f.position,
+                            &f.smell,
+                            || f.smell_scale(),
+                            scratch,
+                        );
+                    } else {
+                        let a = &self.aversives[x - food_count];
+                        near.source(self, &mut acc, a.position, &a.smell, || 1.0, scratch);
+                    }
+                    continue;
+                }
+                let wa = (a == m).then(|| index.source_walls(&lists[0][i]));
+                let wb = if same {
+                    wa
+                } else {
+                    (b == m).then(|| index.source_walls(&lists[1][j]))
+                };
+                listed(&mut acc, m, [wa, wb]);
+                i += usize::from(a == m);
+                j += usize::from(!same && b == m);
+            }
         }
         for a in self.areas {
-            accumulate_pair(&mut acc, tips, a.centre(), &a.smell, || 1.0, c, near, all);
+            near.source(self, &mut acc, a.centre(), &a.smell, || 1.0, scratch);
         }
         for (k, t) in self.things.iter().enumerate() {
             if k != self.skip_thing && !t.smell.silent {
-                accumulate_pair(&mut acc, tips, t.position, &t.smell, || 1.0, c, near, all);
+                near.source(self, &mut acc, t.position, &t.smell, || 1.0, scratch);
             }
         }
         if !body.smell.silent {
             for (j, other) in self.creatures.iter().enumerate() {
                 if j != me && other.alive {
                     let p = other.pose.position;
-                    accumulate_pair(&mut acc, tips, p, &body.smell, || 1.0, c, near, all);
+                    near.source(self, &mut acc, p, &body.smell, || 1.0, scratch);
                 }
             }
         }
         saturate(&mut acc[0]);
         saturate(&mut acc[1]);
         acc
+    }
+
+    /// [`accumulate_listed`] for food or aversive object `id` (food first, as in
+    /// [`Source::id`]).
+    #[inline(always)]
+    fn listed(
+        &self,
+        acc: &mut [[f64; 8]; 2],
+        tips: [Vec2; 2],
+        id: u32,
+        w: [Option<&[u32]>; 2],
+        walls: (&[BoxedSegment], &[BoxedSegment]),
+    ) {
+        let (k, c) = (id as usize, self.smell_c);
+        let food_count = self.index.food_count();
+        if k < food_count {
+            let f = &self.food[k];
+            let scale = || f.smell_scale();
+            accumulate_listed(acc, tips, f.position, &f.smell, scale, c, w, walls);
+        } else {
+            let a = &self.aversives[k - food_count];
+            accumulate_listed(acc, tips, a.position, &a.smell, || 1.0, c, w, walls);
+        }
     }
 
     /// Everything creature `me` senses now (the grid's version of
@@ -402,6 +466,67 @@ impl Surroundings<'_> {
             smell,
             food,
         }
+    }
+}
+
+/// The occluders of the smell sources that the smell grid does not list (objects of
+/// unlimited range, areas, things, creatures): the opaque walls meeting the smell box of both
+/// receptors, as each receptor sees them, gathered into the scratch space at the first such
+/// source in range of a receptor.
+struct Near {
+    tips: [Vec2; 2],
+    /// The smell box, once the walls are gathered.
+    bx: Option<SmellBox>,
+}
+
+impl Near {
+    fn new(tips: [Vec2; 2]) -> Near {
+        Near { tips, bx: None }
+    }
+
+    /// [`accumulate`] at both receptors for a thing at `centre`.
+    #[inline(always)]
+    fn source(
+        &mut self,
+        s: &Surroundings<'_>,
+        acc: &mut [[f64; 8]; 2],
+        centre: Vec2,
+        smell: &Smell,
+        scale: impl FnOnce() -> f64,
+        scratch: &mut Scratch,
+    ) {
+        let tips = self.tips;
+        let Some(f) = falloff_pair(tips, centre, smell, s.smell_c) else {
+            return;
+        };
+        let scale = scale();
+        if scale == 0.0 {
+            return;
+        }
+        let bx = match self.bx {
+            Some(bx) => bx,
+            None => {
+                let (lo, hi) = (tips[0].min(tips[1]), tips[0].max(tips[1]));
+                let bx = s.index.near_opaque(lo, hi, s.opaque, scratch);
+                let Scratch { near, shades, .. } = &mut *scratch;
+                for (shades, &tip) in shades.iter_mut().zip(tips.iter()) {
+                    shades.clear();
+                    shades.extend(near.iter().map(|w| Shade::new(tip, w)));
+                }
+                self.bx = Some(bx);
+                bx
+            }
+        };
+        let shades = [&scratch.shades[0][..], &scratch.shades[1][..]];
+        add_pair(
+            acc,
+            tips,
+            centre,
+            smell,
+            (f, scale),
+            (bx.lo, bx.hi, shades),
+            s.opaque,
+        );
     }
 }
 

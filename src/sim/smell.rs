@@ -135,38 +135,44 @@ pub fn visible_from(receptor: Vec2, centre: Vec2, shades: &[Shade]) -> bool {
     })
 }
 
-/// [`accumulate`] at both receptors of a creature at once, into `acc[0]` and `acc[1]`, with
-/// the occluders chosen per source: `shades[i]` (the opaque walls that may meet the box
-/// `[lo, hi]`, which holds both receptors, as receptor i sees them) for a thing whose centre
-/// lies in the box, since the segment from either receptor to it lies in the box too, else
-/// `all`. Which walls are tested does not change the yes/no answer of [`visible`] as long as
-/// every wall that may meet the segment is among them, and each receptor's sum gets its terms
-/// in the caller's order, so each receptor has the same bits as [`accumulate`] with `all`.
-/// The occlusion test runs only for a finite squared distance inside the range, so with
-/// finite receptor and centre, as [`visible_from`] needs. The silence, scale and box tests
-/// are done once for both receptors, and `scale` (a sum and a division for food whose smell
-/// follows its amount) is only computed for a thing in range of a receptor: skipping a thing
-/// of scale 0 after the range tests rather than before adds nothing either way.
+/// eq. 25/26 at both receptors of a creature for a thing at `centre`: `None` when the thing is
+/// silent or out of range of both (then [`accumulate`] adds nothing for either).
+#[inline(always)]
+pub fn falloff_pair(receptors: [Vec2; 2], centre: Vec2, smell: &Smell, c: f64) -> Option<[f64; 2]> {
+    if smell.silent {
+        return None;
+    }
+    let f = receptors.map(|r| falloff(r.distance_squared(centre), c, smell.range_squared));
+    if f[0] == 0.0 && f[1] == 0.0 {
+        None
+    } else {
+        Some(f)
+    }
+}
+
+/// The rest of [`accumulate`] at both receptors of a creature at once, into `acc[0]` and
+/// `acc[1]`, given the falloffs `f` of [`falloff_pair`], with the occluders chosen per source:
+/// `shades[i]` (the opaque walls that may meet the box `[lo, hi]`, which holds both
+/// receptors, as receptor i sees them) for a thing whose centre lies in the box, since the
+/// segment from either receptor to it lies in the box too, else `all`. Which walls are tested
+/// does not change the yes/no answer of [`visible`] as long as every wall that may meet the
+/// segment is among them, and each receptor's sum gets its terms in the caller's order, so
+/// each receptor has the same bits as [`accumulate`] with `all`. The occlusion test runs only
+/// for a finite squared distance inside the range, so with finite receptor and centre, as
+/// [`visible_from`] needs. `scale` (a sum and a division for food whose smell follows its
+/// amount) is only computed for a thing in range of a receptor: skipping a thing of scale 0
+/// after the range tests rather than before adds nothing either way.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub fn accumulate_pair(
+pub fn add_pair(
     acc: &mut [[f64; 8]; 2],
     receptors: [Vec2; 2],
     centre: Vec2,
     smell: &Smell,
-    scale: impl FnOnce() -> f64,
-    c: f64,
+    (f, scale): ([f64; 2], f64),
     (lo, hi, shades): (Vec2, Vec2, [&[Shade]; 2]),
     all: &[BoxedSegment],
 ) {
-    if smell.silent {
-        return;
-    }
-    let f = receptors.map(|r| falloff(r.distance_squared(centre), c, smell.range_squared));
-    if f[0] == 0.0 && f[1] == 0.0 {
-        return;
-    }
-    let scale = scale();
     if scale == 0.0 {
         return;
     }
@@ -181,12 +187,86 @@ pub fn accumulate_pair(
         } else {
             visible(receptor, centre, all)
         };
-        if !seen {
-            continue;
+        if seen {
+            add(&mut acc[i], f[i] * scale, &smell.emission);
         }
-        let f = f[i] * scale;
-        for (a, e) in acc[i].iter_mut().zip(smell.emission.iter()) {
-            *a += f * e;
+    }
+}
+
+/// `acc += f · emission`, component by component.
+#[inline(always)]
+fn add(acc: &mut [f64; 8], f: f64, emission: &[f64; 8]) {
+    for (a, e) in acc.iter_mut().zip(emission.iter()) {
+        *a += f * e;
+    }
+}
+
+/// [`visible`] from a receptor in a cell of the index's smell grid to a source that cell
+/// lists: `walls` (indices into the fixed opaque walls `fixed`) are the only fixed walls that
+/// may cross the segment, and `doors` are the closed opaque doors, so the yes/no answer is
+/// that of every opaque wall.
+#[inline(always)]
+pub fn visible_among(
+    receptor: Vec2,
+    centre: Vec2,
+    walls: &[u32],
+    fixed: &[BoxedSegment],
+    doors: &[BoxedSegment],
+) -> bool {
+    if walls.is_empty() && doors.is_empty() {
+        return true;
+    }
+    let line = Segment::new(receptor, centre);
+    let (lo, hi) = (receptor.min(centre), receptor.max(centre));
+    let blocks = |w: &BoxedSegment| w.may_meet(lo, hi) && segments_intersect(&line, &w.segment);
+    !(walls.iter().any(|&k| blocks(&fixed[k as usize])) || doors.iter().any(blocks))
+}
+
+/// [`accumulate`] at both receptors for a food or aversive object that the smell cells of
+/// the receptors list: `walls[i]` are its walls in receptor i's cell (see
+/// [`visible_among`]), or `None` when that cell does not list it, which proves it out of
+/// range of receptor i (nothing to add). The terms are those of [`accumulate`], and `scale`
+/// is only computed for an object in range, as in [`add_pair`].
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn accumulate_listed(
+    acc: &mut [[f64; 8]; 2],
+    receptors: [Vec2; 2],
+    centre: Vec2,
+    smell: &Smell,
+    scale: impl FnOnce() -> f64,
+    c: f64,
+    walls: [Option<&[u32]>; 2],
+    (fixed, doors): (&[BoxedSegment], &[BoxedSegment]),
+) {
+    let rs = smell.range_squared;
+    let d2 = [
+        receptors[0].distance_squared(centre),
+        receptors[1].distance_squared(centre),
+    ];
+    let f0 = match walls[0] {
+        Some(_) => falloff(d2[0], c, rs),
+        None => 0.0,
+    };
+    let f1 = match walls[1] {
+        Some(_) => falloff(d2[1], c, rs),
+        None => 0.0,
+    };
+    if f0 == 0.0 && f1 == 0.0 {
+        return;
+    }
+    let scale = scale();
+    if scale == 0.0 {
+        return;
+    }
+    if let Some(w) = walls[0] {
+        if f0 != 0.0 && visible_among(receptors[0], centre, w, fixed, doors) {
+            add(&mut acc[0], f0 * scale, &smell.emission);
+        }
+    }
+    if let Some(w) = walls[1] {
+        if f1 != 0.0 && visible_among(receptors[1], centre, w, fixed, doors) {
+            add(&mut acc[1], f1 * scale, &smell.emission);
         }
     }
 }
