@@ -1,7 +1,9 @@
 //! Lockstep evaluation (several trials of a group at once, one batched brain per genome)
 //! gives the same bits as living every (group, trial) alone with `run_trial`, on 1 and 2
 //! threads: foraging, groups of several creatures, deaths and early stops, and brains whose
-//! sums overflow.
+//! sums overflow. `evaluate_population` (which, with common random numbers, builds each trial
+//! world once and clones it for every group) is compared with `evaluate_group` (which builds
+//! every world itself), with common random numbers on and off.
 
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::evaluate::{evaluate_group, evaluate_population, run_trial, Evaluation};

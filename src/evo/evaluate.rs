@@ -1,8 +1,10 @@
 //! Evaluation: a genome's fitness, measured by living `trials` lives in trial worlds.
 //!
 //! One trial is a pure function of (experiment, the genomes of one group, generation, group
-//! index, trial index): it builds its world from its own seed stream and shares nothing with
-//! other trials. [`evaluate_population`] runs all (group, trial) pairs in parallel with rayon
+//! index, trial index): its world comes from its own seed stream and it shares nothing with
+//! other trials. (With common random numbers that stream does not depend on the group, so
+//! [`evaluate_population`] builds each trial world once and hands every group a clone: the
+//! same world, built once instead of once per group.) [`evaluate_population`] runs all (group, trial) pairs in parallel with rayon
 //! (with stateless brains, several trials of a group at once in lockstep, see
 //! [`crate::evo::lockstep`]), collects them in index order and reduces them serially, so the
 //! result is the same bits for any number of threads, and the same as evaluating one group at
@@ -252,6 +254,52 @@ pub fn run_trial(
     Ok(live_trial(experiment, world, &mut controllers))
 }
 
+/// [`run_trial`] in a given world: a clone of the trial's world from [`shared_worlds`].
+fn run_trial_in(
+    experiment: &Experiment,
+    topology: &Topology,
+    genomes: &[Genome],
+    group: u64,
+    world: World,
+) -> Result<Vec<TrialOutcome>, EvaluationError> {
+    let mut controllers: Vec<CheckedController<BrainController>> =
+        controllers(experiment, topology, genomes, group)?
+            .into_iter()
+            .map(|inner| CheckedController {
+                inner,
+                non_finite: false,
+            })
+            .collect();
+    Ok(live_trial(experiment, world, &mut controllers))
+}
+
+/// The trial worlds of generation `generation`, built once, when every group lives the same
+/// ones (common random numbers: the world of trial t comes from a stream that does not
+/// depend on the group), for groups of `creatures`; `None` otherwise. A job then clones its
+/// trial's world, which is the very world it would have built (random stream state
+/// included), instead of building it: building costs as much as a few hundred ticks (the
+/// placement draws and the index, its smell grid above all), and a population of 64 would
+/// build every trial world 64 times. Built in trial order, so a world that cannot be built
+/// is reported for the first such trial.
+pub(crate) fn shared_worlds(
+    experiment: &Experiment,
+    creatures: usize,
+    generation: Generation,
+) -> Result<Option<Vec<World>>, EvaluationError> {
+    if !experiment.evaluation.common_random_numbers {
+        return Ok(None);
+    }
+    let trials = experiment.evaluation.trials;
+    if trials == 0 {
+        return Ok(Some(Vec::new()));
+    }
+    let specs = valid_specs(experiment, generation, TrialIndex(0))?;
+    (0..trials)
+        .map(|t| build_trial_world(specs, experiment, creatures, generation, 0, TrialIndex(t)))
+        .collect::<Result<Vec<_>, _>>()
+        .map(Some)
+}
+
 /// Steps `world` for at most `ticks` ticks with `controllers` (one per creature), stopping
 /// after the first tick in which no creature recorded a score.
 pub(crate) fn live_trial<C: Controller>(
@@ -344,6 +392,8 @@ pub fn evaluate_population(
     let k = experiment.evaluation.group_size as usize;
     let trials = experiment.evaluation.trials;
     let groups = population.len() / k;
+    let shared = shared_worlds(experiment, k, generation)?;
+    let shared = shared.as_deref();
     // outcomes[g * trials + t][i] is individual g*k + i's life in trial t.
     let outcomes: Vec<Vec<TrialOutcome>> = if lockstep::stateless(topology) {
         let chunks = lockstep::chunks(trials);
@@ -353,13 +403,14 @@ pub fn evaluate_population(
         let per_job: Vec<Vec<Vec<TrialOutcome>>> = jobs
             .par_iter()
             .map(|(g, chunk)| {
-                lockstep::run_trials(
+                lockstep::run_trials_in(
                     experiment,
                     topology,
                     &population[g * k..(g + 1) * k],
                     generation,
                     *g as u64,
                     chunk.clone(),
+                    shared,
                 )
             })
             .collect::<Result<_, _>>()?;
@@ -370,14 +421,21 @@ pub fn evaluate_population(
             .collect();
         jobs.par_iter()
             .map(|&(g, t)| {
-                run_trial(
-                    experiment,
-                    topology,
-                    &population[g * k..(g + 1) * k],
-                    generation,
-                    g as u64,
-                    TrialIndex(t),
-                )
+                let genomes = &population[g * k..(g + 1) * k];
+                match shared {
+                    Some(worlds) => {
+                        let world = worlds[t as usize].clone();
+                        run_trial_in(experiment, topology, genomes, g as u64, world)
+                    }
+                    None => run_trial(
+                        experiment,
+                        topology,
+                        genomes,
+                        generation,
+                        g as u64,
+                        TrialIndex(t),
+                    ),
+                }
             })
             .collect::<Result<_, _>>()?
     };

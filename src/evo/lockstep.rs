@@ -160,14 +160,36 @@ pub fn run_trials(
     group: u64,
     trials: Range<u64>,
 ) -> Result<Vec<Vec<TrialOutcome>>, EvaluationError> {
+    run_trials_in(
+        experiment, topology, genomes, generation, group, trials, None,
+    )
+}
+
+/// [`run_trials`], cloning the trials' worlds from `shared` (see
+/// [`crate::evo::evaluate::shared_worlds`]: the same worlds, built once for every group)
+/// when given, else building them.
+pub(crate) fn run_trials_in(
+    experiment: &Experiment,
+    topology: &Topology,
+    genomes: &[Genome],
+    generation: Generation,
+    group: u64,
+    trials: Range<u64>,
+    shared: Option<&[World]>,
+) -> Result<Vec<Vec<TrialOutcome>>, EvaluationError> {
     let mut controllers = controllers(experiment, topology, genomes, group)?;
-    let specs = valid_specs(experiment, generation, TrialIndex(trials.start))?;
-    let worlds = trials
-        .map(|t| {
-            let trial = TrialIndex(t);
-            build_trial_world(specs, experiment, genomes.len(), generation, group, trial)
-        })
-        .collect::<Result<Vec<_>, _>>()?;
+    let worlds = match shared {
+        Some(worlds) => worlds[trials.start as usize..trials.end as usize].to_vec(),
+        None => {
+            let specs = valid_specs(experiment, generation, TrialIndex(trials.start))?;
+            trials
+                .map(|t| {
+                    let trial = TrialIndex(t);
+                    build_trial_world(specs, experiment, genomes.len(), generation, group, trial)
+                })
+                .collect::<Result<Vec<_>, _>>()?
+        }
+    };
     Ok(live_trials(experiment, worlds, &mut controllers))
 }
 
