@@ -40,8 +40,9 @@
 //!
 //! Senses, eating and contacts look food, aversive objects and fixed walls up in a uniform
 //! grid ([`crate::sim::grid`]) instead of looping over every object, and a move is tested
-//! only against the walls it can reach, so a creature-tick costs what is around the creature,
-//! not what is in the world. Regeneration visits only food below capacity. The answers are
+//! only against the walls near it (the walls listed for its start's cell, see `MoverCells`,
+//! or while a door stands those the grid finds within its reach), so a creature-tick costs
+//! what is around the creature, not what is in the world. Regeneration visits only food below capacity. The answers are
 //! the plain loops' to the bit (same tests, same order): [`World::set_brute_force`] runs the
 //! plain loops, and the tests compare the two.
 
