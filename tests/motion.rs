@@ -1343,3 +1343,96 @@ fn pushing_against_a_wall_at_the_edges_matches_the_reference_bit_for_bit() {
     assert!(stayed > 5000, "{stayed} of {blocked}");
     assert!(crept > 2000, "{crept} of {blocked}");
 }
+
+/// `plan_move` takes sine and cosine from one `libm::sincos` call from |x| = 2⁻²⁶ on: its bits
+/// are those of `libm::sin` and `libm::cos` there, at the kernel thresholds (2⁻²⁶, π/4), the
+/// quadrant boundaries of the argument reduction, huge arguments and ±∞, NaN.
+#[test]
+fn sincos_gives_the_bits_of_sin_and_cos_from_two_to_the_minus_26() {
+    let mut r = ChaCha8Rng::seed_from_u64(0x51c0_5026);
+    let same = |x: f64| {
+        let (s, c) = libm::sincos(x);
+        (s.to_bits(), c.to_bits()) == (libm::sin(x).to_bits(), libm::cos(x).to_bits())
+            || (s.is_nan() && c.is_nan() && libm::sin(x).is_nan() && libm::cos(x).is_nan())
+    };
+    let from: f64 = 1.0 / 67_108_864.0;
+    let mut special = vec![
+        from,
+        f64::from_bits(from.to_bits() + 1),
+        FRAC_PI_4,
+        f64::from_bits(FRAC_PI_4.to_bits() - 1),
+        f64::from_bits(FRAC_PI_4.to_bits() + 1),
+        f64::from_bits(0x3fe9_21fb_ffff_ffff),
+        f64::from_bits(0x3fe9_21fc_0000_0000),
+        1e-4,
+        f64::INFINITY,
+        f64::NAN,
+        f64::MAX,
+        1e300,
+    ];
+    for k in 1..200 {
+        let q = f64::from(k) * FRAC_PI_2;
+        special.extend([
+            q,
+            f64::from_bits(q.to_bits() - 1),
+            f64::from_bits(q.to_bits() + 1),
+        ]);
+    }
+    for x in special {
+        assert!(same(x) && same(-x), "{x:e}");
+    }
+    for _ in 0..200_000 {
+        // Log-uniform magnitudes from 2⁻²⁶ to 2⁴⁰, both signs.
+        let x = from * libm::pow(2.0, uniform(&mut r, 0.0, 66.0));
+        let x = if chance(&mut r, 0.5) { -x } else { x };
+        assert!(same(x), "{x:e}");
+    }
+}
+
+/// Turning angles around the thresholds of the shortcuts (sinc's 1e-4 for φ/2, sincos's 2⁻²⁶
+/// for φ/2 and for the blocked move's φ'), free and blocked, match the reference bit for bit.
+#[test]
+fn small_turns_match_the_reference_bit_for_bit() {
+    let mut r = ChaCha8Rng::seed_from_u64(0x5a11_7041);
+    let params = MotionParams::default();
+    let wall = [seg(-50.0, 20.0, 50.0, 20.0)];
+    let mut blocked = 0;
+    for case in 0..40_000 {
+        // φ = 2π(L − R) for w = 2, so φ/2 = π(L − R): aim L − R around each threshold.
+        let half_target = match below(&mut r, 3) {
+            0 => 1e-4,
+            1 => 1.0 / 67_108_864.0,
+            _ => 2.0 / 67_108_864.0,
+        };
+        let diff = half_target / PI * uniform(&mut r, 0.25, 4.0);
+        let right = uniform(&mut r, -1.0, 1.0);
+        let left = right + if chance(&mut r, 0.5) { diff } else { -diff };
+        let gap = uniform(&mut r, 0.0, 15.0);
+        let start = near(&mut r, v(0.0, 20.0 - R - gap), 5.0);
+        let p = Pose {
+            position: start,
+            heading: random_heading_chacha(&mut r),
+        };
+        let b = if case % 2 == 0 {
+            Blockers {
+                segments: &wall,
+                circles: &[],
+            }
+        } else {
+            Blockers::NONE
+        };
+        let got = plan_move(p, left, right, R, &params, &b);
+        let want = reference::plan_move(p, left, right, R, &params, &b);
+        assert!(
+            same_bits(&got, &want),
+            "case {case}: {got:?} vs reference {want:?}"
+        );
+        blocked += usize::from(want.blocked);
+    }
+    assert!(blocked > 2000, "{blocked}");
+}
+
+fn random_heading_chacha(r: &mut ChaCha8Rng) -> Vec2 {
+    let a = uniform(r, -PI, PI);
+    v(libm::cos(a), libm::sin(a))
+}

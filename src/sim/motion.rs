@@ -38,6 +38,11 @@
 //! against the wall, which would otherwise repeat the path test on every step. sin(φ/2) is
 //! computed once for the chord and the heading, and sin and cos of ±0 (a straight move, or a
 //! blocked move that travelled 0) are not computed: libm returns exactly ±0 and 1 for them.
+//! When sinc needs sin(φ/2) (|φ/2| ≥ 1e-4), sine and cosine come from one `libm::sincos`
+//! call, which shares the argument reduction: for |x| ≥ 2⁻²⁶ it runs the very kernels
+//! `libm::sin` and `libm::cos` run (`k_sin(x, 0, 0)` and `k_cos(x, 0)` up to π/4, else the
+//! same `rem_pio2` and the same kernel and sign for each quadrant; x − x for ±∞ and NaN), so
+//! the bits are theirs. (Only below 2⁻²⁶ do the three differ in their shortcut thresholds.)
 //! The tests compare all of this with a plain copy of the original algorithm bit for bit.
 //!
 //! # A body pushing against a wall
@@ -180,15 +185,21 @@ pub fn rotate(v: Vec2, angle: f64) -> Vec2 {
 }
 
 /// `(libm::sin(x), libm::cos(x))`, without the calls for x = ±0, whose results libm gives
-/// exactly: sin(±0) = ±0 and cos(±0) = 1 (a straight move turns by exactly 0).
+/// exactly: sin(±0) = ±0 and cos(±0) = 1 (a straight move turns by exactly 0). From |x| =
+/// 2⁻²⁶ on, one `libm::sincos` call gives the same bits (see the module docs).
 #[inline]
 fn sin_cos(x: f64) -> (f64, f64) {
     if x == 0.0 {
         (x, 1.0)
+    } else if x.abs() >= SINCOS_FROM {
+        libm::sincos(x)
     } else {
         (libm::sin(x), libm::cos(x))
     }
 }
+
+/// 2⁻²⁶: from here on `libm::sincos` and `libm::sin`, `libm::cos` run the same code.
+const SINCOS_FROM: f64 = 1.0 / 67_108_864.0;
 
 /// Rotation by an angle given by its sine and cosine.
 #[inline]
@@ -207,14 +218,16 @@ fn normalise(v: Vec2) -> Vec2 {
     }
 }
 
-/// sin(x)/x, continuous through 0 (see the module docs), and sin(x) when it was computed.
+/// sin(x)/x, continuous through 0 (see the module docs), and libm's sin(x) and cos(x) when sin
+/// was computed. `libm::sincos` gives the bits of `libm::sin` and `libm::cos` for |x| ≥ 2⁻²⁶
+/// (see the module docs), and sin is computed only for |x| ≥ 1e-4.
 #[inline]
-fn sinc(x: f64) -> (f64, Option<f64>) {
+fn sinc(x: f64) -> (f64, Option<(f64, f64)>) {
     if x.abs() < 1e-4 {
         (1.0 - x * x / 6.0, None)
     } else {
-        let sin = libm::sin(x);
-        (sin / x, Some(sin))
+        let (sin, cos) = libm::sincos(x);
+        (sin / x, Some((sin, cos)))
     }
 }
 
@@ -237,9 +250,10 @@ pub fn drive(wheel: f64, left_rpt: f64, right_rpt: f64) -> Drive {
     drive_and_sin(wheel, left_rpt, right_rpt).0
 }
 
-/// [`drive`], and libm's sin(φ/2) when the chord needed it (`plan_move` needs it too).
+/// [`drive`], and libm's sin(φ/2) and cos(φ/2) when the chord needed the sine (`plan_move`
+/// needs both).
 #[inline]
-fn drive_and_sin(wheel: f64, left_rpt: f64, right_rpt: f64) -> (Drive, Option<f64>) {
+fn drive_and_sin(wheel: f64, left_rpt: f64, right_rpt: f64) -> (Drive, Option<(f64, f64)>) {
     let d_left = std::f64::consts::TAU * wheel * left_rpt;
     let d_right = std::f64::consts::TAU * wheel * right_rpt;
     if wheel == 0.0 {
@@ -825,9 +839,9 @@ pub fn plan_move(
     }
     // eq. 32 twice, with the half angle's sine and cosine computed once.
     let half = 0.5 * d.phi;
-    // sinc computed libm::sin of the same 0.5 * φ (unless it was tiny).
+    // sinc computed libm's sine and cosine of the same 0.5 * φ (unless it was tiny).
     let (s, c) = match sin_half {
-        Some(s) => (s, libm::cos(half)),
+        Some(sc) => sc,
         None => sin_cos(half),
     };
     let chord_dir = normalise(rotate_sc(pose.heading, s, c));

@@ -40,8 +40,9 @@
 //!
 //! Senses, eating and contacts look food, aversive objects and fixed walls up in a uniform
 //! grid ([`crate::sim::grid`]) instead of looping over every object, and a move is tested
-//! only against the walls it can reach, so a creature-tick costs what is around the creature,
-//! not what is in the world. Regeneration visits only food below capacity. The answers are
+//! only against the walls near it (the walls listed for its start's cell, see `MoverCells`,
+//! or while a door stands those the grid finds within its reach), so a creature-tick costs
+//! what is around the creature, not what is in the world. Regeneration visits only food below capacity. The answers are
 //! the plain loops' to the bit (same tests, same order): [`World::set_brute_force`] runs the
 //! plain loops, and the tests compare the two.
 
@@ -60,7 +61,7 @@ use crate::sim::placement::{place_creatures, place_objects, PlacementError};
 use crate::sim::sensors::{Body, Offsets, Senses, Surroundings};
 use crate::sim::smell::Smell;
 use crate::sim::spec::{CreatureSpec, Eating, WorldSpec};
-use crate::sim::wall::{Wall, Walls};
+use crate::sim::wall::{BoxedSegment, Wall, Walls};
 
 /// One creature: its pose, its metabolism and what it sensed and did in its last tick.
 #[derive(Debug, Clone, PartialEq)]
@@ -137,6 +138,8 @@ pub struct World {
     index: StaticIndex,
     /// The grid queries' scratch space.
     scratch: Scratch,
+    /// Per-cell lists of the fixed walls a creature's move may reach (see [`MoverCells`]).
+    mover_cells: Option<MoverCells>,
     /// Sense, eat and regenerate with plain loops over every object instead of the grid and
     /// the list of regrowing food (the reference the tests compare the grid against).
     brute_force: bool,
@@ -253,6 +256,11 @@ impl World {
             &walls,
         );
         let scratch = index.scratch(walls.opaque_capacity(), walls.capacity());
+        let mover_cells = MoverCells::build(
+            &walls.felt()[..walls.fixed_count()],
+            travel_bound(creature.wheel, creature.max_rpt.abs()),
+            radius,
+        );
         let phi = creature.whisker_angle_radians();
         let layout = creature.layout(world);
         let eye = layout
@@ -419,6 +427,7 @@ impl World {
             aversives: objects.aversives,
             index,
             scratch,
+            mover_cells,
             brute_force: false,
             creatures: poses
                 .into_iter()
@@ -660,9 +669,9 @@ impl World {
         // The signals are clamped already (not NaN, within ±max_rpt): `max_travel`'s own
         // clamping would leave their magnitudes as they are.
         let travel = self.travel_bound(command.left.abs().max(command.right.abs()));
-        self.walls_near(start, travel);
+        let near = self.walls_near(start, travel);
         let blockers = Blockers {
-            segments: &self.scratch.blocking,
+            segments: near.walls(&self.mover_cells, &self.scratch),
             circles: &self.blockers,
         };
         let c = &mut self.creatures[i];
@@ -699,27 +708,33 @@ impl World {
     /// [`World::max_travel`] for the larger clamped signal magnitude `rpt`.
     #[inline]
     fn travel_bound(&self, rpt: f64) -> f64 {
-        let d = std::f64::consts::TAU * self.motion.wheel.abs() * rpt;
-        if d.is_finite() {
-            d * (1.0 + 1e-9) + 1e-9
-        } else {
-            f64::INFINITY
-        }
+        travel_bound(self.motion.wheel, rpt)
     }
 
-    /// Puts into `scratch.blocking` the walls that may block a body of this world's radius
-    /// moving at most `travel` from `start` (every standing wall under `brute_force`).
-    /// Motion's verdict is a yes/no over the walls, so leaving out walls that cannot be
-    /// reached changes nothing.
-    fn walls_near(&mut self, start: Vec2, travel: f64) {
+    /// The walls that may block a body of this world's radius moving at most `travel` from
+    /// `start` (every standing wall under `brute_force`): the list of the start's cell in
+    /// `mover_cells` when no door stands and the move is within the reach the lists were
+    /// built for, else `scratch.blocking`, filled by the grid. Motion's verdict is a yes/no
+    /// over the walls, so leaving out walls that cannot be reached changes nothing, and
+    /// listing more walls than needed changes nothing either (see [`MoverCells`]).
+    #[inline]
+    fn walls_near(&mut self, start: Vec2, travel: f64) -> NearWalls {
         let felt = self.walls.felt();
         if self.brute_force {
             self.scratch.blocking.clear();
             self.scratch.blocking.extend(felt.iter().map(|w| w.segment));
-        } else {
-            self.index
-                .blocking_near(start, travel, self.body.radius, felt, &mut self.scratch);
+            return NearWalls::Scratch;
         }
+        if let Some(cells) = &self.mover_cells {
+            if felt.len() == self.walls.fixed_count() && travel <= cells.travel {
+                if let Some(k) = cells.cell_of(start) {
+                    return NearWalls::Cell(k);
+                }
+            }
+        }
+        self.index
+            .blocking_near(start, travel, self.body.radius, felt, &mut self.scratch);
+        NearWalls::Scratch
     }
 
     /// Phases 2.4 and 2.5: eating, shock and metabolism of creature `i` after its move.
@@ -970,9 +985,9 @@ impl World {
             ..self.motion
         };
         let travel = self.max_travel(left, right, params.max_rpt);
-        self.walls_near(actor.pose.position, travel);
+        let near = self.walls_near(actor.pose.position, travel);
         let blockers = Blockers {
-            segments: &self.scratch.blocking,
+            segments: near.walls(&self.mover_cells, &self.scratch),
             circles: &self.blockers,
         };
         let outcome = plan_move(actor.pose, left, right, r, &params, &blockers);
@@ -1244,5 +1259,150 @@ fn clamp_motor(x: f64, max_rpt: f64) -> f64 {
         0.0
     } else {
         x.clamp(-max_rpt, max_rpt)
+    }
+}
+
+/// An upper bound on how far a body's centre moves in one tick with wheel diameter `wheel` and
+/// clamped signal magnitudes at most `rpt` (see [`World::max_travel`]). +∞ when not finite.
+fn travel_bound(wheel: f64, rpt: f64) -> f64 {
+    let d = std::f64::consts::TAU * wheel.abs() * rpt;
+    if d.is_finite() {
+        d * (1.0 + 1e-9) + 1e-9
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// Where [`World::walls_near`] put the walls of one move.
+#[derive(Clone, Copy)]
+enum NearWalls {
+    /// The list of this cell of `mover_cells`.
+    Cell(usize),
+    /// `scratch.blocking`.
+    Scratch,
+}
+
+impl NearWalls {
+    /// The walls themselves.
+    #[inline]
+    fn walls<'a>(self, cells: &'a Option<MoverCells>, scratch: &'a Scratch) -> &'a [Segment] {
+        match (self, cells) {
+            (NearWalls::Cell(k), Some(cells)) => cells.walls(k),
+            _ => &scratch.blocking,
+        }
+    }
+}
+
+/// Most cells of [`MoverCells`] along each axis.
+const MOVER_CELLS: usize = 64;
+
+/// Most fixed walls [`MoverCells`] lists (building costs cells × walls box tests per world).
+const MOVER_WALLS: usize = 64;
+
+/// For the creatures' moves: a grid over the fixed walls, each cell listing (in wall order)
+/// the fixed walls whose box meets the cell's box grown by `travel + radius` and a margin, so
+/// the walls a body of `radius` starting in the cell can reach when it moves at most `travel`
+/// (a creature's largest move), without filtering on every move. The margin, 10⁻⁶ of the
+/// coordinates' scale, covers every rounding: of the start's cell index, of the cell's box,
+/// and of the end point and its box that `plan_move` computes (a few ε of the scale).
+///
+/// The lists hold more walls than [`StaticIndex::blocking_near`] gives, which changes no
+/// result: `plan_move`'s first verdict is `wall_blocks` over every listed wall, false for a
+/// wall its box rejection rejects, and its shortlists (the single-wall loop, the prepared
+/// search, the shortlist) keep only the walls `wall_may_block` keeps, so an extra wall,
+/// which cannot be reached, is in none of them. Doors are not in the lists: while a door
+/// stands, the grid filters as before.
+#[derive(Debug, Clone)]
+struct MoverCells {
+    origin: Vec2,
+    inv_cell: f64,
+    nx: usize,
+    /// `nx` and `ny` as floats, for the range test of [`MoverCells::cell_of`].
+    nx_f: f64,
+    ny_f: f64,
+    /// The largest move the lists cover.
+    travel: f64,
+    /// Cell k's walls are `walls[start[k]..start[k + 1]]`; cells are numbered row by row.
+    start: Vec<u32>,
+    walls: Vec<Segment>,
+}
+
+impl MoverCells {
+    /// The lists for `fixed` (every fixed wall with its box), moves of at most `travel` and
+    /// bodies of `radius`. `None` (the grid filters every move) when there are no fixed
+    /// walls or anything is not finite.
+    fn build(fixed: &[BoxedSegment], travel: f64, radius: f64) -> Option<MoverCells> {
+        // A NaN radius makes `plan_move` keep every wall (its box tests all fail), so the
+        // lists must then be the grid's; a negative one reaches less than a radius of 0.
+        let reach = travel + radius.max(0.0);
+        if fixed.is_empty() || fixed.len() > MOVER_WALLS || radius.is_nan() || !reach.is_finite() {
+            return None;
+        }
+        let mut lo = fixed[0].lo;
+        let mut hi = fixed[0].hi;
+        for w in fixed {
+            lo = lo.min(w.lo);
+            hi = hi.max(w.hi);
+        }
+        if !(lo.is_finite() && hi.is_finite()) {
+            return None;
+        }
+        let scale = lo.abs().max(hi.abs()).max_element() + reach;
+        let margin = 1e-6 * (1.0 + scale);
+        let grow = reach + margin;
+        // Starts farther than `grow` from every wall's box reach no wall; they fall outside
+        // the grid and are filtered by the index.
+        let origin = lo - grow;
+        let extent = (hi + grow) - origin;
+        let cell = (extent.max_element() / MOVER_CELLS as f64)
+            .max(reach)
+            .max(margin);
+        let inv_cell = 1.0 / cell;
+        let count = |e: f64| ((e * inv_cell).ceil() as usize).clamp(1, MOVER_CELLS);
+        let (nx, ny) = (count(extent.x), count(extent.y));
+        let mut start = Vec::with_capacity(nx * ny + 1);
+        let mut walls = Vec::new();
+        start.push(0);
+        for y in 0..ny {
+            for x in 0..nx {
+                let c_lo = origin + Vec2::new(x as f64, y as f64) * cell - grow;
+                let c_hi = origin + Vec2::new((x + 1) as f64, (y + 1) as f64) * cell + grow;
+                walls.extend(
+                    fixed
+                        .iter()
+                        .filter(|w| w.may_meet(c_lo, c_hi))
+                        .map(|w| w.segment),
+                );
+                start.push(walls.len() as u32);
+            }
+        }
+        Some(MoverCells {
+            origin,
+            inv_cell,
+            nx,
+            nx_f: nx as f64,
+            ny_f: ny as f64,
+            travel,
+            start,
+            walls,
+        })
+    }
+
+    /// The cell `p` lies in, `None` outside the grid (or not finite).
+    #[inline]
+    fn cell_of(&self, p: Vec2) -> Option<usize> {
+        let fx = (p.x - self.origin.x) * self.inv_cell;
+        let fy = (p.y - self.origin.y) * self.inv_cell;
+        if fx >= 0.0 && fy >= 0.0 && fx < self.nx_f && fy < self.ny_f {
+            Some(fy as usize * self.nx + fx as usize)
+        } else {
+            None
+        }
+    }
+
+    /// Cell `k`'s walls.
+    #[inline]
+    fn walls(&self, k: usize) -> &[Segment] {
+        &self.walls[self.start[k] as usize..self.start[k + 1] as usize]
     }
 }

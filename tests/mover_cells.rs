@@ -1,0 +1,187 @@
+//! The per-cell wall lists of the creatures' moves (`MoverCells` in `sim::world`) change no
+//! result: worlds of few walls and no doors (where every move takes its walls from a cell's
+//! list) run side by side with the plain loops over every wall (`World::set_brute_force`) and
+//! must agree to the bit after every tick. The controllers often drive at full ±max_rpt (the
+//! largest move the lists cover), creatures are dropped anywhere (outside the arena and the
+//! grid too) and against walls, where they push tick after tick.
+
+mod sim_common;
+use berry_evolve::geometry::Vec2;
+use berry_evolve::sim::controller::{Controller, MotorCommand};
+use berry_evolve::sim::motion::Pose;
+use berry_evolve::sim::World;
+use std::fmt::Write;
+
+/// splitmix64, the test's own seeded generator.
+struct Mix(u64);
+
+impl Mix {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    fn uniform(&mut self, a: f64, b: f64) -> f64 {
+        a + (b - a) * ((self.next() >> 11) as f64 / (1u64 << 53) as f64)
+    }
+
+    fn chance(&mut self, p: f64) -> bool {
+        self.uniform(0.0, 1.0) < p
+    }
+
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n
+    }
+}
+
+/// Full speed forwards or backwards most of the time, else random signals, some beyond
+/// ±max_rpt (clamped by the world).
+struct Pusher(Mix);
+
+impl Controller for Pusher {
+    fn act(&mut self, _: &[f64]) -> MotorCommand {
+        let r = &mut self.0;
+        let mut signal = || match r.below(6) {
+            0 => 5.0,
+            1 => -5.0,
+            2 => r.uniform(-2.0, 2.0),
+            _ => 1.0,
+        };
+        let (left, right) = (signal(), signal());
+        MotorCommand {
+            left,
+            right,
+            eat: 0.0,
+        }
+    }
+}
+
+/// Few walls (at most 64 fixed ones with the boundary), some long or diagonal, no doors.
+fn random_world(seed: u64) -> String {
+    let r = &mut Mix(seed);
+    let (w, h) = (r.uniform(40.0, 900.0), r.uniform(40.0, 900.0));
+    let mut t = String::new();
+    writeln!(t, "[world]\narena = [{w:.3}, {h:.3}]").unwrap();
+    writeln!(t, "slippery_walls = {}", r.chance(0.3)).unwrap();
+    writeln!(t, "boundary_walls = {}", r.chance(0.8)).unwrap();
+    let walls = 1 + r.below(56);
+    for _ in 0..walls {
+        let (x0, y0) = (r.uniform(0.0, w), r.uniform(0.0, h));
+        let len = if r.chance(0.15) {
+            r.uniform(0.3, 1.0) * w.max(h)
+        } else {
+            r.uniform(2.0, 50.0)
+        };
+        let (dx, dy) = match r.below(3) {
+            0 => (len, 0.0),
+            1 => (0.0, len),
+            _ => {
+                let a = r.uniform(0.0, std::f64::consts::TAU);
+                (len * libm::cos(a), len * libm::sin(a))
+            }
+        };
+        let (x1, y1) = ((x0 + dx).clamp(0.0, w), (y0 + dy).clamp(0.0, h));
+        if (x1 - x0).abs() + (y1 - y0).abs() < 1.0 {
+            continue;
+        }
+        writeln!(
+            t,
+            "[[world.walls]]\nfrom = [{x0:.3}, {y0:.3}]\nto = [{x1:.3}, {y1:.3}]"
+        )
+        .unwrap();
+    }
+    if r.chance(0.4) {
+        writeln!(t, "[world.wanderers]\ncount = {}", 1 + r.below(3)).unwrap();
+    }
+    if r.chance(0.4) {
+        writeln!(
+            t,
+            "[[world.predators]]\nstrategy = \"wander\"\neffect = \"shock\""
+        )
+        .unwrap();
+    }
+    writeln!(
+        t,
+        "[creature]\neating = \"contact\"\nmax_rpt = {:.3}",
+        if r.chance(0.3) {
+            r.uniform(0.05, 3.0)
+        } else {
+            1.0
+        }
+    )
+    .unwrap();
+    t
+}
+
+fn state(w: &World) -> String {
+    let mut s = format!("{:?}\n", w.creatures());
+    writeln!(s, "{:?}\n{:?}", w.actors(), w.things()).unwrap();
+    s
+}
+
+#[test]
+fn mover_cells_and_brute_force_agree_to_the_bit() {
+    let mut checked = 0;
+    for seed in 0..60u64 {
+        let text = random_world(seed);
+        let setup = sim_common::setup(&text);
+        let creatures = 8;
+        let build = || {
+            World::new(
+                &setup.world,
+                &setup.creature,
+                creatures,
+                sim_common::rng(seed),
+            )
+        };
+        let (mut cells, mut brute) = match (build(), build()) {
+            (Ok(a), Ok(b)) => (a, b),
+            _ => continue,
+        };
+        checked += 1;
+        brute.set_brute_force(true);
+        let mut cc: Vec<Pusher> = (0..creatures as u64)
+            .map(|i| Pusher(Mix(seed * 100 + i)))
+            .collect();
+        let mut cb: Vec<Pusher> = (0..creatures as u64)
+            .map(|i| Pusher(Mix(seed * 100 + i)))
+            .collect();
+        let mut jumps = Mix(seed ^ 0x5eed);
+        let [w, h] = cells.arena();
+        for tick in 0..250 {
+            if tick % 40 == 39 {
+                for i in 0..creatures {
+                    let position = if jumps.chance(0.3) {
+                        // Far outside, beyond the cells.
+                        Vec2::new(
+                            jumps.uniform(-2.0 * w, 3.0 * w),
+                            jumps.uniform(-2.0 * h, 3.0 * h),
+                        )
+                    } else {
+                        Vec2::new(
+                            jumps.uniform(-0.1 * w, 1.1 * w),
+                            jumps.uniform(-0.1 * h, 1.1 * h),
+                        )
+                    };
+                    let pose = Pose {
+                        position,
+                        heading: sim_common::heading(jumps.uniform(0.0, 360.0)),
+                    };
+                    cells.set_pose(i, pose);
+                    brute.set_pose(i, pose);
+                }
+            }
+            cells.step(&mut cc);
+            brute.step(&mut cb);
+            let (a, b) = (state(&cells), state(&brute));
+            assert!(
+                a == b,
+                "seed {seed}, tick {tick}: the cells and the plain loops differ\n{text}"
+            );
+        }
+    }
+    assert!(checked > 30, "{checked}");
+}
