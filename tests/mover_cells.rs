@@ -6,36 +6,13 @@
 //! grid too) and against walls, where they push tick after tick.
 
 mod sim_common;
+
 use berry_evolve::geometry::Vec2;
 use berry_evolve::sim::controller::{Controller, MotorCommand};
 use berry_evolve::sim::motion::Pose;
 use berry_evolve::sim::World;
+use sim_common::Mix;
 use std::fmt::Write;
-
-/// splitmix64, the test's own seeded generator.
-struct Mix(u64);
-
-impl Mix {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    fn uniform(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * ((self.next() >> 11) as f64 / (1u64 << 53) as f64)
-    }
-
-    fn chance(&mut self, p: f64) -> bool {
-        self.uniform(0.0, 1.0) < p
-    }
-
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-}
 
 /// Full speed forwards or backwards most of the time, else random signals, some beyond
 /// ±max_rpt (clamped by the world).

@@ -242,14 +242,9 @@ pub fn run_trial(
     group: u64,
     trial: TrialIndex,
 ) -> Result<Vec<TrialOutcome>, EvaluationError> {
-    let mut controllers: Vec<CheckedController<BrainController>> =
-        controllers(experiment, topology, genomes, group)?
-            .into_iter()
-            .map(|inner| CheckedController {
-                inner,
-                non_finite: false,
-            })
-            .collect();
+    // The brains first, then the world, so that a bad genome is reported before a world
+    // that cannot be built, as everywhere.
+    let mut controllers = checked_controllers(experiment, topology, genomes, group)?;
     let world = trial_world(experiment, genomes.len(), generation, group, trial)?;
     Ok(live_trial(experiment, world, &mut controllers))
 }
@@ -262,15 +257,24 @@ fn run_trial_in(
     group: u64,
     world: World,
 ) -> Result<Vec<TrialOutcome>, EvaluationError> {
-    let mut controllers: Vec<CheckedController<BrainController>> =
-        controllers(experiment, topology, genomes, group)?
-            .into_iter()
-            .map(|inner| CheckedController {
-                inner,
-                non_finite: false,
-            })
-            .collect();
+    let mut controllers = checked_controllers(experiment, topology, genomes, group)?;
     Ok(live_trial(experiment, world, &mut controllers))
+}
+
+/// One [`CheckedController`] per genome of group `group`.
+fn checked_controllers(
+    experiment: &Experiment,
+    topology: &Topology,
+    genomes: &[Genome],
+    group: u64,
+) -> Result<Vec<CheckedController<BrainController>>, EvaluationError> {
+    Ok(controllers(experiment, topology, genomes, group)?
+        .into_iter()
+        .map(|inner| CheckedController {
+            inner,
+            non_finite: false,
+        })
+        .collect())
 }
 
 /// The trial worlds of generation `generation`, built once, when every group lives the same

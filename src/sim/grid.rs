@@ -94,6 +94,25 @@ struct Geometry {
 }
 
 impl Geometry {
+    /// Square cells of side `cell` from the origin over a `w` × `h` arena, the side doubled
+    /// until there are at most `most` cells.
+    fn covering(w: f64, h: f64, mut cell: f64, most: usize) -> Geometry {
+        let side = |len: f64, cell: f64| ((len / cell).ceil() as usize).max(1);
+        while side(w, cell) * side(h, cell) > most {
+            cell *= 2.0;
+        }
+        let (nx, ny) = (side(w, cell), side(h, cell));
+        Geometry {
+            origin: Vec2::ZERO,
+            inv_cell: 1.0 / cell,
+            cell,
+            nx,
+            ny,
+            last_x: (nx - 1) as f64,
+            last_y: (ny - 1) as f64,
+        }
+    }
+
     /// Column (or row) of coordinate `t` measured from the origin, clamped to `0..n`. NaN maps
     /// to 0 (queries with NaN bounds take every cell, see [`Geometry::cells`]). Truncation is
     /// the floor here since negative values map to 0 anyway (and `floor` is a library call
@@ -283,26 +302,13 @@ impl StaticIndex {
         if !(cell.is_finite() && cell > 0.0) {
             cell = extent;
         }
-        let side = |len: f64, cell: f64| ((len / cell).ceil() as usize).max(1);
         // A grid is built for every trial world, so its cells must not outnumber what it
         // holds by much: building costs a few instructions per cell, and a world without
         // smell (cells as narrow as the whisker reach) would otherwise spend more building
         // its grid than living its trial.
         let items = food.len() + aversives.len() + fixed_felt + fixed_opaque;
         let most = (CELLS_PER_ITEM * items).clamp(MIN_CELLS, MAX_CELLS);
-        while side(w, cell) * side(h, cell) > most {
-            cell *= 2.0;
-        }
-        let (nx, ny) = (side(w, cell), side(h, cell));
-        let geometry = Geometry {
-            origin: Vec2::ZERO,
-            inv_cell: 1.0 / cell,
-            cell,
-            nx,
-            ny,
-            last_x: (nx - 1) as f64,
-            last_y: (ny - 1) as f64,
-        };
+        let geometry = Geometry::covering(w, h, cell, most);
         let slack = 1e-6 * (1.0 + extent + smell_reach + reach);
         let cells = geometry.nx * geometry.ny;
         let points = |positions: &mut dyn Iterator<Item = Vec2>| {
@@ -883,23 +889,12 @@ fn smell_grid(
     }
     // Narrower cells hand each receptor fewer sources but cost more to build (each source
     // is listed in about (2θ / cell + 1)² cells, with its walls sorted out for each).
-    let mut cell = reach / SMELL_CELLS_PER_RANGE;
-    let side = |len: f64, cell: f64| ((len / cell).ceil() as usize).max(1);
+    let cell = reach / SMELL_CELLS_PER_RANGE;
     let most = (CELLS_PER_ITEM * sources.len()).clamp(MIN_CELLS, MAX_CELLS);
-    while side(w, cell) * side(h, cell) > most {
-        cell *= 2.0;
-    }
-    let (nx, ny) = (side(w, cell), side(h, cell));
+    let geometry = Geometry::covering(w, h, cell, most);
+    let (nx, ny) = (geometry.nx, geometry.ny);
     let mut grid = SmellGrid {
-        geometry: Geometry {
-            origin: Vec2::ZERO,
-            inv_cell: 1.0 / cell,
-            cell,
-            nx,
-            ny,
-            last_x: (nx - 1) as f64,
-            last_y: (ny - 1) as f64,
-        },
+        geometry,
         start: vec![0; nx * ny + 1],
         sources: Vec::new(),
         walls: Vec::new(),
