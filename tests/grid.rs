@@ -282,20 +282,10 @@ fn grid_and_brute_force_agree_to_the_bit_on_random_worlds() {
     let mut checked = 0;
     for seed in 0..40u64 {
         let text = random_world(seed);
-        let setup = sim_common::setup(&text);
         let creatures = 12;
-        let build = || {
-            World::new(
-                &setup.world,
-                &setup.creature,
-                creatures,
-                sim_common::rng(seed),
-            )
-        };
-        let (mut grid, mut brute) = match (build(), build()) {
-            (Ok(a), Ok(b)) => (a, b),
-            // A random world may leave no room for its creatures; the next seed will do.
-            _ => continue,
+        // A random world may leave no room for its creatures; the next seed will do.
+        let Some((mut grid, mut brute)) = sim_common::twin_worlds(&text, creatures, seed) else {
+            continue;
         };
         checked += 1;
         brute.set_brute_force(true);

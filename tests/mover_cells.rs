@@ -104,19 +104,9 @@ fn mover_cells_and_brute_force_agree_to_the_bit() {
     let mut checked = 0;
     for seed in 0..60u64 {
         let text = random_world(seed);
-        let setup = sim_common::setup(&text);
         let creatures = 8;
-        let build = || {
-            World::new(
-                &setup.world,
-                &setup.creature,
-                creatures,
-                sim_common::rng(seed),
-            )
-        };
-        let (mut cells, mut brute) = match (build(), build()) {
-            (Ok(a), Ok(b)) => (a, b),
-            _ => continue,
+        let Some((mut cells, mut brute)) = sim_common::twin_worlds(&text, creatures, seed) else {
+            continue;
         };
         checked += 1;
         brute.set_brute_force(true);

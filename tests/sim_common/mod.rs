@@ -112,3 +112,15 @@ impl Mix {
         self.next() % n
     }
 }
+
+/// Two identical worlds from the `[world]`/`[creature]` text `text`, with `creatures`
+/// creatures placed from `seed`'s stream, to run side by side (one of them switched to another
+/// code path); `None` when a random world leaves no room for its creatures.
+pub fn twin_worlds(text: &str, creatures: usize, seed: u64) -> Option<(World, World)> {
+    let setup = setup(text);
+    let build = || World::new(&setup.world, &setup.creature, creatures, rng(seed));
+    match (build(), build()) {
+        (Ok(a), Ok(b)) => Some((a, b)),
+        _ => None,
+    }
+}
