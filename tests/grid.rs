@@ -64,24 +64,9 @@ fn random_world(seed: u64) -> String {
     let many = r.chance(0.5);
     let walls = 10 + r.below(if many { 80 } else { 20 });
     for _ in 0..walls {
-        let (x0, y0) = point(r);
-        let len = if r.chance(0.1) {
-            r.uniform(0.3, 1.0) * w.max(h)
-        } else {
-            r.uniform(3.0, 60.0)
-        };
-        let (dx, dy) = match r.below(3) {
-            0 => (len, 0.0),
-            1 => (0.0, len),
-            _ => {
-                let a = r.uniform(0.0, std::f64::consts::TAU);
-                (len * libm::cos(a), len * libm::sin(a))
-            }
-        };
-        let (x1, y1) = ((x0 + dx).clamp(0.0, w), (y0 + dy).clamp(0.0, h));
-        if (x1 - x0).abs() + (y1 - y0).abs() < 1.0 {
+        let Some([x0, y0, x1, y1]) = sim_common::random_wall(r, (w, h), 0.1, (3.0, 60.0)) else {
             continue;
-        }
+        };
         writeln!(
             t,
             "[[world.walls]]\nfrom = [{x0:.3}, {y0:.3}]\nto = [{x1:.3}, {y1:.3}]\nopaque = {}",

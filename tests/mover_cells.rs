@@ -46,24 +46,9 @@ fn random_world(seed: u64) -> String {
     writeln!(t, "boundary_walls = {}", r.chance(0.8)).unwrap();
     let walls = 1 + r.below(56);
     for _ in 0..walls {
-        let (x0, y0) = (r.uniform(0.0, w), r.uniform(0.0, h));
-        let len = if r.chance(0.15) {
-            r.uniform(0.3, 1.0) * w.max(h)
-        } else {
-            r.uniform(2.0, 50.0)
-        };
-        let (dx, dy) = match r.below(3) {
-            0 => (len, 0.0),
-            1 => (0.0, len),
-            _ => {
-                let a = r.uniform(0.0, std::f64::consts::TAU);
-                (len * libm::cos(a), len * libm::sin(a))
-            }
-        };
-        let (x1, y1) = ((x0 + dx).clamp(0.0, w), (y0 + dy).clamp(0.0, h));
-        if (x1 - x0).abs() + (y1 - y0).abs() < 1.0 {
+        let Some([x0, y0, x1, y1]) = sim_common::random_wall(r, (w, h), 0.15, (2.0, 50.0)) else {
             continue;
-        }
+        };
         writeln!(
             t,
             "[[world.walls]]\nfrom = [{x0:.3}, {y0:.3}]\nto = [{x1:.3}, {y1:.3}]"

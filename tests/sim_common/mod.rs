@@ -124,3 +124,30 @@ pub fn twin_worlds(text: &str, creatures: usize, seed: u64) -> Option<(World, Wo
         _ => None,
     }
 }
+
+/// A random wall `[x0, y0, x1, y1]` inside a `w` × `h` arena: long (30–100% of the larger
+/// side) with probability `long`, else `short.0`–`short.1` LU; horizontal, vertical or at any
+/// angle, clipped to the arena. `None` when clipping left it under 1 LU.
+pub fn random_wall(
+    r: &mut Mix,
+    (w, h): (f64, f64),
+    long: f64,
+    short: (f64, f64),
+) -> Option<[f64; 4]> {
+    let (x0, y0) = (r.uniform(0.0, w), r.uniform(0.0, h));
+    let len = if r.chance(long) {
+        r.uniform(0.3, 1.0) * w.max(h)
+    } else {
+        r.uniform(short.0, short.1)
+    };
+    let (dx, dy) = match r.below(3) {
+        0 => (len, 0.0),
+        1 => (0.0, len),
+        _ => {
+            let a = r.uniform(0.0, std::f64::consts::TAU);
+            (len * libm::cos(a), len * libm::sin(a))
+        }
+    };
+    let (x1, y1) = ((x0 + dx).clamp(0.0, w), (y0 + dy).clamp(0.0, h));
+    ((x1 - x0).abs() + (y1 - y0).abs() >= 1.0).then_some([x0, y0, x1, y1])
+}
