@@ -397,6 +397,23 @@ mod tests {
     use crate::seed::{stream, uniform, Generation, IndividualId, Purpose, Seed, TrialIndex};
     use crate::sim::spec::{AversiveKind, FoodKind};
 
+    /// `n` food objects of radius up to `max_radius` and height up to 12 at random places in
+    /// a 100 × 100 square, alternately pure green and green-blue.
+    fn random_food(rng: &mut crate::seed::Rng, n: usize, max_radius: f64) -> Vec<Food> {
+        (0..n)
+            .map(|k| {
+                let kind = FoodKind {
+                    radius: uniform(rng, 0.0, max_radius),
+                    colour: Some([0.0, 1.0, (k % 2) as f64]),
+                    height: Some(uniform(rng, 0.0, 12.0)),
+                    ..FoodKind::default()
+                };
+                let p = Vec2::new(uniform(rng, 0.0, 100.0), uniform(rng, 0.0, 100.0));
+                Food::new(0, &kind, p)
+            })
+            .collect()
+    }
+
     /// Renders `scene` with and without culling: whether the retinas are the same, and how
     /// many pure green (food) pixels the culled one shows.
     fn render_both_ways(
@@ -450,18 +467,7 @@ mod tests {
                     height: uniform(&mut rng, 0.0, 20.0),
                 })
                 .collect();
-            let food: Vec<Food> = (0..30)
-                .map(|k| {
-                    let kind = FoodKind {
-                        radius: uniform(&mut rng, 0.0, 8.0),
-                        colour: Some([0.0, 1.0, (k % 2) as f64]),
-                        height: Some(uniform(&mut rng, 0.0, 12.0)),
-                        ..FoodKind::default()
-                    };
-                    let p = Vec2::new(uniform(&mut rng, 0.0, 100.0), uniform(&mut rng, 0.0, 100.0));
-                    Food::new(0, &kind, p)
-                })
-                .collect();
+            let food = random_food(&mut rng, 30, 8.0);
             let aversives: Vec<Aversive> = (0..10)
                 .map(|_| {
                     let kind = AversiveKind {
@@ -548,18 +554,7 @@ mod tests {
             let position = Vec2::new(uniform(&mut rng, 20.0, 80.0), uniform(&mut rng, 20.0, 80.0));
             let a = uniform(&mut rng, -4.0, 4.0);
             let heading = Vec2::new(libm::cos(a), libm::sin(a));
-            let mut food: Vec<Food> = (0..25)
-                .map(|k| {
-                    let kind = FoodKind {
-                        radius: uniform(&mut rng, 0.0, 6.0),
-                        colour: Some([0.0, 1.0, (k % 2) as f64]),
-                        height: Some(uniform(&mut rng, 0.0, 12.0)),
-                        ..FoodKind::default()
-                    };
-                    let p = Vec2::new(uniform(&mut rng, 0.0, 100.0), uniform(&mut rng, 0.0, 100.0));
-                    Food::new(0, &kind, p)
-                })
-                .collect();
+            let mut food = random_food(&mut rng, 25, 6.0);
             // Around the eye: exactly at the range (centre at range + radius), the eye
             // inside, on the rim and just outside.
             for (k, (distance, radius)) in [
