@@ -47,6 +47,7 @@ use crate::geometry::{point_segment_distance_squared, Segment, Vec2};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::smell::{Shade, Smell};
 use crate::sim::wall::{BoxedSegment, Walls};
+use crate::sim::whisker_cells::WhiskerCells;
 
 /// Up to this many fixed walls, a box query filters the whole wall list (a few comparisons
 /// per wall) rather than visiting cells and deduplicating: cheaper for small worlds.
@@ -252,6 +253,8 @@ pub struct StaticIndex {
     slack: f64,
     food_count: usize,
     aversive_count: usize,
+    /// The fixed felt walls and food objects each whisker query may touch, per cell.
+    whisker: Option<WhiskerCells>,
 }
 
 /// The largest finite smell range of `smells`, with the indices of the smelly ones of
@@ -344,6 +347,7 @@ impl StaticIndex {
             slack,
             food_count,
             aversive_count: aversives.len(),
+            whisker: WhiskerCells::build(arena, reach, &felt[..fixed_felt], food),
         };
         // The smelly objects of finite range, in id order (food, then aversive objects).
         let finite = |id: usize, p: Vec2, s: &Smell| {
@@ -420,6 +424,13 @@ impl StaticIndex {
     #[inline]
     pub fn fixed_opaque(&self) -> usize {
         self.fixed_opaque
+    }
+
+    /// The per-cell lists of the fixed felt walls and food objects for the whiskers and food
+    /// detectors (`None` when the world has none, see [`WhiskerCells::build`]).
+    #[inline]
+    pub fn whisker_cells(&self) -> Option<&WhiskerCells> {
+        self.whisker.as_ref()
     }
 
     /// The largest finite smell range of the food and aversive objects (0 when none).

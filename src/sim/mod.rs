@@ -6,7 +6,8 @@
 //! - [`world`]: the running world and the tick loop of §9.
 //! - [`wall`], [`food`], [`smell`]: the things in the world.
 //! - [`sensors`]: whiskers, smell sensors, food detectors, observation layout.
-//! - [`grid`]: the spatial index of food, aversive objects and fixed walls the senses query.
+//! - [`grid`]: the spatial index of food, aversive objects and fixed walls the senses query;
+//!   [`whisker_cells`]: the walls and food each cell's whiskers and food detectors may touch.
 //! - [`gadgets`]: doors, teleporters, wanderers and predators (§4.5.1, §4.5.2, §4.7, §4.8).
 //! - [`area`]: areas and distal landmarks; [`eye`]: the retina; [`noise`]: sensor noise.
 //! - [`motion`]: the body's movement (§8).
@@ -29,6 +30,7 @@ pub mod sensors;
 pub mod smell;
 pub mod spec;
 pub mod wall;
+pub mod whisker_cells;
 pub mod world;
 
 pub use placement::PlacementError;

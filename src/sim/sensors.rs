@@ -271,8 +271,15 @@ impl Surroundings<'_> {
             }
             touch[0] && touch[1]
         };
-        let _ = index.any_fixed_wall(ulo, uhi, |k| wall(&self.walls[k]))
-            || self.walls[index.fixed_felt()..].iter().any(&mut wall);
+        // The cell's shortlists when the query passes their guard, else the index's.
+        let (position, radius) = (from, body.radius);
+        let lists = index
+            .whisker_cells()
+            .and_then(|c| c.lists(position, ulo, uhi, radius));
+        let _ = match lists {
+            Some((walls, _)) => walls.iter().any(|&k| wall(&self.walls[k as usize])),
+            None => index.any_fixed_wall(ulo, uhi, |k| wall(&self.walls[k])),
+        } || self.walls[index.fixed_felt()..].iter().any(&mut wall);
         let circle = |touch: &mut [bool; 2], centre: Vec2, radius: f64| {
             for i in 0..2 {
                 if !touch[i] && segment_touches_circle(&whiskers[i], centre, radius) {
@@ -290,24 +297,28 @@ impl Surroundings<'_> {
                 a.radius > 0.0 && circle(&mut touch, a.position, a.radius)
             });
         // The food pass serves the detectors too, so it runs whatever the whiskers found.
-        let (position, radius) = (from, body.radius);
         let mut detected = [false; 4];
-        index.any_food(
-            ulo.min(position - radius),
-            uhi.max(position + radius),
-            |k| {
-                let f = &self.food[k];
-                if f.radius > 0.0 && !(touch[0] && touch[1]) {
-                    circle(&mut touch, f.position, f.radius);
+        let mut food = |k: usize| {
+            let f = &self.food[k];
+            if f.radius > 0.0 && !(touch[0] && touch[1]) {
+                circle(&mut touch, f.position, f.radius);
+            }
+            if circles_touch(position, radius, f.position, f.radius) {
+                for (t, d) in detected.iter_mut().enumerate() {
+                    *d |= f.holds(t);
                 }
-                if circles_touch(position, radius, f.position, f.radius) {
-                    for (t, d) in detected.iter_mut().enumerate() {
-                        *d |= f.holds(t);
-                    }
-                }
-                false
-            },
-        );
+            }
+            false
+        };
+        match lists {
+            Some((_, listed)) => {
+                let _ = listed.iter().any(|&k| food(k as usize));
+            }
+            None => {
+                let (lo, hi) = (ulo.min(position - radius), uhi.max(position + radius));
+                index.any_food(lo, hi, food);
+            }
+        }
         let _ = touch[0] && touch[1]
             || self.things.iter().enumerate().any(|(k, t)| {
                 k != self.skip_thing

@@ -1,0 +1,189 @@
+//! Per-cell shortlists for the whiskers and the food detectors (§5.2, §7.3): a coarse grid
+//! over the arena whose cells list, in index order, the fixed felt walls and the food objects
+//! that a body whose centre lies in the cell can feel with a whisker or touch with its body.
+//! Built once per world; a creature's query is one cell lookup and two slice reads, where the
+//! [`crate::sim::grid::StaticIndex`] filtered every fixed wall (small worlds) or visited and
+//! clamped a box of cells.
+//!
+//! # Why a longer list changes no verdict
+//! The whisker and detector answers are "or"s over objects: a whisker touches when any wall
+//! or circle passes its exact test, a detector reads 1 when any touching food object holds
+//! its substance. Neither depends on the order of the objects tested or on extra objects that
+//! fail the test, so testing a superset of the objects that can pass, with the same exact
+//! tests, gives the same bits. A cell's list is such a superset for any query that passes
+//! [`WhiskerCells::lists`]' guard (the guard is checked at every query; a query that fails
+//! it uses the index as before):
+//!
+//! - The guard: both whisker boxes lie within `reach` of the centre `p` on each axis
+//!   (measured on the boxes the caller computed, whatever their rounding or NaN), and
+//!   `0 ≤ radius ≤ reach` for the body.
+//! - A wall passes the whisker test only if its box meets the whisker's box (the test starts
+//!   with that box test), so it meets `[p − reach, p + reach]`.
+//! - A circle of radius r at c touches a whisker only if c lies in the whisker's box widened
+//!   by r (the eq. 2–3 rejection of `circle_touches_segment`), so in `p ± (reach + r)`.
+//! - The body (radius `radius` ≤ `reach`) touches a food object of radius r ≥ 0 only if
+//!   `|c − p|² ≤ (radius + r)²`, so c lies in `p ± (reach + r)` too.
+//! - `p` maps to cell (x, y) only if it lies in that cell's box up to the rounding of the
+//!   map. A cell lists every wall whose box meets its box grown by `reach + margin`, and
+//!   every food object whose centre lies in its box grown by `reach + r + margin`, where the
+//!   margin, 10⁻⁶ of the coordinates' scale, is far above the few ε of every rounding above
+//!   (the map to the cell, the cell's box, the guard's and the tests' differences).
+//!
+//! Doors open and close and stay out of the lists; so do the aversive objects, creatures and
+//! things, which the caller tests as before. A world with a non-finite or negative size,
+//! reach, wall or food object gets no lists (every query goes to the index).
+
+use crate::geometry::Vec2;
+use crate::sim::food::Food;
+use crate::sim::wall::BoxedSegment;
+
+/// Most cells along each side. Finer cells hand a query fewer walls and food objects but
+/// cost more to build, once per trial world.
+const CELLS_PER_SIDE: usize = 16;
+
+/// The shortlists of one world (see the module docs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct WhiskerCells {
+    cell: f64,
+    inv_cell: f64,
+    nx: usize,
+    /// `nx` and `ny` as floats, for the range test of the cell lookup.
+    nx_f: f64,
+    ny_f: f64,
+    /// How far whiskers and body may extend from the centre for the lists to hold.
+    reach: f64,
+    /// Cell k lists the walls `items[cells[k][0]..cells[k][1]]` then the food objects
+    /// `items[cells[k][1]..cells[k + 1][0]]`; cells are numbered row by row.
+    cells: Vec<[u32; 2]>,
+    items: Vec<u32>,
+}
+
+impl WhiskerCells {
+    /// The lists over an `arena` (from the origin) for the fixed felt walls `walls` and the
+    /// food objects `food`, for whiskers and bodies reaching at most `reach` from the centre.
+    /// `None` when anything is not finite, or a size or radius is negative.
+    pub fn build(
+        arena: [f64; 2],
+        reach: f64,
+        walls: &[BoxedSegment],
+        food: &[Food],
+    ) -> Option<WhiskerCells> {
+        let [w, h] = arena;
+        let sane = |v: f64| v.is_finite() && v >= 0.0;
+        if !(sane(w) && sane(h) && w > 0.0 && h > 0.0 && sane(reach)) {
+            return None;
+        }
+        let mut scale = w.max(h);
+        for wall in walls {
+            if !(wall.lo.is_finite() && wall.hi.is_finite()) {
+                return None;
+            }
+            scale = scale.max(wall.lo.abs().max(wall.hi.abs()).max_element());
+        }
+        let mut food_radius: f64 = 0.0;
+        for f in food {
+            if !(f.position.is_finite() && sane(f.radius)) {
+                return None;
+            }
+            scale = scale.max(f.position.abs().max_element());
+            food_radius = food_radius.max(f.radius);
+        }
+        let margin = 1e-6 * (1.0 + scale + reach + food_radius);
+        let cell = (w.max(h) / CELLS_PER_SIDE as f64).max(reach).max(margin);
+        let inv_cell = 1.0 / cell;
+        let count = |e: f64| ((e * inv_cell).ceil() as usize).clamp(1, CELLS_PER_SIDE);
+        let (nx, ny) = (count(w), count(h));
+        let n = nx * ny;
+        // Each object is tested only against the cells around its box grown by `g` (two
+        // cells of slack on every side cover the rounding of these index bounds), with the
+        // test that defines the lists: its box meets the cell's box grown by `g`.
+        let span = |lo: f64, hi: f64, g: f64, n: usize| {
+            let first = ((lo - g) * inv_cell).floor() - 2.0;
+            let last = ((hi + g) * inv_cell).floor() + 2.0;
+            let clamp = |v: f64| v.clamp(0.0, (n - 1) as f64) as usize;
+            clamp(first)..=clamp(last)
+        };
+        let mut pairs: Vec<(u32, u32)> = Vec::new();
+        let mut counts = vec![[0u32; 2]; n];
+        let mut list = |kind: usize, k: usize, lo: Vec2, hi: Vec2, g: f64| {
+            for y in span(lo.y, hi.y, g, ny) {
+                for x in span(lo.x, hi.x, g, nx) {
+                    let c_lo = Vec2::new(x as f64, y as f64) * cell - g;
+                    let c_hi = Vec2::new((x + 1) as f64, (y + 1) as f64) * cell + g;
+                    let meets = !(hi.x < c_lo.x || c_hi.x < lo.x || hi.y < c_lo.y || c_hi.y < lo.y);
+                    if meets {
+                        let c = y * nx + x;
+                        counts[c][kind] += 1;
+                        pairs.push((c as u32, k as u32));
+                    }
+                }
+            }
+        };
+        for (k, wall) in walls.iter().enumerate() {
+            list(0, k, wall.lo, wall.hi, reach + margin);
+        }
+        for (k, f) in food.iter().enumerate() {
+            list(1, k, f.position, f.position, reach + f.radius + margin);
+        }
+        let walls_listed: usize = counts.iter().map(|c| c[0] as usize).sum();
+        // A stable counting sort by cell: each list keeps the increasing index order.
+        let mut cells = vec![[0u32; 2]; n + 1];
+        let mut at = 0u32;
+        for (cell, count) in cells.iter_mut().zip(counts.iter_mut()) {
+            let [walls_in, food_in] = *count;
+            *cell = [at, at + walls_in];
+            // From here on `count` holds the next free slot of each list.
+            *count = [at, at + walls_in];
+            at += walls_in + food_in;
+        }
+        cells[n] = [at, at];
+        let mut items = vec![0u32; pairs.len()];
+        for (j, &(c, k)) in pairs.iter().enumerate() {
+            let kind = usize::from(j >= walls_listed);
+            let slot = &mut counts[c as usize][kind];
+            items[*slot as usize] = k;
+            *slot += 1;
+        }
+        Some(WhiskerCells {
+            cell,
+            inv_cell,
+            nx,
+            nx_f: nx as f64,
+            ny_f: ny as f64,
+            reach,
+            cells,
+            items,
+        })
+    }
+
+    /// The fixed felt walls (indices among the standing walls) and food objects that a body
+    /// of radius `radius` at `p` may feel with whiskers whose boxes lie in `[lo, hi]`, or
+    /// touch (a superset, in index order), or `None` when the query fails the guard of the
+    /// module docs or `p` lies outside the grid.
+    #[inline]
+    pub fn lists(&self, p: Vec2, lo: Vec2, hi: Vec2, radius: f64) -> Option<(&[u32], &[u32])> {
+        let r = self.reach;
+        let fx = p.x * self.inv_cell;
+        let fy = p.y * self.inv_cell;
+        // `&` rather than `&&`: one well-predicted branch instead of a chain.
+        let inside = (fx >= 0.0) & (fy >= 0.0) & (fx < self.nx_f) & (fy < self.ny_f);
+        let short = (p.x - lo.x <= r) & (p.y - lo.y <= r) & (hi.x - p.x <= r) & (hi.y - p.y <= r);
+        let body = (radius >= 0.0) & (radius <= r);
+        if !(inside & short & body) {
+            return None;
+        }
+        let k = fy as usize * self.nx + fx as usize;
+        let [a, b] = self.cells[k];
+        let c = self.cells[k + 1][0];
+        Some((
+            &self.items[a as usize..b as usize],
+            &self.items[b as usize..c as usize],
+        ))
+    }
+
+    /// Columns and rows of the grid, and the side of its cells.
+    pub fn dimensions(&self) -> ([usize; 2], f64) {
+        let ny = (self.cells.len() - 1) / self.nx;
+        ([self.nx, ny], self.cell)
+    }
+}
