@@ -39,7 +39,7 @@ use crate::sim::wall::BoxedSegment;
 
 /// Most cells along each side. Finer cells hand a query fewer walls and food objects but
 /// cost more to build, once per trial world.
-const CELLS_PER_SIDE: usize = 16;
+const CELLS_PER_SIDE: usize = 32;
 
 /// The shortlists of one world (see the module docs).
 #[derive(Debug, Clone, PartialEq)]
@@ -52,9 +52,9 @@ pub struct WhiskerCells {
     ny_f: f64,
     /// How far whiskers and body may extend from the centre for the lists to hold.
     reach: f64,
-    /// Cell k lists the walls `items[cells[k][0]..cells[k][1]]` then the food objects
-    /// `items[cells[k][1]..cells[k + 1][0]]`; cells are numbered row by row.
-    cells: Vec<[u32; 2]>,
+    /// Cell k lists the walls `items[a..b]` then the food objects `items[b..c]`, where
+    /// `[a, b, c] = cells[k]`; cells are numbered row by row.
+    cells: Vec<[u32; 3]>,
     items: Vec<u32>,
 }
 
@@ -94,49 +94,64 @@ impl WhiskerCells {
         let count = |e: f64| ((e * inv_cell).ceil() as usize).clamp(1, CELLS_PER_SIDE);
         let (nx, ny) = (count(w), count(h));
         let n = nx * ny;
-        // Each object is tested only against the cells around its box grown by `g` (two
-        // cells of slack on every side cover the rounding of these index bounds), with the
-        // test that defines the lists: its box meets the cell's box grown by `g`.
-        let span = |lo: f64, hi: f64, g: f64, n: usize| {
-            let first = ((lo - g) * inv_cell).floor() - 2.0;
-            let last = ((hi + g) * inv_cell).floor() + 2.0;
-            let clamp = |v: f64| v.clamp(0.0, (n - 1) as f64) as usize;
-            clamp(first)..=clamp(last)
+        // An object's box meets a cell's box grown by `g` when their spans meet on both
+        // axes, so its cells are a column range times a row range, each found by testing the
+        // cells around its box along that axis alone (one cell of slack on either side
+        // covers the rounding of these index bounds) with the test that defines the lists.
+        let axis = |lo: f64, hi: f64, g: f64, n: usize| {
+            // Truncation is the floor here: negative values clamp to 0 anyway.
+            let index = |v: f64| if v > 0.0 { (v as usize).min(n - 1) } else { 0 };
+            let first = index((lo - g) * inv_cell).saturating_sub(1);
+            let last = (index((hi + g) * inv_cell) + 1).min(n - 1);
+            let meets = |k: usize| hi >= k as f64 * cell - g && (k + 1) as f64 * cell + g >= lo;
+            let (mut a, mut b) = (usize::MAX, 0);
+            for k in first..=last {
+                if meets(k) {
+                    a = a.min(k);
+                    b = k;
+                }
+            }
+            (a, b)
         };
-        let mut pairs: Vec<(u32, u32)> = Vec::new();
+        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(4 * (walls.len() + food.len()));
         let mut counts = vec![[0u32; 2]; n];
-        let mut list = |kind: usize, k: usize, lo: Vec2, hi: Vec2, g: f64| {
-            for y in span(lo.y, hi.y, g, ny) {
-                for x in span(lo.x, hi.x, g, nx) {
-                    let c_lo = Vec2::new(x as f64, y as f64) * cell - g;
-                    let c_hi = Vec2::new((x + 1) as f64, (y + 1) as f64) * cell + g;
-                    let meets = !(hi.x < c_lo.x || c_hi.x < lo.x || hi.y < c_lo.y || c_hi.y < lo.y);
-                    if meets {
+        let mut list =
+            |pairs: &mut Vec<(u32, u32)>, kind: usize, k: usize, lo: Vec2, hi: Vec2, g: f64| {
+                let (x0, x1) = axis(lo.x, hi.x, g, nx);
+                let (y0, y1) = axis(lo.y, hi.y, g, ny);
+                for y in y0..=y1 {
+                    for x in x0..=x1 {
                         let c = y * nx + x;
                         counts[c][kind] += 1;
                         pairs.push((c as u32, k as u32));
                     }
                 }
-            }
-        };
+            };
         for (k, wall) in walls.iter().enumerate() {
-            list(0, k, wall.lo, wall.hi, reach + margin);
+            list(&mut pairs, 0, k, wall.lo, wall.hi, reach + margin);
         }
+        let walls_listed = pairs.len();
         for (k, f) in food.iter().enumerate() {
-            list(1, k, f.position, f.position, reach + f.radius + margin);
+            list(
+                &mut pairs,
+                1,
+                k,
+                f.position,
+                f.position,
+                reach + f.radius + margin,
+            );
         }
-        let walls_listed: usize = counts.iter().map(|c| c[0] as usize).sum();
         // A stable counting sort by cell: each list keeps the increasing index order.
-        let mut cells = vec![[0u32; 2]; n + 1];
+        let mut cells = vec![[0u32; 3]; n];
         let mut at = 0u32;
         for (cell, count) in cells.iter_mut().zip(counts.iter_mut()) {
             let [walls_in, food_in] = *count;
-            *cell = [at, at + walls_in];
+            let (b, c) = (at + walls_in, at + walls_in + food_in);
+            *cell = [at, b, c];
             // From here on `count` holds the next free slot of each list.
-            *count = [at, at + walls_in];
-            at += walls_in + food_in;
+            *count = [at, b];
+            at = c;
         }
-        cells[n] = [at, at];
         let mut items = vec![0u32; pairs.len()];
         for (j, &(c, k)) in pairs.iter().enumerate() {
             let kind = usize::from(j >= walls_listed);
@@ -172,18 +187,16 @@ impl WhiskerCells {
         if !(inside & short & body) {
             return None;
         }
-        let k = fy as usize * self.nx + fx as usize;
-        let [a, b] = self.cells[k];
-        let c = self.cells[k + 1][0];
-        Some((
-            &self.items[a as usize..b as usize],
-            &self.items[b as usize..c as usize],
-        ))
+        // Both are below the grid's 32 cells a side: through `u32` the conversion is one
+        // instruction (to `usize` it takes several).
+        let k = fy as u32 as usize * self.nx + fx as u32 as usize;
+        let [a, b, c] = self.cells[k];
+        Some(self.items[a as usize..c as usize].split_at((b - a) as usize))
     }
 
     /// Columns and rows of the grid, and the side of its cells.
     pub fn dimensions(&self) -> ([usize; 2], f64) {
-        let ny = (self.cells.len() - 1) / self.nx;
+        let ny = self.cells.len() / self.nx;
         ([self.nx, ny], self.cell)
     }
 }
