@@ -242,7 +242,10 @@ impl Surroundings<'_> {
     /// candidates of both senses (a superset of each one's own: a yes/no answer, or an "or"
     /// over the detected types, does not depend on extra candidates or their order). Each
     /// candidate is tested against each whisker not yet touching; the other kinds of things
-    /// only matter to the whiskers and are skipped once both touch.
+    /// only matter to the whiskers and are skipped once both touch. The fixed walls and food
+    /// objects come from the body's cell of the
+    /// [`WhiskerCells`](crate::sim::whisker_cells::WhiskerCells) when the query passes their
+    /// guard (again a superset, see that module), else from the grid.
     pub fn whiskers_and_food(
         &self,
         me: usize,
@@ -312,7 +315,9 @@ impl Surroundings<'_> {
         };
         match lists {
             Some((_, listed)) => {
-                let _ = listed.iter().any(|&k| food(k as usize));
+                for &k in listed {
+                    food(k as usize);
+                }
             }
             None => {
                 let (lo, hi) = (ulo.min(position - radius), uhi.max(position + radius));
