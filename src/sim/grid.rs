@@ -837,6 +837,9 @@ struct Hider {
     tol: f64,
     /// +1 or −1 when `p` is strictly on that side of the line by more than `tol`, else 0.
     p_side: i8,
+    /// The wall's other end, and the source's centre.
+    b: Vec2,
+    p: Vec2,
 }
 
 impl Hider {
@@ -873,6 +876,60 @@ impl Hider {
             ay,
             tol,
             p_side,
+            b,
+            p,
+        })
+    }
+
+    /// Does the wall hide `p` from every point of the finite box `[lo, hi]`, so that a cell
+    /// with that box need not list the source at all? Yes when the wall properly crosses the
+    /// segment from each point t of the box to `p`: `p` and the box strictly on opposite
+    /// sides of the wall's line, and the wall's ends strictly on opposite sides of the line
+    /// through t and `p`, the same way for every t. The orientation of (t, `p`, e) for a
+    /// fixed end e is (`p` − t) × (e − t) = `p` × e + (e − `p`) × t, affine in t, and so is
+    /// the side of t of the wall's line, so their extremes over the box are at its
+    /// corners. A margin of 1e-9 D² (D: the extent of the box, the wall and `p`) is far
+    /// above the rounding of these few products, and the exact orientation tests of
+    /// [`crate::geometry::segments_intersect`] then find every such segment crossing the
+    /// wall (the boxes of crossing segments meet), so `visible` is false from anywhere in
+    /// the box: the source adds nothing there.
+    fn hides(&self, lo: Vec2, hi: Vec2) -> bool {
+        let (a, b, p) = (self.a, self.b, self.p);
+        let pts = [lo, hi, a, b, p];
+        let span = |v: &dyn Fn(Vec2) -> f64| {
+            let (mut l, mut h) = (f64::INFINITY, f64::NEG_INFINITY);
+            for &q in &pts {
+                l = l.min(v(q));
+                h = h.max(v(q));
+            }
+            h - l
+        };
+        let d = span(&|q| q.x) + span(&|q| q.y);
+        if !d.is_finite() {
+            return false;
+        }
+        let m = 1e-9 * d * d;
+        let cross =
+            |o: Vec2, u: Vec2, v: Vec2| (u.x - o.x) * (v.y - o.y) - (u.y - o.y) * (v.x - o.x);
+        let wp = cross(a, b, p);
+        let side = if wp > m {
+            1.0
+        } else if wp < -m {
+            -1.0
+        } else {
+            return false;
+        };
+        let corners = [lo, Vec2::new(hi.x, lo.y), Vec2::new(lo.x, hi.y), hi];
+        let turn = cross(corners[0], p, a);
+        let turn = if turn > m {
+            1.0
+        } else if turn < -m {
+            -1.0
+        } else {
+            return false;
+        };
+        corners.iter().all(|&c| {
+            side * cross(a, b, c) < -m && turn * cross(c, p, a) > m && turn * cross(c, p, b) < -m
         })
     }
 
@@ -1008,10 +1065,21 @@ fn smell_grid(
                 let w0 = walls.len() as u32;
                 let hlo = Vec2::new(low(xlo, p.x), low(ylo, p.y));
                 let hhi = Vec2::new(high(xhi, p.x), high(yhi, p.y));
+                // A source that one wall hides from the whole cell is not listed there: it
+                // would cost an occlusion test per receptor and add nothing.
+                let mut hidden = false;
                 for h in &hiders {
                     if h.may_meet(clo, chi, hlo, hhi) {
+                        if h.hides(clo, chi) {
+                            hidden = true;
+                            break;
+                        }
                         walls.push(h.k);
                     }
+                }
+                if hidden {
+                    walls.truncate(w0 as usize);
+                    continue;
                 }
                 let w1 = walls.len() as u32;
                 let source = Source {
