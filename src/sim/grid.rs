@@ -21,7 +21,10 @@
 //! walls that may meet the convex hull of the cell's box and the object's centre: a segment
 //! from a receptor in the cell to the centre lies in that hull, so no other fixed wall can
 //! hide the object from there (doors open and close, so they are tested apart). Most lists of
-//! walls are empty. Its cells are half the largest finite θ wide ([`SMELL_CELLS_PER_RANGE`]),
+//! walls are empty, and an object that one wall hides from the whole cell is left out. Each
+//! entry carries the object's centre and θ², so the range test reads the list alone. A
+//! cell's box is grown by the whisker reach (at most a quarter cell), so that the cell of a
+//! creature's two whisker tips' midpoint serves both tips with one list. Its cells are half the largest finite θ wide ([`SMELL_CELLS_PER_RANGE`]),
 //! and at most [`CELLS_PER_ITEM`] per listed object (at least [`MIN_CELLS`]): each object is
 //! listed in about (2θ / cell + 1)² cells, so narrower cells would hand a receptor fewer
 //! objects but cost more to build, and the grid is built for every trial world. Objects of
