@@ -13,22 +13,23 @@
 //!
 //! # Smell grid
 //! Smell, the widest and most frequent query, has a grid of its own, whose lists are worked
-//! out when the index is built so that a receptor's query is two slice reads: each cell lists,
-//! in increasing id order (food, then aversive objects, the order of the smell sums), every
-//! smelly food or aversive object of finite range θ that may reach a receptor in the cell
-//! (the cell's box, widened by a rounding slack and unbounded on the grid's border sides where
-//! outside points are clamped in, lies within θ of it), and with each object the fixed opaque
-//! walls that may meet the convex hull of the cell's box and the object's centre: a segment
-//! from a receptor in the cell to the centre lies in that hull, so no other fixed wall can
-//! hide the object from there (doors open and close, so they are tested apart). Most lists of
-//! walls are empty, and an object that one wall hides from the whole cell is left out. Each
-//! entry carries the object's centre and θ², so the range test reads the list alone. A
-//! cell's box is grown by the whisker reach (at most a quarter cell), so that the cell of a
-//! creature's two whisker tips' midpoint serves both tips with one list. Its cells are half the largest finite θ wide ([`SMELL_CELLS_PER_RANGE`]),
-//! and at most [`CELLS_PER_ITEM`] per listed object (at least [`MIN_CELLS`]): each object is
-//! listed in about (2θ / cell + 1)² cells, so narrower cells would hand a receptor fewer
-//! objects but cost more to build, and the grid is built for every trial world. Objects of
-//! unlimited range are in a short list apart, merged into every query in id order.
+//! out when the index is built so that a pair of receptors' query is one slice read: each
+//! cell lists, in increasing id order (food, then aversive objects, the order of the smell
+//! sums), every smelly food or aversive object of finite range θ that may reach a receptor in
+//! the cell (the cell's box, grown by the whisker reach (at most a quarter cell) plus a
+//! rounding slack and unbounded on the grid's border sides where outside points are clamped
+//! in, lies within θ of it), with its centre and θ² (so that the range test reads the list
+//! alone), and with each object the fixed opaque walls that may meet the convex hull of the
+//! cell's box and the object's centre: a segment from a receptor in the cell to the centre
+//! lies in that hull, so no other fixed wall can hide the object from there (doors open and
+//! close, so they are tested apart). Most lists of walls are empty, and an object that one
+//! wall hides from the whole cell is left out. Since the box is grown by the whisker reach,
+//! the cell holding the midpoint of a creature's two whisker tips serves both tips with one
+//! list. Its cells are half the largest finite θ wide ([`SMELL_CELLS_PER_RANGE`]), and at
+//! most [`CELLS_PER_ITEM`] per listed object (at least [`MIN_CELLS`]): each object is listed
+//! in about (2θ / cell + 1)² cells, so narrower cells would hand a receptor fewer objects but
+//! cost more to build, and the grid is built for every trial world. Objects of unlimited
+//! range are in a short list apart, merged into every query in id order.
 //!
 //! # Cell size
 //! The widest query on this grid is the smell box (the opaque walls within the largest finite
