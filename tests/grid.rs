@@ -400,11 +400,14 @@ count = 25
 /// (hundreds of objects, unlimited ranges, aversive objects, doors, transparent walls): each
 /// point's cell lists, in increasing id order, every object of finite range whose smell
 /// reaches the point, and for each the fixed opaque walls crossing the segment from the point
-/// to it; the objects of unlimited range are listed apart, in order.
+/// to it; the objects of unlimited range are listed apart, in order. A list that serves a
+/// pair of nearby receptors does so for both.
 #[test]
 fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
     use berry_evolve::geometry::{segments_intersect, Segment};
+    use berry_evolve::sim::grid::Source;
     let (mut checked, mut listed_in_range) = (0, 0);
+    let (mut pairs, mut pairs_served, mut hidden_unlisted) = (0, 0, 0);
     for seed in 0..40u64 {
         let text = random_world(seed);
         let setup = sim_common::setup(&text);
@@ -437,6 +440,7 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
         assert_eq!(index.food_count(), n);
         let [aw, ah] = w.arena();
         let mut r = Mix(seed ^ 0x5E11);
+        let mut q = Mix(seed ^ 0x9A12);
         for t in 0..2000 {
             // Half the points anywhere, half near an object (on cell borders now and then).
             let p = if t % 2 == 0 || smells.is_empty() {
@@ -454,36 +458,68 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
                     p
                 }
             };
-            let list = index.smell_sources(index.smell_cell(p));
-            assert!(list.windows(2).all(|s| s[0].id < s[1].id), "seed {seed}");
-            for (k, (centre, smell)) in smells.iter().enumerate() {
-                let finite = !smell.silent && smell.range_squared.is_finite();
-                let entry = list.iter().find(|s| s.id as usize == k);
-                if !finite {
-                    assert!(entry.is_none(), "seed {seed}: object {k} listed");
-                    continue;
-                }
-                if p.distance_squared(*centre) >= smell.range_squared {
-                    continue;
-                }
-                let entry = entry.unwrap_or_else(|| panic!("seed {seed}: {k} not listed at {p}"));
-                listed_in_range += 1;
-                let walls = index.source_walls(entry);
-                let line = Segment::new(p, *centre);
-                for (j, wall) in opaque.iter().enumerate() {
-                    if segments_intersect(&line, wall) {
-                        assert!(
-                            walls.contains(&(j as u32)),
-                            "seed {seed}: wall {j} hides {k} from {p} but is not listed"
-                        );
+            let mut check = |p: Vec2, list: &[Source]| {
+                assert!(list.windows(2).all(|s| s[0].id < s[1].id), "seed {seed}");
+                for (k, (centre, smell)) in smells.iter().enumerate() {
+                    let finite = !smell.silent && smell.range_squared.is_finite();
+                    let entry = list.iter().find(|s| s.id as usize == k);
+                    if !finite {
+                        assert!(entry.is_none(), "seed {seed}: object {k} listed");
+                        continue;
+                    }
+                    if let Some(e) = entry {
+                        assert_eq!(e.centre, *centre, "seed {seed}: object {k}");
+                        assert_eq!(e.range_squared, smell.range_squared, "seed {seed}: {k}");
+                    }
+                    if p.distance_squared(*centre) >= smell.range_squared {
+                        continue;
+                    }
+                    let line = Segment::new(p, *centre);
+                    let Some(entry) = entry else {
+                        // Only a source that a fixed opaque wall hides from p may be left out.
+                        let hidden = opaque.iter().any(|wall| segments_intersect(&line, wall));
+                        assert!(hidden, "seed {seed}: {k} not listed at {p}");
+                        hidden_unlisted += 1;
+                        continue;
+                    };
+                    listed_in_range += 1;
+                    let walls = index.source_walls(entry);
+                    for (j, wall) in opaque.iter().enumerate() {
+                        if segments_intersect(&line, wall) {
+                            assert!(
+                                walls.contains(&(j as u32)),
+                                "seed {seed}: wall {j} hides {k} from {p} but is not listed"
+                            );
+                        }
                     }
                 }
+            };
+            check(p, index.smell_sources(index.smell_cell(p)));
+            // A pair of whisker tips around p (a separate generator keeps the points above
+            // the same): one list, when the index gives one, must serve both.
+            let d = Vec2::new(q.uniform(-8.0, 8.0), q.uniform(-8.0, 8.0));
+            let tips = [p, p + d];
+            if let Some(list) = index.smell_pair_sources(tips) {
+                pairs_served += 1;
+                check(tips[0], list);
+                check(tips[1], list);
             }
+            pairs += 1;
         }
     }
     assert!(checked >= 20, "only {checked} random worlds could be built");
     assert!(
         listed_in_range > 10_000,
         "{listed_in_range} objects in range"
+    );
+    // Sources hidden from a whole cell are left out of it.
+    assert!(
+        hidden_unlisted > 100,
+        "{hidden_unlisted} hidden sources left out"
+    );
+    // Most pairs of tips this close take one list.
+    assert!(
+        2 * pairs_served > pairs,
+        "{pairs_served} of {pairs} pairs served by one list"
     );
 }

@@ -13,19 +13,23 @@
 //!
 //! # Smell grid
 //! Smell, the widest and most frequent query, has a grid of its own, whose lists are worked
-//! out when the index is built so that a receptor's query is two slice reads: each cell lists,
-//! in increasing id order (food, then aversive objects, the order of the smell sums), every
-//! smelly food or aversive object of finite range θ that may reach a receptor in the cell
-//! (the cell's box, widened by a rounding slack and unbounded on the grid's border sides where
-//! outside points are clamped in, lies within θ of it), and with each object the fixed opaque
-//! walls that may meet the convex hull of the cell's box and the object's centre: a segment
-//! from a receptor in the cell to the centre lies in that hull, so no other fixed wall can
-//! hide the object from there (doors open and close, so they are tested apart). Most lists of
-//! walls are empty. Its cells are half the largest finite θ wide ([`SMELL_CELLS_PER_RANGE`]),
-//! and at most [`CELLS_PER_ITEM`] per listed object (at least [`MIN_CELLS`]): each object is
-//! listed in about (2θ / cell + 1)² cells, so narrower cells would hand a receptor fewer
-//! objects but cost more to build, and the grid is built for every trial world. Objects of
-//! unlimited range are in a short list apart, merged into every query in id order.
+//! out when the index is built so that a pair of receptors' query is one slice read: each
+//! cell lists, in increasing id order (food, then aversive objects, the order of the smell
+//! sums), every smelly food or aversive object of finite range θ that may reach a receptor in
+//! the cell (the cell's box, grown by the whisker reach (at most a quarter cell) plus a
+//! rounding slack and unbounded on the grid's border sides where outside points are clamped
+//! in, lies within θ of it), with its centre and θ² (so that the range test reads the list
+//! alone), and with each object the fixed opaque walls that may meet the convex hull of the
+//! cell's box and the object's centre: a segment from a receptor in the cell to the centre
+//! lies in that hull, so no other fixed wall can hide the object from there (doors open and
+//! close, so they are tested apart). Most lists of walls are empty, and an object that one
+//! wall hides from the whole cell is left out. Since the box is grown by the whisker reach,
+//! the cell holding the midpoint of a creature's two whisker tips serves both tips with one
+//! list. Its cells are half the largest finite θ wide ([`SMELL_CELLS_PER_RANGE`]), and at
+//! most [`CELLS_PER_ITEM`] per listed object (at least [`MIN_CELLS`]): each object is listed
+//! in about (2θ / cell + 1)² cells, so narrower cells would hand a receptor fewer objects but
+//! cost more to build, and the grid is built for every trial world. Objects of unlimited
+//! range are in a short list apart, merged into every query in id order.
 //!
 //! # Cell size
 //! The widest query on this grid is the smell box (the opaque walls within the largest finite
@@ -351,8 +355,7 @@ impl StaticIndex {
         };
         // The smelly objects of finite range, in id order (food, then aversive objects).
         let finite = |id: usize, p: Vec2, s: &Smell| {
-            (!s.silent && s.range_squared.is_finite())
-                .then(|| (id as u32, p, s.range_squared.sqrt()))
+            (!s.silent && s.range_squared.is_finite()).then_some((id as u32, p, s.range_squared))
         };
         let sources: Vec<(u32, Vec2, f64)> = food
             .iter()
@@ -367,19 +370,25 @@ impl StaticIndex {
             .collect();
         let fixed = &opaque[..fixed_opaque];
         let mut bits = vec![0u64; fixed_opaque / 64 + 1];
-        let smell = smell_grid(&sources, (w, h, extent), fixed, slack, |lo, hi, out| {
-            if fixed_opaque <= FEW_WALLS {
-                out.extend(
-                    (0..fixed_opaque as u32).filter(|&k| fixed[k as usize].may_meet(lo, hi)),
-                );
-            } else {
-                index.each_wall(&index.opaque, lo, hi, &mut bits, |k| {
-                    if fixed[k].may_meet(lo, hi) {
-                        out.push(k as u32);
-                    }
-                });
-            }
-        });
+        let smell = smell_grid(
+            &sources,
+            (w, h, extent, reach),
+            fixed,
+            slack,
+            |lo, hi, out| {
+                if fixed_opaque <= FEW_WALLS {
+                    out.extend(
+                        (0..fixed_opaque as u32).filter(|&k| fixed[k as usize].may_meet(lo, hi)),
+                    );
+                } else {
+                    index.each_wall(&index.opaque, lo, hi, &mut bits, |k| {
+                        if fixed[k].may_meet(lo, hi) {
+                            out.push(k as u32);
+                        }
+                    });
+                }
+            },
+        );
         index.smell = smell;
         index
     }
@@ -527,6 +536,28 @@ impl StaticIndex {
     pub fn smell_cell(&self, p: Vec2) -> usize {
         let g = &self.smell.geometry;
         g.row(p.y) * g.nx + g.col(p.x)
+    }
+
+    /// The list of [`StaticIndex::smell_sources`] that serves both receptors `tips` of a
+    /// creature at once, or `None` (then each receptor's own cell, [`StaticIndex::smell_cell`],
+    /// serves it): the cell holding the tips' midpoint when both tips lie in its box as the
+    /// grid was built for it, which is the cell widened by the whisker reach (see
+    /// [`SmellGrid`]), so that one list holds every source that may reach either tip, with
+    /// every wall that may hide it from either. The whisker tips are at most the whisker
+    /// length from their midpoint, so only tips far from the arena or not finite miss.
+    #[inline]
+    pub fn smell_pair_sources(&self, tips: [Vec2; 2]) -> Option<&[Source]> {
+        let s = &self.smell;
+        let g = &s.geometry;
+        let mid = (tips[0] + tips[1]) * 0.5;
+        let (x, y) = (g.col(mid.x), g.row(mid.y));
+        let ((x0, x1), (y0, y1)) = (s.xs[x], s.ys[y]);
+        let within = |p: Vec2| (p.x >= x0) & (p.x <= x1) & (p.y >= y0) & (p.y <= y1);
+        if within(tips[0]) & within(tips[1]) {
+            Some(self.smell_sources(y * g.nx + x))
+        } else {
+            None
+        }
     }
 
     /// Every food or aversive object of finite range whose smell may reach a receptor in
@@ -724,9 +755,15 @@ fn may_cross_cell(
 /// or the food count plus the aversive object's index (so that increasing ids are the order
 /// of [`crate::sim::sensors::Surroundings::smell_at_all`]: food, then aversive objects), and
 /// `walls[w0..w1]` of the grid are the fixed opaque walls that may cross a segment from a
-/// point of the cell to the source's centre.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// point of the cell to the source's centre. The centre and θ² are copies of the object's
+/// (food and aversive objects never move), so that the range test of a listed source, which
+/// most sources fail, reads the list alone.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Source {
+    /// The object's centre.
+    pub centre: Vec2,
+    /// The object's θ² ([`Smell::range_squared`], finite).
+    pub range_squared: f64,
     /// Food index, or food count + aversive index.
     pub id: u32,
     w0: u32,
@@ -735,7 +772,11 @@ pub struct Source {
 
 /// Per cell, the food and aversive objects of finite range whose smell may reach a receptor
 /// in the cell, in increasing id order, each with the fixed opaque walls that may hide it
-/// from there (see the module docs).
+/// from there (see the module docs). Each cell is taken as its box grown by `grow` (the
+/// whisker reach, at most a quarter cell) on the sides facing other cells, plus the rounding
+/// slack, so that the cell holding the midpoint of a creature's two whisker tips lists what
+/// both tips may smell ([`StaticIndex::smell_pair_sources`]): one list for the pair instead
+/// of a merge of two, at the cost of a slightly longer list.
 #[derive(Debug, Clone, PartialEq)]
 struct SmellGrid {
     geometry: Geometry,
@@ -744,11 +785,16 @@ struct SmellGrid {
     sources: Vec<Source>,
     /// Indices into the fixed opaque walls, referenced by [`Source`] ranges.
     walls: Vec<u32>,
+    /// The bounds of the columns' grown boxes (infinite on the border sides).
+    xs: Vec<(f64, f64)>,
+    /// The bounds of the rows' grown boxes (infinite on the border sides).
+    ys: Vec<(f64, f64)>,
 }
 
 impl SmellGrid {
     /// An empty grid of one cell (no smelly object of finite range).
     fn empty(extent: f64) -> SmellGrid {
+        let all = vec![(f64::NEG_INFINITY, f64::INFINITY)];
         SmellGrid {
             geometry: Geometry {
                 origin: Vec2::ZERO,
@@ -762,26 +808,28 @@ impl SmellGrid {
             start: vec![0, 0],
             sources: Vec::new(),
             walls: Vec::new(),
+            xs: all.clone(),
+            ys: all,
         }
     }
 
     /// The bounds of the cells' columns (or rows): cell k spans `[b[k], b[k + 1]]`, widened by
-    /// `slack` so that every point the map from coordinate to cell puts in it lies inside
-    /// despite rounding, and unbounded on the grid's border sides, where points outside the
-    /// grid are clamped in.
-    fn bounds(&self, n: usize, origin: f64, slack: f64) -> Vec<(f64, f64)> {
+    /// `widen` (at least the slack, so that every point the map from coordinate to cell puts
+    /// in it lies inside despite rounding), and unbounded on the grid's border sides, where
+    /// points outside the grid are clamped in.
+    fn bounds(&self, n: usize, origin: f64, widen: f64) -> Vec<(f64, f64)> {
         let cell = self.geometry.cell;
         (0..n)
             .map(|k| {
                 let lo = if k == 0 {
                     f64::NEG_INFINITY
                 } else {
-                    origin + k as f64 * cell - slack
+                    origin + k as f64 * cell - widen
                 };
                 let hi = if k + 1 == n {
                     f64::INFINITY
                 } else {
-                    origin + (k + 1) as f64 * cell + slack
+                    origin + (k + 1) as f64 * cell + widen
                 };
                 (lo, hi)
             })
@@ -804,6 +852,9 @@ struct Hider {
     tol: f64,
     /// +1 or −1 when `p` is strictly on that side of the line by more than `tol`, else 0.
     p_side: i8,
+    /// The wall's other end, and the source's centre.
+    b: Vec2,
+    p: Vec2,
 }
 
 impl Hider {
@@ -840,6 +891,60 @@ impl Hider {
             ay,
             tol,
             p_side,
+            b,
+            p,
+        })
+    }
+
+    /// Does the wall hide `p` from every point of the finite box `[lo, hi]`, so that a cell
+    /// with that box need not list the source at all? Yes when the wall properly crosses the
+    /// segment from each point t of the box to `p`: `p` and the box strictly on opposite
+    /// sides of the wall's line, and the wall's ends strictly on opposite sides of the line
+    /// through t and `p`, the same way for every t. The orientation of (t, `p`, e) for a
+    /// fixed end e is (`p` − t) × (e − t) = `p` × e + (e − `p`) × t, affine in t, and so is
+    /// the side of t of the wall's line, so their extremes over the box are at its
+    /// corners. A margin of 1e-9 D² (D: the extent of the box, the wall and `p`) is far
+    /// above the rounding of these few products, and the exact orientation tests of
+    /// [`crate::geometry::segments_intersect`] then find every such segment crossing the
+    /// wall (the boxes of crossing segments meet), so `visible` is false from anywhere in
+    /// the box: the source adds nothing there.
+    fn hides(&self, lo: Vec2, hi: Vec2) -> bool {
+        let (a, b, p) = (self.a, self.b, self.p);
+        let pts = [lo, hi, a, b, p];
+        let span = |v: &dyn Fn(Vec2) -> f64| {
+            let (mut l, mut h) = (f64::INFINITY, f64::NEG_INFINITY);
+            for &q in &pts {
+                l = l.min(v(q));
+                h = h.max(v(q));
+            }
+            h - l
+        };
+        let d = span(&|q| q.x) + span(&|q| q.y);
+        if !d.is_finite() {
+            return false;
+        }
+        let m = 1e-9 * d * d;
+        let cross =
+            |o: Vec2, u: Vec2, v: Vec2| (u.x - o.x) * (v.y - o.y) - (u.y - o.y) * (v.x - o.x);
+        let wp = cross(a, b, p);
+        let side = if wp > m {
+            1.0
+        } else if wp < -m {
+            -1.0
+        } else {
+            return false;
+        };
+        let corners = [lo, Vec2::new(hi.x, lo.y), Vec2::new(lo.x, hi.y), hi];
+        let turn = cross(corners[0], p, a);
+        let turn = if turn > m {
+            1.0
+        } else if turn < -m {
+            -1.0
+        } else {
+            return false;
+        };
+        corners.iter().all(|&c| {
+            side * cross(a, b, c) < -m && turn * cross(c, p, a) > m && turn * cross(c, p, b) < -m
         })
     }
 
@@ -883,44 +988,56 @@ fn term(f: f64, v: f64, o: f64) -> f64 {
     }
 }
 
-/// Builds the [`SmellGrid`] of `sources` (id, centre, range θ; finite ranges only, in id
-/// order) over an arena `w` × `h` whose largest side is `extent`. `near_walls` gives the
-/// fixed opaque walls (indices into `opaque`) that may meet a box.
+/// Builds the [`SmellGrid`] of `sources` (id, centre, θ²; finite ranges only, in id order)
+/// over an arena `w` × `h` whose largest side is `extent`, for whisker tips at most `reach`
+/// from their midpoint. `near_walls` gives the fixed opaque walls (indices into `opaque`)
+/// that may meet a box.
 #[allow(clippy::needless_range_loop)] // indexing both bounds tables by cell is clearer
 fn smell_grid(
     sources: &[(u32, Vec2, f64)],
-    (w, h, extent): (f64, f64, f64),
+    (w, h, extent, reach): (f64, f64, f64, f64),
     opaque: &[BoxedSegment],
     slack: f64,
     mut near_walls: impl FnMut(Vec2, Vec2, &mut Vec<u32>),
 ) -> SmellGrid {
-    let reach = sources.iter().fold(0.0f64, |acc, s| acc.max(s.2));
-    if sources.is_empty() || !(reach.is_finite() && reach > 0.0) {
+    let theta = sources.iter().fold(0.0f64, |acc, s| acc.max(s.2.sqrt()));
+    if sources.is_empty() || !(theta.is_finite() && theta > 0.0) {
         return SmellGrid::empty(extent);
     }
     // Narrower cells hand each receptor fewer sources but cost more to build (each source
     // is listed in about (2θ / cell + 1)² cells, with its walls sorted out for each).
-    let cell = reach / SMELL_CELLS_PER_RANGE;
+    let cell = theta / SMELL_CELLS_PER_RANGE;
     let most = (CELLS_PER_ITEM * sources.len()).clamp(MIN_CELLS, MAX_CELLS);
     let geometry = Geometry::covering(w, h, cell, most);
     let (nx, ny) = (geometry.nx, geometry.ny);
+    // Grown by the whisker reach (a whisker tip is at most that far from the tips'
+    // midpoint), but by at most a quarter cell, so that long whiskers and short ranges do
+    // not lengthen every list much; pairs of tips farther apart take two lists.
+    let grow = if reach > 0.0 {
+        reach.min(geometry.cell / 4.0)
+    } else {
+        0.0
+    };
     let mut grid = SmellGrid {
         geometry,
         start: vec![0; nx * ny + 1],
         sources: Vec::new(),
         walls: Vec::new(),
+        xs: Vec::new(),
+        ys: Vec::new(),
     };
-    let bound = 1e6 * (1.0 + extent + reach);
-    let xs = grid.bounds(nx, grid.geometry.origin.x, slack);
-    let ys = grid.bounds(ny, grid.geometry.origin.y, slack);
+    let bound = 1e6 * (1.0 + extent + theta);
+    grid.xs = grid.bounds(nx, grid.geometry.origin.x, slack + grow);
+    grid.ys = grid.bounds(ny, grid.geometry.origin.y, slack + grow);
+    let (xs, ys) = (&grid.xs, &grid.ys);
     // About (2θ / cell + 1)² cells per source, each listing a wall or two.
     let per = (2.0 * SMELL_CELLS_PER_RANGE + 2.0) as usize;
     let mut pairs: Vec<(u32, Source)> = Vec::with_capacity(sources.len() * per * per);
-    grid.walls.reserve(2 * pairs.capacity());
+    let mut walls: Vec<u32> = Vec::with_capacity(2 * pairs.capacity());
     let mut near = Vec::new();
     let mut hiders: Vec<Hider> = Vec::new();
-    for &(id, p, theta) in sources {
-        let r = theta + slack;
+    for &(id, p, range_squared) in sources {
+        let r = range_squared.sqrt() + slack;
         let (lo, hi) = (p - r, p + r);
         near.clear();
         near_walls(lo, hi, &mut near);
@@ -930,7 +1047,11 @@ fn smell_grid(
             near.iter()
                 .filter_map(|&k| Hider::new(k, &opaque[k as usize], p, r, slack, bound)),
         );
-        let c = grid.geometry.cells(lo, hi);
+        // The cells whose grown boxes may come within r of p (one slack more, far above
+        // the rounding of the map from coordinate to cell).
+        let c = grid
+            .geometry
+            .cells(lo - (grow + slack), hi + (grow + slack));
         // Plain comparisons rather than f64::min/max (which handle NaN at a cost): only a
         // finite p can be in range of a receptor, and its lists are what matters.
         let gap = |lo: f64, hi: f64, v: f64| {
@@ -956,19 +1077,38 @@ fn smell_grid(
                     continue;
                 }
                 let (clo, chi) = (Vec2::new(xlo, ylo), Vec2::new(xhi, yhi));
-                let w0 = grid.walls.len() as u32;
+                let w0 = walls.len() as u32;
                 let hlo = Vec2::new(low(xlo, p.x), low(ylo, p.y));
                 let hhi = Vec2::new(high(xhi, p.x), high(yhi, p.y));
+                // A source that one wall hides from the whole cell is not listed there: it
+                // would cost an occlusion test per receptor and add nothing.
+                let mut hidden = false;
                 for h in &hiders {
                     if h.may_meet(clo, chi, hlo, hhi) {
-                        grid.walls.push(h.k);
+                        if h.hides(clo, chi) {
+                            hidden = true;
+                            break;
+                        }
+                        walls.push(h.k);
                     }
                 }
-                let w1 = grid.walls.len() as u32;
-                pairs.push(((y * nx + x) as u32, Source { id, w0, w1 }));
+                if hidden {
+                    walls.truncate(w0 as usize);
+                    continue;
+                }
+                let w1 = walls.len() as u32;
+                let source = Source {
+                    centre: p,
+                    range_squared,
+                    id,
+                    w0,
+                    w1,
+                };
+                pairs.push(((y * nx + x) as u32, source));
             }
         }
     }
+    grid.walls = walls;
     // A counting sort by cell, stable: each cell's sources keep their increasing id order.
     for &(cell, _) in &pairs {
         grid.start[cell as usize + 1] += 1;
@@ -979,6 +1119,8 @@ fn smell_grid(
     let mut next = grid.start.clone();
     grid.sources = vec![
         Source {
+            centre: Vec2::ZERO,
+            range_squared: 0.0,
             id: 0,
             w0: 0,
             w1: 0

@@ -16,7 +16,7 @@ use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::Thing;
 use crate::sim::grid::{Scratch, SmellBox, Source, StaticIndex};
 use crate::sim::smell::{
-    accumulate, accumulate_listed, add_pair, falloff_pair, saturate, Shade, Smell,
+    accumulate, accumulate_listed, add_pair, falloff_pair, reach_pair, saturate, Shade, Smell,
 };
 use crate::sim::wall::BoxedSegment;
 use crate::sim::world::Creature;
@@ -335,15 +335,18 @@ impl Surroundings<'_> {
     }
 
     /// [`Surroundings::smell_at_all`] at both receptors `tips`. The food and aversive objects
-    /// of finite range come from the index's smell grid: the cell of each receptor lists,
-    /// in index order, the objects that may reach it and, for each, the fixed opaque walls
-    /// that may hide it from there, so such an object is tested for occlusion against those
-    /// walls and the closed doors only. The objects of unlimited range, the areas, things
-    /// and creatures are tested against the opaque walls that meet the smell box of the pair
-    /// (the largest finite range around both receptors) when their centre lies in it, else
-    /// against every opaque wall; those walls are only gathered when such a source is in
-    /// range. One pass over the sources serves both receptors; each receptor still adds its
-    /// terms in the order of [`Surroundings::smell_at_all`].
+    /// of finite range come from the index's smell grid: a cell lists, in index order, the
+    /// objects that may reach a receptor in it, each with its centre and range (so that an
+    /// object out of range of both receptors costs a few instructions) and the fixed opaque
+    /// walls that may hide it from there, so such an object is tested for occlusion against
+    /// those walls and the closed doors only. Mostly one cell serves both receptors
+    /// ([`StaticIndex::smell_pair_sources`]); otherwise each receptor's cell serves it, in a
+    /// merge of both lists. The objects of unlimited range, the areas, things and creatures
+    /// are tested against the opaque walls that meet the smell box of the pair (the largest
+    /// finite range around both receptors) when their centre lies in it, else against every
+    /// opaque wall; those walls are only gathered when such a source is in range. One pass
+    /// over the sources serves both receptors; each receptor still adds its terms in the
+    /// order of [`Surroundings::smell_at_all`].
     pub fn smell_pair(
         &self,
         me: usize,
@@ -355,61 +358,75 @@ impl Surroundings<'_> {
         let mut acc = [[0.0; 8]; 2];
         let all = self.opaque;
         let walls = all.split_at(index.fixed_opaque());
-        let cells = [index.smell_cell(tips[0]), index.smell_cell(tips[1])];
-        let lists = [index.smell_sources(cells[0]), index.smell_sources(cells[1])];
         let always = index.smell_always();
         let food_count = index.food_count();
         let mut near = Near::new(tips);
-        let listed = |acc: &mut [[f64; 8]; 2], id: u32, w: [Option<&[u32]>; 2]| {
-            self.listed(acc, tips, id, w, walls);
-        };
-        if cells[0] == cells[1] && always.is_empty() {
-            for s in lists[0] {
-                let w = Some(index.source_walls(s));
-                listed(&mut acc, s.id, [w, w]);
-            }
-        } else {
-            // A three-way merge of both cells' lists and the unlimited-range objects, in
-            // increasing id order (an id is either listed or of unlimited range).
-            let same = cells[0] == cells[1];
-            let (mut i, mut j, mut k) = (0, 0, 0);
-            let id = |l: &[Source], i: usize| l.get(i).map_or(u32::MAX, |s| s.id);
-            loop {
-                let a = id(lists[0], i);
-                let b = if same { a } else { id(lists[1], j) };
-                let u = always.get(k).copied().unwrap_or(u32::MAX);
-                let m = a.min(b).min(u);
-                if m == u32::MAX {
-                    break;
-                }
-                if m == u {
-                    k += 1;
-                    let x = m as usize;
-                    if x < food_count {
-                        let f = &self.food[x];
-                        near.source(
-                            self,
-                            &mut acc,
-                            f.position,
-                            &f.smell,
-                            || f.smell_scale(),
-                            scratch,
-                        );
-                    } else {
-                        let a = &self.aversives[x - food_count];
-                        near.source(self, &mut acc, a.position, &a.smell, || 1.0, scratch);
+        let pair = index.smell_pair_sources(tips);
+        match pair {
+            Some(list) if always.is_empty() => {
+                for s in list {
+                    let (d2, reach) = reach_pair(tips, s.centre, s.range_squared);
+                    if reach[0] | reach[1] {
+                        let w = index.source_walls(s);
+                        self.listed(&mut acc, tips, s, (d2, reach), [w, w], walls);
                     }
-                    continue;
                 }
-                let wa = (a == m).then(|| index.source_walls(&lists[0][i]));
-                let wb = if same {
-                    wa
-                } else {
-                    (b == m).then(|| index.source_walls(&lists[1][j]))
-                };
-                listed(&mut acc, m, [wa, wb]);
-                i += usize::from(a == m);
-                j += usize::from(!same && b == m);
+            }
+            _ => {
+                // A three-way merge of both receptors' lists (the same one when it serves
+                // both) and the unlimited-range objects, in increasing id order (an id is
+                // either listed or of unlimited range).
+                let lists = pair.map_or_else(
+                    || {
+                        let cells = [index.smell_cell(tips[0]), index.smell_cell(tips[1])];
+                        [index.smell_sources(cells[0]), index.smell_sources(cells[1])]
+                    },
+                    |l| [l, l],
+                );
+                let (mut i, mut j, mut k) = (0, 0, 0);
+                let id = |l: &[Source], i: usize| l.get(i).map_or(u32::MAX, |s| s.id);
+                loop {
+                    let a = id(lists[0], i);
+                    let b = id(lists[1], j);
+                    let u = always.get(k).copied().unwrap_or(u32::MAX);
+                    let m = a.min(b).min(u);
+                    if m == u32::MAX {
+                        break;
+                    }
+                    if m == u {
+                        k += 1;
+                        let x = m as usize;
+                        if x < food_count {
+                            let f = &self.food[x];
+                            near.source(
+                                self,
+                                &mut acc,
+                                f.position,
+                                &f.smell,
+                                || f.smell_scale(),
+                                scratch,
+                            );
+                        } else {
+                            let a = &self.aversives[x - food_count];
+                            near.source(self, &mut acc, a.position, &a.smell, || 1.0, scratch);
+                        }
+                        continue;
+                    }
+                    let (sa, sb) = (
+                        (a == m).then(|| &lists[0][i]),
+                        (b == m).then(|| &lists[1][j]),
+                    );
+                    i += usize::from(a == m);
+                    j += usize::from(b == m);
+                    // Both entries are copies of the object's centre and range.
+                    let Some(s) = sa.or(sb) else { continue };
+                    let (d2, reach) = reach_pair(tips, s.centre, s.range_squared);
+                    let reach = [reach[0] && sa.is_some(), reach[1] && sb.is_some()];
+                    if reach[0] | reach[1] {
+                        let w = |e: Option<&Source>| e.map_or(&[][..], |e| index.source_walls(e));
+                        self.listed(&mut acc, tips, s, (d2, reach), [w(sa), w(sb)], walls);
+                    }
+                }
             }
         }
         for a in self.areas {
@@ -433,26 +450,37 @@ impl Surroundings<'_> {
         acc
     }
 
-    /// [`accumulate_listed`] for food or aversive object `id` (food first, as in
-    /// [`Source::id`]).
+    /// [`accumulate_listed`] for the food or aversive object of `source` (food first, as in
+    /// [`Source::id`]), in range of at least one receptor.
     #[inline(always)]
     fn listed(
         &self,
         acc: &mut [[f64; 8]; 2],
         tips: [Vec2; 2],
-        id: u32,
-        w: [Option<&[u32]>; 2],
+        source: &Source,
+        range: ([f64; 2], [bool; 2]),
+        w: [&[u32]; 2],
         walls: (&[BoxedSegment], &[BoxedSegment]),
     ) {
-        let (k, c) = (id as usize, self.smell_c);
+        let (k, c, centre) = (source.id as usize, self.smell_c, source.centre);
         let food_count = self.index.food_count();
         if k < food_count {
             let f = &self.food[k];
             let scale = || f.smell_scale();
-            accumulate_listed(acc, tips, f.position, &f.smell, scale, c, w, walls);
+            accumulate_listed(
+                acc,
+                tips,
+                centre,
+                range,
+                &f.smell.emission,
+                scale,
+                c,
+                w,
+                walls,
+            );
         } else {
-            let a = &self.aversives[k - food_count];
-            accumulate_listed(acc, tips, a.position, &a.smell, || 1.0, c, w, walls);
+            let e = &self.aversives[k - food_count].smell.emission;
+            accumulate_listed(acc, tips, centre, range, e, || 1.0, c, w, walls);
         }
     }
 

@@ -222,36 +222,43 @@ pub fn visible_among(
     !(walls.iter().any(|&k| blocks(&fixed[k as usize])) || doors.iter().any(blocks))
 }
 
+/// The range test of eq. 26 at both receptors for a thing at `centre` of range θ² =
+/// `range_squared`: the squared distances and whether each is strictly inside the range
+/// (the test of [`falloff`]), for the caller to skip a thing out of range of both with one
+/// branch.
+#[inline(always)]
+pub fn reach_pair(receptors: [Vec2; 2], centre: Vec2, range_squared: f64) -> ([f64; 2], [bool; 2]) {
+    let d2 = [
+        receptors[0].distance_squared(centre),
+        receptors[1].distance_squared(centre),
+    ];
+    (d2, [d2[0] < range_squared, d2[1] < range_squared])
+}
+
 /// [`accumulate`] at both receptors for a food or aversive object that the smell cells of
-/// the receptors list: `walls[i]` are its walls in receptor i's cell (see
-/// [`visible_among`]), or `None` when that cell does not list it, which proves it out of
-/// range of receptor i (nothing to add). The terms are those of [`accumulate`], and `scale`
-/// is only computed for an object in range, as in [`add_pair`].
+/// the receptors list, given the squared distances `d2` and the range tests `reach` of
+/// [`reach_pair`] (false also for a receptor whose cell does not list it, which proves it
+/// out of range there): `walls[i]` are its walls in receptor i's cell (see
+/// [`visible_among`]). The terms are those of [`accumulate`]: both falloffs are computed
+/// without a branch and the one out of range dropped (a division whose result is dropped
+/// changes nothing), and `scale` is only computed for an object in range, as in
+/// [`add_pair`].
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub fn accumulate_listed(
     acc: &mut [[f64; 8]; 2],
     receptors: [Vec2; 2],
     centre: Vec2,
-    smell: &Smell,
+    (d2, reach): ([f64; 2], [bool; 2]),
+    emission: &[f64; 8],
     scale: impl FnOnce() -> f64,
     c: f64,
-    walls: [Option<&[u32]>; 2],
+    walls: [&[u32]; 2],
     (fixed, doors): (&[BoxedSegment], &[BoxedSegment]),
 ) {
-    let rs = smell.range_squared;
-    let d2 = [
-        receptors[0].distance_squared(centre),
-        receptors[1].distance_squared(centre),
-    ];
-    let f0 = match walls[0] {
-        Some(_) => falloff(d2[0], c, rs),
-        None => 0.0,
-    };
-    let f1 = match walls[1] {
-        Some(_) => falloff(d2[1], c, rs),
-        None => 0.0,
-    };
+    let q = [1.0 / (1.0 + c * d2[0]), 1.0 / (1.0 + c * d2[1])];
+    let f0 = if reach[0] { q[0] } else { 0.0 };
+    let f1 = if reach[1] { q[1] } else { 0.0 };
     if f0 == 0.0 && f1 == 0.0 {
         return;
     }
@@ -259,15 +266,11 @@ pub fn accumulate_listed(
     if scale == 0.0 {
         return;
     }
-    if let Some(w) = walls[0] {
-        if f0 != 0.0 && visible_among(receptors[0], centre, w, fixed, doors) {
-            add(&mut acc[0], f0 * scale, &smell.emission);
-        }
+    if f0 != 0.0 && visible_among(receptors[0], centre, walls[0], fixed, doors) {
+        add(&mut acc[0], f0 * scale, emission);
     }
-    if let Some(w) = walls[1] {
-        if f1 != 0.0 && visible_among(receptors[1], centre, w, fixed, doors) {
-            add(&mut acc[1], f1 * scale, &smell.emission);
-        }
+    if f1 != 0.0 && visible_among(receptors[1], centre, walls[1], fixed, doors) {
+        add(&mut acc[1], f1 * scale, emission);
     }
 }
 
