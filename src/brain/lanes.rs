@@ -98,16 +98,17 @@ pub fn load_tile(x: &[f64], count: usize, xt: &mut [Lanes]) {
     }
 }
 
-/// One layer's sums for a tile: y_j = b_j + w_j0 x_0 + w_j1 x_1 + … in every lane, with
-/// `weights` the layer's weights as [`repeat`] lays them out, `x` the tile's inputs (one
-/// [`Lanes`] per input), `y` one [`Lanes`] per unit. The layer's function comes after, on
-/// all the tiles at once ([`finish`]).
+/// One layer's sums for every tile: y_j = b_j + w_j0 x_0 + w_j1 x_1 + … in every lane, with
+/// `weights` the layer's weights as [`repeat`] lays them out, `x` the tiles' inputs (p
+/// [`Lanes`] per tile, one per input; p ≥ 1), `y` the tiles' sums (one [`Lanes`] per unit
+/// and tile). Block by block of units, tile by tile: the block's biases and weights are
+/// located once for all the tiles. The layer's function comes after ([`finish`]).
 #[inline(always)]
-pub fn sums(weights: &[Lanes], biases: &[f64], x: &[Lanes], y: &mut [Lanes]) {
-    let j = blocks::<8>(weights, biases, x, y, 0);
-    let j = blocks::<4>(weights, biases, x, y, j);
-    let j = blocks::<2>(weights, biases, x, y, j);
-    blocks::<1>(weights, biases, x, y, j);
+pub fn sums(weights: &[Lanes], biases: &[f64], x: &[Lanes], p: usize, y: &mut [Lanes]) {
+    let j = blocks::<8>(weights, biases, (x, p), y, 0);
+    let j = blocks::<4>(weights, biases, (x, p), y, j);
+    let j = blocks::<2>(weights, biases, (x, p), y, j);
+    blocks::<1>(weights, biases, (x, p), y, j);
 }
 
 /// [`sums`] for the units j.. in whole blocks of `N` (N registers of sums over all the
@@ -116,34 +117,37 @@ pub fn sums(weights: &[Lanes], biases: &[f64], x: &[Lanes], y: &mut [Lanes]) {
 fn blocks<const N: usize>(
     weights: &[Lanes],
     biases: &[f64],
-    x: &[Lanes],
+    (x, p): (&[Lanes], usize),
     y: &mut [Lanes],
     mut j: usize,
 ) -> usize {
     let units = biases.len();
-    let p = x.len();
     while j + N <= units {
-        let mut acc = [[0.0; LANES]; N];
-        for (sums, &b) in acc.iter_mut().zip(&biases[j..j + N]) {
-            *sums = [b; LANES];
-        }
-        // The block's weights, input by input (see `repeat`); four inputs per step (in index
-        // order) to spread the loop overhead, then the last 0–3 one by one.
+        let start: &[f64; N] = biases[j..j + N].try_into().expect("N biases");
+        // The block's weights, input by input (see `repeat`).
         let block = &weights[p * j..p * (j + N)];
-        let (rows, xs) = (block.chunks_exact(4 * N), x.chunks_exact(4));
-        let rest = rows.remainder().chunks_exact(N).zip(xs.remainder());
-        for (rows, xs) in rows.zip(xs) {
-            let (w01, w23) = rows.split_at(2 * N);
-            let ((w0, w1), (w2, w3)) = (w01.split_at(N), w23.split_at(N));
-            step(&mut acc, w0, &xs[0]);
-            step(&mut acc, w1, &xs[1]);
-            step(&mut acc, w2, &xs[2]);
-            step(&mut acc, w3, &xs[3]);
+        for (x, y) in x.chunks_exact(p).zip(y.chunks_exact_mut(units)) {
+            let mut acc = [[0.0; LANES]; N];
+            for k in 0..N {
+                acc[k] = [start[k]; LANES];
+            }
+            // Four inputs per step (in index order) to spread the loop overhead, then the
+            // last 0–3 one by one.
+            let (rows, xs) = (block.chunks_exact(4 * N), x.chunks_exact(4));
+            let rest = rows.remainder().chunks_exact(N).zip(xs.remainder());
+            for (rows, xs) in rows.zip(xs) {
+                let (w01, w23) = rows.split_at(2 * N);
+                let ((w0, w1), (w2, w3)) = (w01.split_at(N), w23.split_at(N));
+                step(&mut acc, w0, &xs[0]);
+                step(&mut acc, w1, &xs[1]);
+                step(&mut acc, w2, &xs[2]);
+                step(&mut acc, w3, &xs[3]);
+            }
+            for (row, xi) in rest {
+                step(&mut acc, row, xi);
+            }
+            y[j..j + N].copy_from_slice(&acc);
         }
-        for (row, xi) in rest {
-            step(&mut acc, row, xi);
-        }
-        y[j..j + N].copy_from_slice(&acc);
         j += N;
     }
     j

@@ -165,7 +165,11 @@ impl Mlp {
         let tile = BATCH_TILE * hidden.iter().fold(inputs, |m, &h| m.max(h));
         let numbers = match precision {
             Precision::F64 => Numbers::F64 {
-                lanes: (transposed.len() <= lanes::MAX_WEIGHTS).then(|| SampleLanes {
+                // (Sizes of 0 are valid but useless: left to the unit-lane pass.)
+                lanes: (transposed.len() <= lanes::MAX_WEIGHTS
+                    && inputs > 0
+                    && hidden.iter().all(|&units| units > 0))
+                .then(|| SampleLanes {
                     weights: lane_weights(&transposed, &layers, &output),
                     values: Vec::new(),
                     tile: inputs + buffer + outputs,
@@ -462,10 +466,7 @@ fn lane_pass(
             &weights[layer.weights.clone()],
             &params[layer.biases.clone()],
         );
-        for k in 0..tiles {
-            let y = &mut y[k * units..(k + 1) * units];
-            lanes::sums(w, b, &x[k * width..(k + 1) * width], y);
-        }
+        lanes::sums(w, b, x, width, y);
         lanes::finish(y, stage);
         (x, width) = (y, units);
         free = after;
@@ -475,7 +476,9 @@ fn lane_pass(
     if m == 0 {
         return;
     }
-    for (sums, out) in x.chunks_exact(m).zip(outputs.chunks_mut(LANES * m)) {
+    for k in 0..tiles {
+        let (s, sums) = (k * LANES, &x[k * m..(k + 1) * m]);
+        let out = &mut outputs[s * m..(s + (n - s).min(LANES)) * m];
         if let (Ok(out), [left, right]) = (<&mut [f64; 2 * LANES]>::try_from(&mut *out), sums) {
             // Two motor outputs and a full tile (the usual case): no loop.
             for t in 0..LANES {
