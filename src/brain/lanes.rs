@@ -13,10 +13,12 @@
 //! networks of at most [`MAX_WEIGHTS`] weights (64 KiB repeated, L1/L2-resident) use it;
 //! larger ones (WaterWorld's 98 → 100 → 2) keep the unit-lane kernel.
 //!
-//! A tile goes through every layer before the next tile starts: a hidden layer's activations
-//! come out in the lane layout the next layer reads (unit-major, 4 samples side by side), so
-//! they need no copy, and the activation function runs on the sums while they are still in
-//! registers.
+//! The batch goes layer by layer (see `lane_pass` in [`super::mlp`]): each layer's sums tile
+//! by tile and block of units by block ([`sums`]), written in the lane layout the next layer
+//! reads (unit-major, 4 samples side by side), so the hidden activations need no copy; then
+//! the layer's function over all the tiles in one vectorised loop ([`finish`]). Only the
+//! inputs are copied into tiles ([`load_tile`], a 4 × 4 transpose) and the outputs out of
+//! them.
 //!
 //! # Same bits
 //!
@@ -174,5 +176,61 @@ pub fn finish(y: &mut [Lanes], stage: Stage) {
     match stage {
         Stage::Hidden(activation) => activation.apply_slice(values),
         Stage::Output => tanh_outputs(values),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The block of units j..j + N owns p·j..p·(j + N), input by input, every weight in all
+    /// the lanes: 11 units are blocks of 8, 2 and 1.
+    #[test]
+    fn repeat_lays_the_weights_out_block_by_block() {
+        let (units, inputs) = (11, 3);
+        // Input-major: weight from input i to unit j at i * units + j.
+        let transposed: Vec<f64> = (0..units * inputs).map(|k| k as f64).collect();
+        let repeated = repeat(&transposed, units);
+        assert_eq!(repeated.len(), transposed.len());
+        let mut expected = Vec::new();
+        for (j, n) in [(0, 8), (8, 2), (10, 1)] {
+            for i in 0..inputs {
+                for k in j..j + n {
+                    expected.push([transposed[i * units + k]; LANES]);
+                }
+            }
+        }
+        assert_eq!(repeated, expected);
+        assert!(repeat(&[], 0).is_empty());
+    }
+
+    /// Each lane gets the single-sample sum b_j + w_j0 x_0 + … (left to right, separate
+    /// multiplies and adds) for every unit-block remainder and input-step remainder.
+    #[test]
+    fn sums_are_the_single_sample_sums_in_every_lane() {
+        for (units, inputs) in [(1, 1), (3, 5), (16, 24), (15, 7), (2, 16), (9, 4)] {
+            let transposed: Vec<f64> = (0..units * inputs)
+                .map(|k| ((k * 37 % 23) as f64 - 11.0) / 7.3)
+                .collect();
+            let biases: Vec<f64> = (0..units).map(|j| j as f64 * 0.31 - 1.0).collect();
+            let tiles = 3;
+            let x: Vec<Lanes> = (0..tiles * inputs)
+                .map(|k| std::array::from_fn(|t| ((k * 4 + t) as f64 * 0.77).sin()))
+                .collect();
+            let mut y = vec![[f64::NAN; LANES]; tiles * units];
+            sums(&repeat(&transposed, units), &biases, &x, inputs, &mut y);
+            for k in 0..tiles {
+                for t in 0..LANES {
+                    for j in 0..units {
+                        let mut sum = biases[j];
+                        for i in 0..inputs {
+                            sum += transposed[i * units + j] * x[k * inputs + i][t];
+                        }
+                        let got = y[k * units + j][t];
+                        assert_eq!(got.to_bits(), sum.to_bits(), "{units} x {inputs}");
+                    }
+                }
+            }
+        }
     }
 }

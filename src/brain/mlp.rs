@@ -25,6 +25,14 @@
 //! [`crate::brain::Brain::activate`] on it alone. The scratch buffers grow to the largest batch seen and are never shrunk: once
 //! warmed up, a batch allocates nothing.
 //!
+//! Small f64 networks (at most [`lanes::MAX_WEIGHTS`] weights, such as the standard
+//! 24 → 16 → 2 brain) run batches of 4 or more samples through the sample-lane pass instead
+//! ([`super::lanes`]): one register holds one unit's sums for 4 samples, each weight is kept
+//! repeated in 4 lanes so that it is a memory operand of the multiply, and the batch goes
+//! layer by layer in tiles of 4 samples. Same sums in the same order, so the same bits; on
+//! the standard foraging world it cut the brain from 789 to 572 instructions per
+//! creature-tick (callgrind).
+//!
 //! # Precision
 //!
 //! `precision = "f64"` (the default) computes as above in f64. `precision = "f32"` (opt-in:
@@ -345,8 +353,7 @@ impl Mlp {
         let shape = (&self.hidden[..], &self.output, self.activation);
         match &mut self.numbers {
             Numbers::F64 {
-                lanes: Some(lanes),
-                ..
+                lanes: Some(lanes), ..
             } if n >= LANES => lane_pass(shape, &self.parameters, lanes, inputs, outputs, n),
             Numbers::F64 { buffers, .. } => {
                 pass(shape, &self.parameters, buffers, inputs, outputs, n)
@@ -425,7 +432,10 @@ fn pass<F: Real>(
 fn lane_weights(transposed: &[f64], hidden: &[Layer], output: &Layer) -> Vec<Lanes> {
     let mut weights = Vec::with_capacity(transposed.len());
     for layer in hidden.iter().chain([output]) {
-        weights.extend(lanes::repeat(&transposed[layer.weights.clone()], layer.units));
+        weights.extend(lanes::repeat(
+            &transposed[layer.weights.clone()],
+            layer.units,
+        ));
     }
     weights
 }
@@ -444,7 +454,9 @@ fn lane_pass(
     outputs: &mut [f64],
     n: usize,
 ) {
-    let SampleLanes { weights, values, .. } = lanes;
+    let SampleLanes {
+        weights, values, ..
+    } = lanes;
     let tiles = n.div_ceil(LANES);
     let p = inputs.len() / n;
     let (xt, mut free) = values.split_at_mut(tiles * p);
@@ -458,7 +470,9 @@ fn lane_pass(
         );
     }
     let (mut x, mut width): (&[Lanes], usize) = (xt, p);
-    let layers = hidden.iter().map(|layer| (layer, Stage::Hidden(activation)));
+    let layers = hidden
+        .iter()
+        .map(|layer| (layer, Stage::Hidden(activation)));
     for (layer, stage) in layers.chain([(output, Stage::Output)]) {
         let units = layer.units;
         let (y, after) = std::mem::take(&mut free).split_at_mut(tiles * units);
@@ -603,6 +617,75 @@ mod tests {
                         assert_eq!(bits(&by_portable), bits(&expected), "portable {what}");
                     }
                 }
+            }
+        }
+    }
+
+    /// Small f64 networks take the sample-lane batch pass (so the bit-for-bit tests above
+    /// cover it), networks of more than 2,048 weights (WaterWorld's), f32 ones and those with a
+    /// size of 0 the unit-lane pass.
+    #[test]
+    fn small_f64_networks_take_the_sample_lane_pass() {
+        let lanes = |shape, precision| {
+            let mlp = networks(52, shape, precision, 1.0).swap_remove(0);
+            matches!(mlp.numbers, Numbers::F64 { lanes: Some(_), .. })
+        };
+        assert!(lanes((24, &[16], 2), Precision::F64));
+        assert!(lanes((13, &[1, 15, 9], 7), Precision::F64));
+        assert!(lanes((1, &[], 2), Precision::F64));
+        assert!(!lanes((98, &[100], 2), Precision::F64));
+        assert!(!lanes((24, &[16], 2), Precision::F32));
+        assert!(!lanes((0, &[4], 2), Precision::F64));
+    }
+
+    /// Batches through the sample-lane pass keep the single-pass bits with extreme
+    /// parameters and inputs too (overflowing products, ±∞ and NaN sums, which the outputs map
+    /// to ±1 and 0), in every tile remainder.
+    #[test]
+    fn sample_lane_batches_match_single_passes_on_extreme_values() {
+        let mut rng = rng(53);
+        let specials = [
+            0.0,
+            -0.0,
+            1e300,
+            -1e300,
+            f64::MAX,
+            1e-310,
+            f64::INFINITY,
+            f64::NAN,
+        ];
+        let pick = |rng: &mut Rng| {
+            if uniform(rng, 0.0, 1.0) < 0.3 {
+                specials[(uniform(rng, 0.0, 8.0) as usize).min(7)]
+            } else {
+                uniform(rng, -3.0, 3.0)
+            }
+        };
+        let (inputs, hidden, outputs) = (6, [9usize], 3);
+        for activation in [Activation::Tanh, Activation::Sigmoid, Activation::Relu] {
+            let count = parameter_count(inputs, &hidden, outputs);
+            let parameters: Vec<f64> = (0..count).map(|_| pick(&mut rng)).collect();
+            let mut mlp = Mlp::new(
+                inputs,
+                &hidden,
+                outputs,
+                activation,
+                Precision::F64,
+                &parameters,
+            );
+            let mut single = mlp.clone();
+            for n in 4..=13 {
+                let x: Vec<f64> = (0..n * inputs).map(|_| pick(&mut rng)).collect();
+                let mut expected = vec![0.0; n * outputs];
+                for (xs, ys) in x
+                    .chunks_exact(inputs)
+                    .zip(expected.chunks_exact_mut(outputs))
+                {
+                    single.activate(xs, ys);
+                }
+                let mut batch = vec![f64::NAN; n * outputs];
+                mlp.activate_batch(&x, &mut batch);
+                assert_eq!(bits(&batch), bits(&expected), "{activation:?} n={n}");
             }
         }
     }
