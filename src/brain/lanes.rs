@@ -161,7 +161,7 @@ fn step<const N: usize>(acc: &mut [Lanes; N], w: &[Lanes], x: &Lanes) {
     let w: &[Lanes; N] = w.try_into().expect("N weights");
     for k in 0..N {
         for t in 0..LANES {
-            acc[k][t] = acc[k][t] + w[k][t] * x[t];
+            acc[k][t] += w[k][t] * x[t];
         }
     }
 }
@@ -215,7 +215,7 @@ mod tests {
             let biases: Vec<f64> = (0..units).map(|j| j as f64 * 0.31 - 1.0).collect();
             let tiles = 3;
             let x: Vec<Lanes> = (0..tiles * inputs)
-                .map(|k| std::array::from_fn(|t| ((k * 4 + t) as f64 * 0.77).sin()))
+                .map(|k| std::array::from_fn(|t| libm::sin((k * 4 + t) as f64 * 0.77)))
                 .collect();
             let mut y = vec![[f64::NAN; LANES]; tiles * units];
             sums(&repeat(&transposed, units), &biases, &x, inputs, &mut y);
