@@ -39,6 +39,7 @@ pub mod activation;
 pub mod controller;
 pub mod ctrnn;
 pub mod genome;
+mod lanes;
 pub mod mlp;
 pub mod recurrent;
 pub mod spec;
