@@ -1436,3 +1436,55 @@ fn random_heading_chacha(r: &mut ChaCha8Rng) -> Vec2 {
     let a = uniform(r, -PI, PI);
     v(libm::cos(a), libm::sin(a))
 }
+
+/// `rotate` skips libm for tiny angles (sin x = x below 2⁻²⁶, cos x = 1 below 2⁻²⁷·√2) and
+/// takes `sincos` from 2⁻²⁶ on: the same bits as `libm::sin` and `libm::cos` everywhere,
+/// around both thresholds, for ±0, subnormals, infinities and NaN.
+#[test]
+fn rotate_gives_libms_bits_for_tiny_and_threshold_angles() {
+    let plain = |u: Vec2, x: f64| {
+        let (s, c) = (libm::sin(x), libm::cos(x));
+        Vec2::new(u.x * c - u.y * s, u.x * s + u.y * c)
+    };
+    let mut angles = vec![
+        0.0,
+        -0.0,
+        f64::MIN_POSITIVE,
+        5e-324,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NAN,
+        1e-4,
+        0.3,
+        3.0,
+        100.0,
+    ];
+    for threshold in [2f64.powi(-26), 2f64.powi(-27) * 2f64.sqrt(), 2f64.powi(-27)] {
+        let mut x = threshold;
+        for _ in 0..40 {
+            angles.push(x);
+            x = f64::from_bits(x.to_bits() + 1);
+        }
+        let mut x = threshold;
+        for _ in 0..40 {
+            angles.push(x);
+            x = f64::from_bits(x.to_bits() - 1);
+        }
+    }
+    let mut x = 1e-300;
+    while x < 1.0 {
+        angles.push(x);
+        x *= 1.37;
+    }
+    let u = v(0.6, -0.8);
+    for a in angles {
+        for x in [a, -a] {
+            let (got, want) = (rotate(u, x), plain(u, x));
+            assert_eq!(
+                (got.x.to_bits(), got.y.to_bits()),
+                (want.x.to_bits(), want.y.to_bits()),
+                "angle {x:e}"
+            );
+        }
+    }
+}

@@ -184,22 +184,35 @@ pub fn rotate(v: Vec2, angle: f64) -> Vec2 {
     rotate_sc(v, s, c)
 }
 
-/// `(libm::sin(x), libm::cos(x))`, without the calls for x = ±0, whose results libm gives
-/// exactly: sin(±0) = ±0 and cos(±0) = 1 (a straight move turns by exactly 0). From |x| =
-/// 2⁻²⁶ on, one `libm::sincos` call gives the same bits (see the module docs).
+/// `(libm::sin(x), libm::cos(x))`. From |x| = 2⁻²⁶ on, one `libm::sincos` call gives the
+/// same bits (see the module docs). Below, the calls are not made: libm's `sin` returns x
+/// itself for |x| < 2⁻²⁶ (its high word below 0x3e500000), and its `cos` returns exactly 1
+/// for |x| < 2⁻²⁷·√2 (high word below 0x3e46a09e), so a straight move (x = ±0) and the
+/// tiny turns of an almost straight one cost a comparison. NaN takes neither shortcut.
 #[inline]
 fn sin_cos(x: f64) -> (f64, f64) {
-    if x == 0.0 {
-        (x, 1.0)
-    } else if x.abs() >= SINCOS_FROM {
+    let a = x.abs();
+    if a >= SINCOS_FROM {
         libm::sincos(x)
+    } else if a < SINCOS_FROM {
+        let high = (x.to_bits() >> 32) as u32 & 0x7fff_ffff;
+        let cos = if high < COS_ONE_BELOW {
+            1.0
+        } else {
+            libm::cos(x)
+        };
+        (x, cos)
     } else {
         (libm::sin(x), libm::cos(x))
     }
 }
 
-/// 2⁻²⁶: from here on `libm::sincos` and `libm::sin`, `libm::cos` run the same code.
+/// 2⁻²⁶: from here on `libm::sincos` and `libm::sin`, `libm::cos` run the same code, and
+/// below it `libm::sin(x)` is x.
 const SINCOS_FROM: f64 = 1.0 / 67_108_864.0;
+
+/// The high word (sign cleared) of 2⁻²⁷·√2, below which `libm::cos` returns 1.
+const COS_ONE_BELOW: u32 = 0x3e46_a09e;
 
 /// Rotation by an angle given by its sine and cosine.
 #[inline]
