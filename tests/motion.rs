@@ -17,7 +17,8 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 use berry_evolve::sim::motion::{
-    admissible, drive, plan_move, rotate, Blockers, MotionParams, MoveOutcome, Pose,
+    admissible, drive, plan_clamped_move, plan_move, rotate, Blockers, MotionParams, MoveOutcome,
+    Pose,
 };
 
 const R: f64 = 3.0; // body radius (report default d = 6)
@@ -1485,6 +1486,71 @@ fn rotate_gives_libms_bits_for_tiny_and_threshold_angles() {
                 (want.x.to_bits(), want.y.to_bits()),
                 "angle {x:e}"
             );
+        }
+    }
+}
+
+/// The world clamps every command and then calls `plan_clamped_move` (for a positive
+/// max_rpt): the same bits as `plan_move` clamping the raw signals, at and near the bounds,
+/// for signed zeros, and against walls.
+#[test]
+fn plan_clamped_move_is_plan_move_for_clamped_signals() {
+    let walls = [seg(10.0, -30.0, 10.0, 30.0), seg(-20.0, 12.0, 25.0, 9.0)];
+    let blockers = Blockers {
+        segments: &walls,
+        circles: &[],
+    };
+    let mut x = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for max_rpt in [1.0, 0.37, 2.5, 1e-9, f64::INFINITY] {
+        let params = MotionParams {
+            max_rpt,
+            ..params()
+        };
+        let clamp = |s: f64| {
+            if s.is_nan() {
+                0.0
+            } else {
+                s.clamp(-max_rpt, max_rpt)
+            }
+        };
+        for k in 0..3000 {
+            let mut signal = |n: f64| match k % 7 {
+                0 => [0.0, -0.0, max_rpt, -max_rpt][(n * 4.0) as usize],
+                1 => f64::NAN,
+                2 => 3.0 * (n - 0.5) * max_rpt.min(4.0),
+                _ => (2.0 * n - 1.0) * max_rpt.min(4.0),
+            };
+            let (l, r) = (signal(next()), signal(next()));
+            let h = 2.0 * std::f64::consts::PI * next();
+            let p = pose(
+                -5.0 + 20.0 * next(),
+                -5.0 + 20.0 * next(),
+                libm::cos(h),
+                libm::sin(h),
+            );
+            let want = plan_move(p, l, r, 3.0, &params, &blockers);
+            let got = plan_clamped_move(p, clamp(l), clamp(r), 3.0, &params, &blockers);
+            let bits = |o: &MoveOutcome| {
+                (
+                    [
+                        o.pose.position.x,
+                        o.pose.position.y,
+                        o.pose.heading.x,
+                        o.pose.heading.y,
+                        o.travelled,
+                    ]
+                    .map(f64::to_bits),
+                    o.blocked,
+                    o.blocked_by_wall,
+                )
+            };
+            assert_eq!(bits(&got), bits(&want), "max_rpt {max_rpt}, {l} {r}, {p:?}");
         }
     }
 }

@@ -326,6 +326,41 @@ mod tests {
         );
     }
 
+    /// `finite_command`'s one comparison is the three `is_finite` tests.
+    #[test]
+    fn finite_command_accepts_exactly_the_finite_commands() {
+        let values = [
+            0.0,
+            -0.0,
+            1.0,
+            -3.5,
+            f64::MAX,
+            f64::MIN,
+            f64::MIN_POSITIVE,
+            5e-324,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            -f64::NAN,
+        ];
+        for &left in &values {
+            for &right in &values {
+                for &eat in &values {
+                    let command = MotorCommand { left, right, eat };
+                    let finite = left.is_finite() && right.is_finite() && eat.is_finite();
+                    let got = finite_command(command);
+                    assert_eq!(got.is_some(), finite, "{command:?}");
+                    if let Some(c) = got {
+                        assert_eq!(
+                            [c.left, c.right, c.eat].map(f64::to_bits),
+                            [left, right, eat].map(f64::to_bits)
+                        );
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn chunks_cover_the_trials_in_order() {
         assert!(chunks(0).is_empty());

@@ -775,6 +775,24 @@ fn prepared_search(
             }));
         }
     }
+    prepared_search_many(start, target, radius, lo, hi, steps, cause, blockers)
+}
+
+/// [`prepared_search`] with several walls or bodies (a corner, a crowd): its own function,
+/// so that the common single-wall search does not set up these arrays.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn prepared_search_many(
+    start: Vec2,
+    target: Vec2,
+    radius: f64,
+    lo: Vec2,
+    hi: Vec2,
+    steps: u32,
+    cause: Verdict,
+    blockers: &Blockers,
+) -> Option<(Vec2, Verdict)> {
+    let r2 = radius * radius;
     let mut pw = [PreparedWall::EMPTY; PREPARED_LEN];
     let mut nw = 0;
     for w in blockers.segments {
@@ -829,10 +847,29 @@ pub fn admissible(p0: Vec2, p1: Vec2, radius: f64, blockers: &Blockers) -> bool 
 /// One tick of motion (§8.1–8.2) for a body of `radius` at `pose` with motor signals
 /// `left_rpt`, `right_rpt` (clamped here to ±`params.max_rpt`). Pure: the caller applies the
 /// outcome. Does not allocate.
+#[inline]
 pub fn plan_move(
     pose: Pose,
     left_rpt: f64,
     right_rpt: f64,
+    radius: f64,
+    params: &MotionParams,
+    blockers: &Blockers,
+) -> MoveOutcome {
+    let left = clamp_rpt(left_rpt, params.max_rpt);
+    let right = clamp_rpt(right_rpt, params.max_rpt);
+    plan_clamped_move(pose, left, right, radius, params, blockers)
+}
+
+/// [`plan_move`] for motor signals a caller has clamped already: `left` and `right` not NaN
+/// and within ±`params.max_rpt`, with `max_rpt` > 0. Clamping them again would change no
+/// bit (the minimum of a number and a bound above it is the number, and so is the maximum
+/// with a bound below it; the bounds being nonzero, a signed zero meets no equal bound), so
+/// the world, which clamps every command it records, skips the second clamping here.
+pub fn plan_clamped_move(
+    pose: Pose,
+    left: f64,
+    right: f64,
     radius: f64,
     params: &MotionParams,
     blockers: &Blockers,
@@ -843,8 +880,6 @@ pub fn plan_move(
         blocked: false,
         blocked_by_wall: false,
     };
-    let left = clamp_rpt(left_rpt, params.max_rpt);
-    let right = clamp_rpt(right_rpt, params.max_rpt);
     let (d, sin_half) = drive_and_sin(params.wheel, left, right);
     if !d.phi.is_finite() || !d.chord.is_finite() {
         // Only a non-finite wheel gets here; keep the world finite.

@@ -594,6 +594,7 @@ impl Offsets {
     /// Writes one observation's report groups (smell to metabolism, and the bias) in the
     /// layout's order. `shock` is the shock sensor, `metabolism` the raw vector m. Landmarks,
     /// areas and the eye are written by the world, which holds what they read.
+    #[inline]
     pub fn write(&self, out: &mut [f64], senses: &Senses, shock: bool, metabolism: &[f64; 4]) {
         // 0.0 or 1.0 without a branch (a sensor's state is as good as random).
         let bit = |b: bool| f64::from(u8::from(b));

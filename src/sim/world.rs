@@ -55,7 +55,7 @@ use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::{Actor, Door, Effect, Flyer, Role, Strategy, Teleporter, Thing};
 use crate::sim::grid::{Scratch, StaticIndex};
 use crate::sim::metabolism::Decay;
-use crate::sim::motion::{plan_move, Blockers, MotionParams, MoveOutcome, Pose};
+use crate::sim::motion::{plan_clamped_move, plan_move, Blockers, MotionParams, MoveOutcome, Pose};
 use crate::sim::noise::Noise;
 use crate::sim::placement::{place_creatures, place_objects, PlacementError};
 use crate::sim::sensors::{Body, Offsets, Senses, Surroundings};
@@ -140,6 +140,10 @@ pub struct World {
     scratch: Scratch,
     /// Per-cell lists of the fixed walls a creature's move may reach (see [`MoverCells`]).
     mover_cells: Option<MoverCells>,
+    /// Per creature, where its last contacts phase found its body and the cell of
+    /// `mover_cells` it was in: its next move most often starts there, and the cell is a
+    /// function of the position alone. NaN (matching no position) until then.
+    last_cell: Vec<(Vec2, usize)>,
     /// Sense, eat and regenerate with plain loops over every object instead of the grid and
     /// the list of regrowing food (the reference the tests compare the grid against).
     brute_force: bool,
@@ -432,6 +436,7 @@ impl World {
             index,
             scratch,
             mover_cells,
+            last_cell: vec![(Vec2::NAN, 0); creatures],
             brute_force: false,
             creatures: poses
                 .into_iter()
@@ -522,6 +527,7 @@ impl World {
     /// in index order `observe(i)` and, when it returned an observation, `apply(i, command)`,
     /// then `end_tick`. Any other order gives another world (creature i senses the world as
     /// creatures 0..i left it in this tick; noise draws follow the tick order).
+    #[inline]
     pub fn begin_tick(&mut self) {
         // Nothing to regrow (every object full, the common case) and no gadgets: nothing
         // to do, known without entering the loops.
@@ -529,13 +535,19 @@ impl World {
             self.regenerate_food();
         }
         if self.gadgets {
-            self.close_doors();
-            for a in 0..self.actors.len() {
-                self.act_actor(a);
-            }
-            for f in 0..self.flyers.len() {
-                self.fly(f);
-            }
+            self.begin_gadgets();
+        }
+    }
+
+    /// Phase 1 (doors) and 2 of the tick.
+    #[inline(never)]
+    fn begin_gadgets(&mut self) {
+        self.close_doors();
+        for a in 0..self.actors.len() {
+            self.act_actor(a);
+        }
+        for f in 0..self.flyers.len() {
+            self.fly(f);
         }
     }
 
@@ -577,6 +589,7 @@ impl World {
 
     /// Phase 1: every food object regenerates. Only those in `regrowing` can change, each
     /// on its own, so the others are skipped and the order does not matter.
+    #[inline(never)]
     fn regenerate_food(&mut self) {
         if self.brute_force {
             for f in &mut self.food {
@@ -686,20 +699,33 @@ impl World {
         // The signals are clamped already (not NaN, within ±max_rpt): `max_travel`'s own
         // clamping would leave their magnitudes as they are.
         let travel = self.travel_bound(command.left.abs().max(command.right.abs()));
-        let near = self.walls_near(start, travel);
+        let near = self.walls_near(start, travel, Some(i));
         let blockers = Blockers {
             segments: near.walls(&self.mover_cells, &self.scratch),
             circles: &self.blockers,
         };
         let c = &mut self.creatures[i];
-        let outcome = plan_move(
-            c.pose,
-            command.left,
-            command.right,
-            self.body.radius,
-            &self.motion,
-            &blockers,
-        );
+        // Clamped above: with a positive bound, clamping again in `plan_move` changes nothing.
+        let (pose, radius) = (c.pose, self.body.radius);
+        let outcome = if self.motion.max_rpt > 0.0 {
+            plan_clamped_move(
+                pose,
+                command.left,
+                command.right,
+                radius,
+                &self.motion,
+                &blockers,
+            )
+        } else {
+            plan_move(
+                pose,
+                command.left,
+                command.right,
+                radius,
+                &self.motion,
+                &blockers,
+            )
+        };
         c.pose = outcome.pose;
         c.travelled += outcome.travelled;
         c.command = command;
@@ -735,7 +761,9 @@ impl World {
     /// over the walls, so leaving out walls that cannot be reached changes nothing, and
     /// listing more walls than needed changes nothing either (see [`MoverCells`]).
     #[inline]
-    fn walls_near(&mut self, start: Vec2, travel: f64) -> NearWalls {
+    ///
+    /// `creature`: the mover, when a creature, whose last cell is tried first.
+    fn walls_near(&mut self, start: Vec2, travel: f64, creature: Option<usize>) -> NearWalls {
         let felt = self.walls.felt();
         if self.brute_force {
             self.scratch.blocking.clear();
@@ -744,6 +772,11 @@ impl World {
         }
         if let Some(cells) = &self.mover_cells {
             if felt.len() == self.walls.fixed_count() && travel <= cells.travel {
+                if let Some((at, k)) = creature.map(|i| self.last_cell[i]) {
+                    if at == start {
+                        return NearWalls::Cell(k);
+                    }
+                }
                 if let Some(k) = cells.cell_of(start) {
                     return NearWalls::Cell(k);
                 }
@@ -768,7 +801,10 @@ impl World {
             Eating::Action => c.command.eat > 0.5,
         };
         let cell = match &self.mover_cells {
-            Some(cells) if !self.brute_force => cells.cell_of(position).map(|k| (cells, k)),
+            Some(cells) if !self.brute_force => cells.cell_of(position).map(|k| {
+                self.last_cell[i] = (position, k);
+                (cells, k)
+            }),
             _ => None,
         };
         let mut received = [0.0; 4];
@@ -1032,7 +1068,7 @@ impl World {
             ..self.motion
         };
         let travel = self.max_travel(left, right, params.max_rpt);
-        let near = self.walls_near(actor.pose.position, travel);
+        let near = self.walls_near(actor.pose.position, travel, None);
         let blockers = Blockers {
             segments: near.walls(&self.mover_cells, &self.scratch),
             circles: &self.blockers,
