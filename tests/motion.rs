@@ -1520,7 +1520,7 @@ fn plan_clamped_move_is_plan_move_for_clamped_signals() {
             }
         };
         for k in 0..3000 {
-            let mut signal = |n: f64| match k % 7 {
+            let signal = |n: f64| match k % 7 {
                 0 => [0.0, -0.0, max_rpt, -max_rpt][(n * 4.0) as usize],
                 1 => f64::NAN,
                 2 => 3.0 * (n - 0.5) * max_rpt.min(4.0),

@@ -105,6 +105,7 @@ pub fn trial_stream(
 /// (the creature stands still for that tick and its life is marked invalid). The one check
 /// both evaluation paths apply, so that they agree to the bit.
 #[inline]
+#[allow(clippy::eq_op)] // x − x is the finiteness test, on purpose
 pub(crate) fn finite_command(command: MotorCommand) -> Option<MotorCommand> {
     // x − x is 0 for a finite x and NaN for ±∞ and NaN, and a NaN term makes the sum NaN:
     // the three tests in one comparison, without a branch each.
