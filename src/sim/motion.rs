@@ -36,8 +36,12 @@
 //! `wall_blocks` for a wall the body does not touch at the start is `crosses || touches at
 //! the end`, two pure tests: the end test runs first, since it alone decides a body pushed
 //! against the wall, which would otherwise repeat the path test on every step. sin(φ/2) is
-//! computed once for the chord and the heading, and sin and cos of ±0 (a straight move, or a
-//! blocked move that travelled 0) are not computed: libm returns exactly ±0 and 1 for them.
+//! computed once for the chord and the heading, and sin and cos of angles below 2⁻²⁶ (±0 for
+//! a straight move or a blocked move that travelled 0, and the tiny turns of an almost
+//! straight one) are not computed: libm returns x itself for the sine there, and exactly 1
+//! for the cosine below 2⁻²⁷·√2 (above, `libm::cos` is called). The world clamps the motor
+//! signals before it moves a body, so it calls [`plan_clamped_move`], which does not clamp
+//! them again (clamping a clamped signal changes no bit when the bound is positive).
 //! When sinc needs sin(φ/2) (|φ/2| ≥ 1e-4), sine and cosine come from one `libm::sincos`
 //! call, which shares the argument reduction: for |x| ≥ 2⁻²⁶ it runs the very kernels
 //! `libm::sin` and `libm::cos` run (`k_sin(x, 0, 0)` and `k_cos(x, 0)` up to π/4, else the

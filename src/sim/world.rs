@@ -42,9 +42,13 @@
 //! grid ([`crate::sim::grid`]) instead of looping over every object, and a move is tested
 //! only against the walls near it (the walls listed for its start's cell, see `MoverCells`,
 //! or while a door stands those the grid finds within its reach), so a creature-tick costs
-//! what is around the creature, not what is in the world. Regeneration visits only food below capacity. The answers are
-//! the plain loops' to the bit (same tests, same order): [`World::set_brute_force`] runs the
-//! plain loops, and the tests compare the two.
+//! what is around the creature, not what is in the world. Eating and shock take the food and
+//! aversive objects a body may touch from the lists of the cell it ends in (also in
+//! `MoverCells`), and the next move reuses that cell when it starts where the last one ended.
+//! Regeneration visits only food below capacity; worlds without teleporters, doors,
+//! wanderers or predators skip those phases on one flag. The answers are the plain loops' to
+//! the bit (same tests, same order): [`World::set_brute_force`] runs the plain loops, and
+//! the tests compare the two.
 
 use crate::geometry::{circle_touches_segment, circles_touch, Circle, Segment, Vec2};
 use crate::seed::{uniform, Rng};
