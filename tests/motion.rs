@@ -17,7 +17,8 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 use berry_evolve::sim::motion::{
-    admissible, drive, plan_move, rotate, Blockers, MotionParams, MoveOutcome, Pose,
+    admissible, drive, plan_clamped_move, plan_move, rotate, Blockers, MotionParams, MoveOutcome,
+    Pose,
 };
 
 const R: f64 = 3.0; // body radius (report default d = 6)
@@ -1435,4 +1436,121 @@ fn small_turns_match_the_reference_bit_for_bit() {
 fn random_heading_chacha(r: &mut ChaCha8Rng) -> Vec2 {
     let a = uniform(r, -PI, PI);
     v(libm::cos(a), libm::sin(a))
+}
+
+/// `rotate` skips libm for tiny angles (sin x = x below 2⁻²⁶, cos x = 1 below 2⁻²⁷·√2) and
+/// takes `sincos` from 2⁻²⁶ on: the same bits as `libm::sin` and `libm::cos` everywhere,
+/// around both thresholds, for ±0, subnormals, infinities and NaN.
+#[test]
+fn rotate_gives_libms_bits_for_tiny_and_threshold_angles() {
+    let plain = |u: Vec2, x: f64| {
+        let (s, c) = (libm::sin(x), libm::cos(x));
+        Vec2::new(u.x * c - u.y * s, u.x * s + u.y * c)
+    };
+    let mut angles = vec![
+        0.0,
+        -0.0,
+        f64::MIN_POSITIVE,
+        5e-324,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NAN,
+        1e-4,
+        0.3,
+        3.0,
+        100.0,
+    ];
+    for threshold in [2f64.powi(-26), 2f64.powi(-27) * 2f64.sqrt(), 2f64.powi(-27)] {
+        let mut x = threshold;
+        for _ in 0..40 {
+            angles.push(x);
+            x = f64::from_bits(x.to_bits() + 1);
+        }
+        let mut x = threshold;
+        for _ in 0..40 {
+            angles.push(x);
+            x = f64::from_bits(x.to_bits() - 1);
+        }
+    }
+    let mut x = 1e-300;
+    while x < 1.0 {
+        angles.push(x);
+        x *= 1.37;
+    }
+    let u = v(0.6, -0.8);
+    for a in angles {
+        for x in [a, -a] {
+            let (got, want) = (rotate(u, x), plain(u, x));
+            assert_eq!(
+                (got.x.to_bits(), got.y.to_bits()),
+                (want.x.to_bits(), want.y.to_bits()),
+                "angle {x:e}"
+            );
+        }
+    }
+}
+
+/// The world clamps every command and then calls `plan_clamped_move` (for a positive
+/// max_rpt): the same bits as `plan_move` clamping the raw signals, at and near the bounds,
+/// for signed zeros, and against walls.
+#[test]
+fn plan_clamped_move_is_plan_move_for_clamped_signals() {
+    let walls = [seg(10.0, -30.0, 10.0, 30.0), seg(-20.0, 12.0, 25.0, 9.0)];
+    let blockers = Blockers {
+        segments: &walls,
+        circles: &[],
+    };
+    let mut x = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for max_rpt in [1.0, 0.37, 2.5, 1e-9, f64::INFINITY] {
+        let params = MotionParams {
+            max_rpt,
+            ..params()
+        };
+        let clamp = |s: f64| {
+            if s.is_nan() {
+                0.0
+            } else {
+                s.clamp(-max_rpt, max_rpt)
+            }
+        };
+        for k in 0..3000 {
+            let signal = |n: f64| match k % 7 {
+                0 => [0.0, -0.0, max_rpt, -max_rpt][(n * 4.0) as usize],
+                1 => f64::NAN,
+                2 => 3.0 * (n - 0.5) * max_rpt.min(4.0),
+                _ => (2.0 * n - 1.0) * max_rpt.min(4.0),
+            };
+            let (l, r) = (signal(next()), signal(next()));
+            let h = 2.0 * std::f64::consts::PI * next();
+            let p = pose(
+                -5.0 + 20.0 * next(),
+                -5.0 + 20.0 * next(),
+                libm::cos(h),
+                libm::sin(h),
+            );
+            let want = plan_move(p, l, r, 3.0, &params, &blockers);
+            let got = plan_clamped_move(p, clamp(l), clamp(r), 3.0, &params, &blockers);
+            let bits = |o: &MoveOutcome| {
+                (
+                    [
+                        o.pose.position.x,
+                        o.pose.position.y,
+                        o.pose.heading.x,
+                        o.pose.heading.y,
+                        o.travelled,
+                    ]
+                    .map(f64::to_bits),
+                    o.blocked,
+                    o.blocked_by_wall,
+                )
+            };
+            assert_eq!(bits(&got), bits(&want), "max_rpt {max_rpt}, {l} {r}, {p:?}");
+        }
+    }
 }

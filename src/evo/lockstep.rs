@@ -67,7 +67,8 @@ pub struct Lockstep {
     width: usize,
     /// Creature i's observations in every world where it is alive, back to back.
     observations: Vec<f64>,
-    /// Their commands, in the same order.
+    /// Their commands, in the same order: the first `live.len()` of one per world, each
+    /// written by the batch before it is read.
     commands: Vec<MotorCommand>,
     /// The worlds those observations came from, in the same order.
     live: Vec<usize>,
@@ -81,7 +82,7 @@ impl Lockstep {
             creatures,
             width,
             observations: Vec::with_capacity(worlds * width),
-            commands: Vec::with_capacity(worlds),
+            commands: vec![MotorCommand::default(); worlds],
             live: Vec::with_capacity(worlds),
         }
     }
@@ -106,7 +107,7 @@ impl Lockstep {
         assert_eq!(running.len(), worlds.len(), "one running flag per world");
         assert_eq!(invalid.len(), worlds.len() * k, "one flag per creature");
         assert!(
-            self.live.capacity() >= worlds.len(),
+            self.live.capacity() >= worlds.len() && self.commands.len() >= worlds.len(),
             "lockstep buffers too small"
         );
         for (world, _) in worlds.iter_mut().zip(running).filter(|(_, &r)| r) {
@@ -128,11 +129,9 @@ impl Lockstep {
             if self.live.is_empty() {
                 continue;
             }
-            self.commands.clear();
-            self.commands
-                .resize(self.live.len(), MotorCommand::default());
-            controller.act_batch(&self.observations, &mut self.commands);
-            for (&w, &command) in self.live.iter().zip(&self.commands) {
+            let commands = &mut self.commands[..self.live.len()];
+            controller.act_batch(&self.observations, commands);
+            for (&w, &command) in self.live.iter().zip(commands.iter()) {
                 let command = finite_command(command).unwrap_or_else(|| {
                     invalid[w * k + i] = true;
                     MotorCommand::default()
@@ -324,6 +323,41 @@ mod tests {
             some_invalid > 0 && all_invalid > 0,
             "{some_invalid} {all_invalid}"
         );
+    }
+
+    /// `finite_command`'s one comparison is the three `is_finite` tests.
+    #[test]
+    fn finite_command_accepts_exactly_the_finite_commands() {
+        let values = [
+            0.0,
+            -0.0,
+            1.0,
+            -3.5,
+            f64::MAX,
+            f64::MIN,
+            f64::MIN_POSITIVE,
+            5e-324,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            -f64::NAN,
+        ];
+        for &left in &values {
+            for &right in &values {
+                for &eat in &values {
+                    let command = MotorCommand { left, right, eat };
+                    let finite = left.is_finite() && right.is_finite() && eat.is_finite();
+                    let got = finite_command(command);
+                    assert_eq!(got.is_some(), finite, "{command:?}");
+                    if let Some(c) = got {
+                        assert_eq!(
+                            [c.left, c.right, c.eat].map(f64::to_bits),
+                            [left, right, eat].map(f64::to_bits)
+                        );
+                    }
+                }
+            }
+        }
     }
 
     #[test]

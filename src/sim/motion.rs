@@ -36,8 +36,12 @@
 //! `wall_blocks` for a wall the body does not touch at the start is `crosses || touches at
 //! the end`, two pure tests: the end test runs first, since it alone decides a body pushed
 //! against the wall, which would otherwise repeat the path test on every step. sin(φ/2) is
-//! computed once for the chord and the heading, and sin and cos of ±0 (a straight move, or a
-//! blocked move that travelled 0) are not computed: libm returns exactly ±0 and 1 for them.
+//! computed once for the chord and the heading, and sin and cos of angles below 2⁻²⁶ (±0 for
+//! a straight move or a blocked move that travelled 0, and the tiny turns of an almost
+//! straight one) are not computed: libm returns x itself for the sine there, and exactly 1
+//! for the cosine below 2⁻²⁷·√2 (above, `libm::cos` is called). The world clamps the motor
+//! signals before it moves a body, so it calls [`plan_clamped_move`], which does not clamp
+//! them again (clamping a clamped signal changes no bit when the bound is positive).
 //! When sinc needs sin(φ/2) (|φ/2| ≥ 1e-4), sine and cosine come from one `libm::sincos`
 //! call, which shares the argument reduction: for |x| ≥ 2⁻²⁶ it runs the very kernels
 //! `libm::sin` and `libm::cos` run (`k_sin(x, 0, 0)` and `k_cos(x, 0)` up to π/4, else the
@@ -184,22 +188,35 @@ pub fn rotate(v: Vec2, angle: f64) -> Vec2 {
     rotate_sc(v, s, c)
 }
 
-/// `(libm::sin(x), libm::cos(x))`, without the calls for x = ±0, whose results libm gives
-/// exactly: sin(±0) = ±0 and cos(±0) = 1 (a straight move turns by exactly 0). From |x| =
-/// 2⁻²⁶ on, one `libm::sincos` call gives the same bits (see the module docs).
+/// `(libm::sin(x), libm::cos(x))`. From |x| = 2⁻²⁶ on, one `libm::sincos` call gives the
+/// same bits (see the module docs). Below, the calls are not made: libm's `sin` returns x
+/// itself for |x| < 2⁻²⁶ (its high word below 0x3e500000), and its `cos` returns exactly 1
+/// for |x| < 2⁻²⁷·√2 (high word below 0x3e46a09e), so a straight move (x = ±0) and the
+/// tiny turns of an almost straight one cost a comparison. NaN takes neither shortcut.
 #[inline]
 fn sin_cos(x: f64) -> (f64, f64) {
-    if x == 0.0 {
-        (x, 1.0)
-    } else if x.abs() >= SINCOS_FROM {
+    let a = x.abs();
+    if a >= SINCOS_FROM {
         libm::sincos(x)
+    } else if a < SINCOS_FROM {
+        let high = (x.to_bits() >> 32) as u32 & 0x7fff_ffff;
+        let cos = if high < COS_ONE_BELOW {
+            1.0
+        } else {
+            libm::cos(x)
+        };
+        (x, cos)
     } else {
         (libm::sin(x), libm::cos(x))
     }
 }
 
-/// 2⁻²⁶: from here on `libm::sincos` and `libm::sin`, `libm::cos` run the same code.
+/// 2⁻²⁶: from here on `libm::sincos` and `libm::sin`, `libm::cos` run the same code, and
+/// below it `libm::sin(x)` is x.
 const SINCOS_FROM: f64 = 1.0 / 67_108_864.0;
+
+/// The high word (sign cleared) of 2⁻²⁷·√2, below which `libm::cos` returns 1.
+const COS_ONE_BELOW: u32 = 0x3e46_a09e;
 
 /// Rotation by an angle given by its sine and cosine.
 #[inline]
@@ -762,6 +779,24 @@ fn prepared_search(
             }));
         }
     }
+    prepared_search_many(start, target, radius, lo, hi, steps, cause, blockers)
+}
+
+/// [`prepared_search`] with several walls or bodies (a corner, a crowd): its own function,
+/// so that the common single-wall search does not set up these arrays.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn prepared_search_many(
+    start: Vec2,
+    target: Vec2,
+    radius: f64,
+    lo: Vec2,
+    hi: Vec2,
+    steps: u32,
+    cause: Verdict,
+    blockers: &Blockers,
+) -> Option<(Vec2, Verdict)> {
+    let r2 = radius * radius;
     let mut pw = [PreparedWall::EMPTY; PREPARED_LEN];
     let mut nw = 0;
     for w in blockers.segments {
@@ -816,10 +851,29 @@ pub fn admissible(p0: Vec2, p1: Vec2, radius: f64, blockers: &Blockers) -> bool 
 /// One tick of motion (§8.1–8.2) for a body of `radius` at `pose` with motor signals
 /// `left_rpt`, `right_rpt` (clamped here to ±`params.max_rpt`). Pure: the caller applies the
 /// outcome. Does not allocate.
+#[inline]
 pub fn plan_move(
     pose: Pose,
     left_rpt: f64,
     right_rpt: f64,
+    radius: f64,
+    params: &MotionParams,
+    blockers: &Blockers,
+) -> MoveOutcome {
+    let left = clamp_rpt(left_rpt, params.max_rpt);
+    let right = clamp_rpt(right_rpt, params.max_rpt);
+    plan_clamped_move(pose, left, right, radius, params, blockers)
+}
+
+/// [`plan_move`] for motor signals a caller has clamped already: `left` and `right` not NaN
+/// and within ±`params.max_rpt`, with `max_rpt` > 0. Clamping them again would change no
+/// bit (the minimum of a number and a bound above it is the number, and so is the maximum
+/// with a bound below it; the bounds being nonzero, a signed zero meets no equal bound), so
+/// the world, which clamps every command it records, skips the second clamping here.
+pub fn plan_clamped_move(
+    pose: Pose,
+    left: f64,
+    right: f64,
     radius: f64,
     params: &MotionParams,
     blockers: &Blockers,
@@ -830,8 +884,6 @@ pub fn plan_move(
         blocked: false,
         blocked_by_wall: false,
     };
-    let left = clamp_rpt(left_rpt, params.max_rpt);
-    let right = clamp_rpt(right_rpt, params.max_rpt);
     let (d, sin_half) = drive_and_sin(params.wheel, left, right);
     if !d.phi.is_finite() || !d.chord.is_finite() {
         // Only a non-finite wheel gets here; keep the world finite.

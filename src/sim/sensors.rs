@@ -590,7 +590,15 @@ pub struct Offsets {
     /// Start of the retina.
     pub eye: Option<usize>,
     bias: Option<usize>,
+    /// Start of smell, whiskers, food detectors and shock when the controller receives all
+    /// four ([`REPORT_WIDTH`] values back to back, as the layout always places them):
+    /// [`Offsets::write`] then writes them as one block, with one bounds check instead of
+    /// one per group.
+    report: Option<usize>,
 }
+
+/// Smell (16), whiskers (2), food detectors (4) and shock (1).
+const REPORT_WIDTH: usize = 23;
 
 impl Offsets {
     /// The offsets of `layout`.
@@ -606,6 +614,19 @@ impl Offsets {
             areas: at(SensorGroup::Areas),
             eye: at(SensorGroup::Eye),
             bias: at(SensorGroup::Bias),
+            report: match (
+                at(SensorGroup::Smell),
+                at(SensorGroup::Whiskers),
+                at(SensorGroup::Food),
+                at(SensorGroup::Shock),
+            ) {
+                (Some(o), Some(w), Some(f), Some(s))
+                    if w == o + 16 && f == o + 18 && s == o + 22 =>
+                {
+                    Some(o)
+                }
+                _ => None,
+            },
         }
     }
 
@@ -617,8 +638,36 @@ impl Offsets {
     /// Writes one observation's report groups (smell to metabolism, and the bias) in the
     /// layout's order. `shock` is the shock sensor, `metabolism` the raw vector m. Landmarks,
     /// areas and the eye are written by the world, which holds what they read.
+    #[inline]
     pub fn write(&self, out: &mut [f64], senses: &Senses, shock: bool, metabolism: &[f64; 4]) {
-        let bit = |b: bool| if b { 1.0 } else { 0.0 };
+        // 0.0 or 1.0 without a branch (a sensor's state is as good as random).
+        let bit = |b: bool| f64::from(u8::from(b));
+        if let Some(o) = self.report {
+            let block: &mut [f64; REPORT_WIDTH] = (&mut out[o..o + REPORT_WIDTH])
+                .try_into()
+                .expect("a block of REPORT_WIDTH values");
+            block[..8].copy_from_slice(&senses.smell[0]);
+            block[8..16].copy_from_slice(&senses.smell[1]);
+            block[16] = bit(senses.whiskers[0]);
+            block[17] = bit(senses.whiskers[1]);
+            for t in 0..4 {
+                block[18 + t] = bit(senses.food[t]);
+            }
+            block[22] = bit(shock);
+        } else {
+            self.write_groups(out, senses, shock);
+        }
+        if let Some(o) = self.metabolism {
+            out[o..o + 4].copy_from_slice(metabolism);
+        }
+        if let Some(o) = self.bias {
+            out[o] = 1.0;
+        }
+    }
+
+    /// Smell, whiskers, food detectors and shock of [`Offsets::write`], group by group.
+    fn write_groups(&self, out: &mut [f64], senses: &Senses, shock: bool) {
+        let bit = |b: bool| f64::from(u8::from(b));
         if let Some(o) = self.smell {
             out[o..o + 8].copy_from_slice(&senses.smell[0]);
             out[o + 8..o + 16].copy_from_slice(&senses.smell[1]);
@@ -634,12 +683,6 @@ impl Offsets {
         }
         if let Some(o) = self.shock {
             out[o] = bit(shock);
-        }
-        if let Some(o) = self.metabolism {
-            out[o..o + 4].copy_from_slice(metabolism);
-        }
-        if let Some(o) = self.bias {
-            out[o] = 1.0;
         }
     }
 }

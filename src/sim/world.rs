@@ -42,9 +42,13 @@
 //! grid ([`crate::sim::grid`]) instead of looping over every object, and a move is tested
 //! only against the walls near it (the walls listed for its start's cell, see `MoverCells`,
 //! or while a door stands those the grid finds within its reach), so a creature-tick costs
-//! what is around the creature, not what is in the world. Regeneration visits only food below capacity. The answers are
-//! the plain loops' to the bit (same tests, same order): [`World::set_brute_force`] runs the
-//! plain loops, and the tests compare the two.
+//! what is around the creature, not what is in the world. Eating and shock take the food and
+//! aversive objects a body may touch from the lists of the cell it ends in (also in
+//! `MoverCells`), and the next move reuses that cell when it starts where the last one ended.
+//! Regeneration visits only food below capacity; worlds without teleporters, doors,
+//! wanderers or predators skip those phases on one flag. The answers are the plain loops' to
+//! the bit (same tests, same order): [`World::set_brute_force`] runs the plain loops, and
+//! the tests compare the two.
 
 use crate::geometry::{circle_touches_segment, circles_touch, Circle, Segment, Vec2};
 use crate::seed::{uniform, Rng};
@@ -55,7 +59,7 @@ use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::{Actor, Door, Effect, Flyer, Role, Strategy, Teleporter, Thing};
 use crate::sim::grid::{Scratch, StaticIndex};
 use crate::sim::metabolism::Decay;
-use crate::sim::motion::{plan_move, Blockers, MotionParams, MoveOutcome, Pose};
+use crate::sim::motion::{plan_clamped_move, plan_move, Blockers, MotionParams, MoveOutcome, Pose};
 use crate::sim::noise::Noise;
 use crate::sim::placement::{place_creatures, place_objects, PlacementError};
 use crate::sim::sensors::{Body, Offsets, Senses, Surroundings};
@@ -140,6 +144,10 @@ pub struct World {
     scratch: Scratch,
     /// Per-cell lists of the fixed walls a creature's move may reach (see [`MoverCells`]).
     mover_cells: Option<MoverCells>,
+    /// Per creature, where its last contacts phase found its body and the cell of
+    /// `mover_cells` it was in: its next move most often starts there, and the cell is a
+    /// function of the position alone. NaN (matching no position) until then.
+    last_cell: Vec<(Vec2, usize)>,
     /// Sense, eat and regenerate with plain loops over every object instead of the grid and
     /// the list of regrowing food (the reference the tests compare the grid against).
     brute_force: bool,
@@ -189,6 +197,9 @@ pub struct World {
     waypoints: Vec<Vec<Vec2>>,
     /// Air predators, in file order.
     flyers: Vec<Flyer>,
+    /// The world has teleporters, doors, wanderers or predators: the contacts phase checks
+    /// them (most worlds have none, and none is added during a trial).
+    gadgets: bool,
 }
 
 /// A world and a creature specification validated together: the proof [`World::build`] asks
@@ -260,7 +271,8 @@ impl World {
             &walls.felt()[..walls.fixed_count()],
             travel_bound(creature.wheel, creature.max_rpt.abs()),
             radius,
-        );
+        )
+        .and_then(|cells| cells.with_contacts(radius, &objects.food, &objects.aversives));
         let phi = creature.whisker_angle_radians();
         let layout = creature.layout(world);
         let eye = layout
@@ -428,6 +440,7 @@ impl World {
             index,
             scratch,
             mover_cells,
+            last_cell: vec![(Vec2::NAN, 0); creatures],
             brute_force: false,
             creatures: poses
                 .into_iter()
@@ -471,6 +484,10 @@ impl World {
             noise,
             rng,
             things,
+            gadgets: !(teleporters.is_empty()
+                && doors.is_empty()
+                && actors.is_empty()
+                && flyers.is_empty()),
             doors,
             teleporters,
             actors,
@@ -514,8 +531,21 @@ impl World {
     /// in index order `observe(i)` and, when it returned an observation, `apply(i, command)`,
     /// then `end_tick`. Any other order gives another world (creature i senses the world as
     /// creatures 0..i left it in this tick; noise draws follow the tick order).
+    #[inline]
     pub fn begin_tick(&mut self) {
-        self.regenerate_food();
+        // Nothing to regrow (every object full, the common case) and no gadgets: nothing
+        // to do, known without entering the loops.
+        if self.brute_force || !self.regrowing.is_empty() {
+            self.regenerate_food();
+        }
+        if self.gadgets {
+            self.begin_gadgets();
+        }
+    }
+
+    /// Phase 1 (doors) and 2 of the tick.
+    #[inline(never)]
+    fn begin_gadgets(&mut self) {
         self.close_doors();
         for a in 0..self.actors.len() {
             self.act_actor(a);
@@ -563,6 +593,7 @@ impl World {
 
     /// Phase 1: every food object regenerates. Only those in `regrowing` can change, each
     /// on its own, so the others are skipped and the order does not matter.
+    #[inline(never)]
     fn regenerate_food(&mut self) {
         if self.brute_force {
             for f in &mut self.food {
@@ -654,35 +685,51 @@ impl World {
             eat: command.eat,
         };
         self.blockers.clear();
-        for (j, other) in self.creatures.iter().enumerate() {
-            if j != i && other.alive {
-                self.blockers
-                    .push(Circle::new(other.pose.position, self.body.radius));
+        // A lone creature in a world without things has no bodies to meet (the common case).
+        if self.creatures.len() > 1 || !self.things.is_empty() {
+            for (j, other) in self.creatures.iter().enumerate() {
+                if j != i && other.alive {
+                    self.blockers
+                        .push(Circle::new(other.pose.position, self.body.radius));
+                }
             }
-        }
-        for t in &self.things {
-            if t.blocks {
-                self.blockers.push(Circle::new(t.position, t.radius));
+            for t in &self.things {
+                if t.blocks {
+                    self.blockers.push(Circle::new(t.position, t.radius));
+                }
             }
         }
         let start = self.creatures[i].pose.position;
         // The signals are clamped already (not NaN, within ±max_rpt): `max_travel`'s own
         // clamping would leave their magnitudes as they are.
         let travel = self.travel_bound(command.left.abs().max(command.right.abs()));
-        let near = self.walls_near(start, travel);
+        let near = self.walls_near(start, travel, Some(i));
         let blockers = Blockers {
             segments: near.walls(&self.mover_cells, &self.scratch),
             circles: &self.blockers,
         };
         let c = &mut self.creatures[i];
-        let outcome = plan_move(
-            c.pose,
-            command.left,
-            command.right,
-            self.body.radius,
-            &self.motion,
-            &blockers,
-        );
+        // Clamped above: with a positive bound, clamping again in `plan_move` changes nothing.
+        let (pose, radius) = (c.pose, self.body.radius);
+        let outcome = if self.motion.max_rpt > 0.0 {
+            plan_clamped_move(
+                pose,
+                command.left,
+                command.right,
+                radius,
+                &self.motion,
+                &blockers,
+            )
+        } else {
+            plan_move(
+                pose,
+                command.left,
+                command.right,
+                radius,
+                &self.motion,
+                &blockers,
+            )
+        };
         c.pose = outcome.pose;
         c.travelled += outcome.travelled;
         c.command = command;
@@ -718,7 +765,9 @@ impl World {
     /// over the walls, so leaving out walls that cannot be reached changes nothing, and
     /// listing more walls than needed changes nothing either (see [`MoverCells`]).
     #[inline]
-    fn walls_near(&mut self, start: Vec2, travel: f64) -> NearWalls {
+    ///
+    /// `creature`: the mover, when a creature, whose last cell is tried first.
+    fn walls_near(&mut self, start: Vec2, travel: f64, creature: Option<usize>) -> NearWalls {
         let felt = self.walls.felt();
         if self.brute_force {
             self.scratch.blocking.clear();
@@ -727,6 +776,11 @@ impl World {
         }
         if let Some(cells) = &self.mover_cells {
             if felt.len() == self.walls.fixed_count() && travel <= cells.travel {
+                if let Some((at, k)) = creature.map(|i| self.last_cell[i]) {
+                    if at == start {
+                        return NearWalls::Cell(k);
+                    }
+                }
                 if let Some(k) = cells.cell_of(start) {
                     return NearWalls::Cell(k);
                 }
@@ -738,6 +792,10 @@ impl World {
     }
 
     /// Phases 2.4 and 2.5: eating, shock and metabolism of creature `i` after its move.
+    ///
+    /// The food and aversive objects the body may touch come from the list of its cell in
+    /// `mover_cells` when it ends in one (see [`MoverCells::with_contacts`]), else from the
+    /// grid: both hold every object it touches, and each is tested as before, in food order.
     fn contacts(&mut self, i: usize, outcome: &MoveOutcome) {
         let c = &mut self.creatures[i];
         let position = c.pose.position;
@@ -746,20 +804,32 @@ impl World {
             Eating::Contact => true,
             Eating::Action => c.command.eat > 0.5,
         };
+        let cell = match &self.mover_cells {
+            Some(cells) if !self.brute_force => cells.cell_of(position).map(|k| {
+                self.last_cell[i] = (position, k);
+                (cells, k)
+            }),
+            _ => None,
+        };
         let mut received = [0.0; 4];
         if eats {
             // Bites in food list order: `received` adds floats.
-            let (lo, hi) = (position - radius, position + radius);
-            if self.brute_force {
-                self.scratch.food.clear();
-                self.scratch.food.extend(0..self.food.len() as u32);
+            let near: &[u32] = if let Some((cells, k)) = cell {
+                cells.food(k)
             } else {
-                let food = &self.food;
-                self.index.food_where(lo, hi, &mut self.scratch, |k| {
-                    circles_touch(position, radius, food[k].position, food[k].radius)
-                });
-            }
-            for &k in &self.scratch.food {
+                let (lo, hi) = (position - radius, position + radius);
+                if self.brute_force {
+                    self.scratch.food.clear();
+                    self.scratch.food.extend(0..self.food.len() as u32);
+                } else {
+                    let food = &self.food;
+                    self.index.food_where(lo, hi, &mut self.scratch, |k| {
+                        circles_touch(position, radius, food[k].position, food[k].radius)
+                    });
+                }
+                &self.scratch.food
+            };
+            for &k in near {
                 let f = &mut self.food[k as usize];
                 if circles_touch(position, radius, f.position, f.radius) {
                     for (r, g) in received.iter_mut().zip(f.take_bite()) {
@@ -778,6 +848,11 @@ impl World {
         let touches = |a: &Aversive| circles_touch(position, radius, a.position, a.radius);
         let aversive = if self.brute_force {
             self.aversives.iter().any(touches)
+        } else if let Some((cells, k)) = cell {
+            cells
+                .aversives(k)
+                .iter()
+                .any(|&a| touches(&self.aversives[a as usize]))
         } else {
             let (lo, hi) = (position - radius, position + radius);
             self.index
@@ -787,6 +862,17 @@ impl World {
         self.decay
             .apply(&mut c.metabolism, &received, outcome.travelled);
         c.age += 1;
+        if c.shocked {
+            c.shock_ticks += 1;
+        }
+        if self.gadgets {
+            self.gadget_contacts(i);
+        }
+    }
+
+    /// Phase 2.6: teleporters, door triggers and predators meet creature `i`.
+    fn gadget_contacts(&mut self, i: usize) {
+        let shocked = self.creatures[i].shocked;
         if !self.teleporters.is_empty() {
             self.teleport(i);
         }
@@ -796,8 +882,9 @@ impl World {
         if !self.actors.is_empty() || !self.flyers.is_empty() {
             self.predator_contacts(i);
         }
+        // A predator's shock counts too.
         let c = &mut self.creatures[i];
-        if c.shocked {
+        if c.shocked && !shocked {
             c.shock_ticks += 1;
         }
     }
@@ -985,7 +1072,7 @@ impl World {
             ..self.motion
         };
         let travel = self.max_travel(left, right, params.max_rpt);
-        let near = self.walls_near(actor.pose.position, travel);
+        let near = self.walls_near(actor.pose.position, travel, None);
         let blockers = Blockers {
             segments: near.walls(&self.mover_cells, &self.scratch),
             circles: &self.blockers,
@@ -1328,6 +1415,14 @@ struct MoverCells {
     /// Cell k's walls are `walls[start[k]..start[k + 1]]`; cells are numbered row by row.
     start: Vec<u32>,
     walls: Vec<Segment>,
+    /// The food objects a body centred in the cell may touch (see
+    /// [`MoverCells::with_contacts`]): cell k's are `food[food_start[k]..food_start[k + 1]]`,
+    /// in food order. Empty (no cell lists any) until `with_contacts`.
+    food_start: Vec<u32>,
+    food: Vec<u32>,
+    /// The same for aversive objects.
+    aversive_start: Vec<u32>,
+    aversives: Vec<u32>,
 }
 
 impl MoverCells {
@@ -1409,7 +1504,86 @@ impl MoverCells {
             travel,
             start,
             walls,
+            food_start: vec![0; nx * ny + 1],
+            food: Vec::new(),
+            aversive_start: vec![0; nx * ny + 1],
+            aversives: Vec::new(),
         })
+    }
+
+    /// These cells, listing also the food and aversive objects a body of `radius` centred in
+    /// each cell may touch, for the contacts phase: a body touching an object (as
+    /// `circles_touch` tests it) lies within |radius + object radius| of its centre on each
+    /// axis, up to a few ε of the coordinates' scale, so within the object's centre ±
+    /// `grow`, the margin 10⁻⁶ of that scale far above the rounding. A start in the cell
+    /// grid is in the cell `cell_of` computes with the same float steps (a difference, a
+    /// product by `inv_cell`, then the floor), each monotone, so the cells of the range
+    /// below, computed with those steps from the grown box's corners, hold every such start.
+    /// `None` when an object or the radius is not finite (no world the specifications allow):
+    /// the grid then answers every move and contact.
+    fn with_contacts(
+        self,
+        radius: f64,
+        food: &[Food],
+        aversives: &[Aversive],
+    ) -> Option<MoverCells> {
+        let food_lists = self.object_lists(radius, food.iter().map(|f| (f.position, f.radius)))?;
+        let aversive_lists =
+            self.object_lists(radius, aversives.iter().map(|a| (a.position, a.radius)))?;
+        Some(MoverCells {
+            food_start: food_lists.0,
+            food: food_lists.1,
+            aversive_start: aversive_lists.0,
+            aversives: aversive_lists.1,
+            ..self
+        })
+    }
+
+    /// Per cell, in object order, the objects (centre, radius) a body of `radius` centred in
+    /// the cell may touch, as `start` offsets and indices (see [`MoverCells::with_contacts`]).
+    fn object_lists(
+        &self,
+        radius: f64,
+        objects: impl Iterator<Item = (Vec2, f64)> + Clone,
+    ) -> Option<(Vec<u32>, Vec<u32>)> {
+        let ny = (self.ny_f as usize).max(1);
+        let cells = self.nx * ny;
+        let span = |lo: f64, o: f64, hi: f64, n: usize| {
+            let clamp = |v: f64| v.clamp(0.0, (n - 1) as f64) as usize;
+            clamp(((lo - o) * self.inv_cell).floor())..=clamp(((hi - o) * self.inv_cell).floor())
+        };
+        let mut pairs: Vec<(u32, u32)> = Vec::new();
+        for (k, (centre, r)) in objects.enumerate() {
+            // `circles_touch` compares with (radius + r)², so a negative sum reaches as far
+            // as its magnitude.
+            let reach = (radius + r).abs();
+            let scale = centre.abs().max_element() + reach;
+            if !(scale.is_finite() && self.origin.is_finite()) {
+                return None;
+            }
+            let grow = reach + 1e-6 * (1.0 + scale + self.origin.abs().max_element());
+            let (lo, hi) = (centre - grow, centre + grow);
+            for y in span(lo.y, self.origin.y, hi.y, ny) {
+                for x in span(lo.x, self.origin.x, hi.x, self.nx) {
+                    pairs.push(((y * self.nx + x) as u32, k as u32));
+                }
+            }
+        }
+        let mut start = vec![0u32; cells + 1];
+        for &(c, _) in &pairs {
+            start[c as usize + 1] += 1;
+        }
+        for c in 0..cells {
+            start[c + 1] += start[c];
+        }
+        let mut next = start.clone();
+        let mut items = vec![0u32; pairs.len()];
+        for (c, k) in pairs {
+            let slot = &mut next[c as usize];
+            items[*slot as usize] = k;
+            *slot += 1;
+        }
+        Some((start, items))
     }
 
     /// The cell `p` lies in, `None` outside the grid (or not finite).
@@ -1418,7 +1592,9 @@ impl MoverCells {
         let fx = (p.x - self.origin.x) * self.inv_cell;
         let fy = (p.y - self.origin.y) * self.inv_cell;
         if fx >= 0.0 && fy >= 0.0 && fx < self.nx_f && fy < self.ny_f {
-            Some(fy as usize * self.nx + fx as usize)
+            // Both are below MOVER_CELLS: the conversion to u32 truncates as the one to
+            // usize would, in fewer instructions.
+            Some(fy as u32 as usize * self.nx + fx as u32 as usize)
         } else {
             None
         }
@@ -1428,5 +1604,17 @@ impl MoverCells {
     #[inline]
     fn walls(&self, k: usize) -> &[Segment] {
         &self.walls[self.start[k] as usize..self.start[k + 1] as usize]
+    }
+
+    /// The food objects a body centred in cell `k` may touch, in food order.
+    #[inline]
+    fn food(&self, k: usize) -> &[u32] {
+        &self.food[self.food_start[k] as usize..self.food_start[k + 1] as usize]
+    }
+
+    /// The aversive objects a body centred in cell `k` may touch.
+    #[inline]
+    fn aversives(&self, k: usize) -> &[u32] {
+        &self.aversives[self.aversive_start[k] as usize..self.aversive_start[k + 1] as usize]
     }
 }
