@@ -325,28 +325,46 @@ fn wall_blocks(
     r: f64,
     wall: &Segment,
 ) -> bool {
+    wall_block(p0, p1, path, path_box, r, wall).is_some()
+}
+
+/// [`wall_blocks`], and when the wall blocks, whether the body touches it at p0
+/// (`circle_touches_segment(p0, r, wall)`, which the test computes anyway): `None` when it
+/// does not block.
+#[inline]
+fn wall_block(
+    p0: Vec2,
+    p1: Vec2,
+    path: &Segment,
+    path_box: (Vec2, Vec2),
+    r: f64,
+    wall: &Segment,
+) -> Option<bool> {
     let (lo, hi) = wall.bounds();
     let (plo, phh) = path_box;
     // The same box rejections segments_intersect (eq. 5–8) and circle_touches_segment
-    // (eq. 2–3) start with, combined: most walls are far away.
-    let path_misses = phh.x < lo.x || hi.x < plo.x || phh.y < lo.y || hi.y < plo.y;
-    let end_misses = p1.x < lo.x - r || p1.x > hi.x + r || p1.y < lo.y - r || p1.y > hi.y + r;
-    if path_misses && end_misses {
-        return false;
+    // (eq. 2–3) start with, combined: most walls are far away. Pure comparisons, so they are
+    // all evaluated (`|`, `&`) without a branch each: which side a wall lies on is not
+    // predictable.
+    let path_misses = (phh.x < lo.x) | (hi.x < plo.x) | (phh.y < lo.y) | (hi.y < plo.y);
+    let end_misses = (p1.x < lo.x - r) | (p1.x > hi.x + r) | (p1.y < lo.y - r) | (p1.y > hi.y + r);
+    if path_misses & end_misses {
+        return None;
     }
     let touching = circle_touches_segment(p0, r, wall);
     if !touching {
         // Plain §8.2: `crosses || touches at p1`, both pure; the cheaper end test first.
-        return circle_touches_segment(p1, r, wall) || segments_intersect(path, wall);
+        let blocks = circle_touches_segment(p1, r, wall) || segments_intersect(path, wall);
+        return blocks.then_some(false);
     }
     let crosses = segments_intersect(path, wall);
     if !crosses && !circle_touches_segment(p1, r, wall) {
-        return false;
+        return None;
     }
     // Already touching at the start: no deeper, and never through.
     let d0 = point_segment_distance_squared(p0, wall);
     let d1 = point_segment_distance_squared(p1, wall);
-    d1 < d0 || (crosses && d0 > 0.0)
+    (d1 < d0 || (crosses && d0 > 0.0)).then_some(true)
 }
 
 /// Does `body` block a body of radius `r` moving p0 → p1?
@@ -372,6 +390,42 @@ fn verdict(p0: Vec2, p1: Vec2, radius: f64, blockers: &Blockers) -> Verdict {
         blockers.segments.iter(),
         blockers.circles.iter(),
     )
+}
+
+/// [`verdict`] over every blocker, and for a wall verdict, which wall answered (its index
+/// in `blockers.segments`) and whether the body touches it at p0: the first test of a move,
+/// whose search can then skip that wall's start test.
+#[inline]
+fn first_verdict(
+    p0: Vec2,
+    p1: Vec2,
+    radius: f64,
+    blockers: &Blockers,
+) -> (Verdict, Option<FirstWall>) {
+    let path = Segment::new(p0, p1);
+    let path_box = path.bounds();
+    for (index, w) in blockers.segments.iter().enumerate() {
+        if let Some(touching) = wall_block(p0, p1, &path, path_box, radius, w) {
+            return (Verdict::Wall, Some(FirstWall { index, touching }));
+        }
+    }
+    if blockers
+        .circles
+        .iter()
+        .any(|c| circle_blocks(p0, p1, radius, c))
+    {
+        return (Verdict::Body, None);
+    }
+    (Verdict::Free, None)
+}
+
+/// The wall that blocked a move's planned path (see [`first_verdict`]).
+#[derive(Clone, Copy)]
+struct FirstWall {
+    /// Its index in `Blockers::segments`.
+    index: usize,
+    /// `circle_touches_segment(start, r, wall)`.
+    touching: bool,
 }
 
 /// [`verdict`] over the given walls and bodies (all of them, or a shortlist).
@@ -571,47 +625,13 @@ impl PreparedWall {
     /// `point_segment_distance_squared(p, wall)`, step by step.
     #[inline(always)]
     fn distance_squared(&self, p: Vec2) -> f64 {
-        let closest = if self.len2 == 0.0 {
-            self.wall.a
-        } else {
-            let t = ((p - self.wall.a).dot(self.ab) / self.len2).clamp(0.0, 1.0);
-            self.wall.a + self.ab * t
-        };
-        p.distance_squared(closest)
+        wall_distance_squared(self.wall.a, self.ab, self.len2, p)
     }
 
-    /// Does the body touch the wall at every midpoint the search of start → target tests
-    /// when each one is blocked (`(start + target) * 0.5`, then `(start + previous) * 0.5`,
-    /// `steps` of them)? `true` only when it is certain: see "A body pushing against a wall"
-    /// in the module docs for the argument and its margins. A `true` means `blocks` holds for
-    /// every one of those midpoints, so the search would end at the start.
+    /// [`every_midpoint_touches`] for this wall.
     #[inline]
     fn every_midpoint_touches(&self, start: Vec2, target: Vec2, r: f64, steps: u32) -> bool {
-        let (a, b) = (self.wall.a, self.wall.b);
-        let scale = start
-            .abs()
-            .max(target.abs())
-            .max(a.abs())
-            .max(b.abs())
-            .max_element();
-        // Far above every rounding error of the argument (each below 100 ε (scale + r)).
-        let margin = 1e-12 * (1.0 + scale + r);
-        // Keeps every square below overflow and the margin meaningful, and 2^-steps a
-        // normal float; NaN fails too.
-        let finite = a.is_finite() && b.is_finite();
-        if !(finite && scale <= 1e100 && r <= 1e100 && r > 2.0 * margin && steps <= 1000) {
-            return false;
-        }
-        let reach = r - margin;
-        let reach2 = reach * reach;
-        let first = (start + target) * 0.5;
-        // The first, then (only when it touches) a point within rounding of the last:
-        // start + (target − start)·2^-steps, the power of two built exactly. NaN fails both.
-        self.distance_squared(first) <= reach2 && {
-            let last_scale = f64::from_bits((1023 - u64::from(steps)) << 52);
-            let last = start + (target - start) * last_scale;
-            self.distance_squared(last) <= reach2
-        }
+        every_midpoint_touches(&self.wall, start, target, r, steps)
     }
 
     /// `wall_blocks`'s box rejection of the path start → p1 (see `start_lo_x`).
@@ -630,10 +650,10 @@ impl PreparedWall {
         if !self.touching {
             // Then `wall_blocks` is `crosses || touches_end`, both pure: the end test first,
             // which decides a body pushing against the wall without the path test.
-            let end_misses = p1.x < self.grown_lo.x
-                || p1.x > self.grown_hi.x
-                || p1.y < self.grown_lo.y
-                || p1.y > self.grown_hi.y;
+            let end_misses = (p1.x < self.grown_lo.x)
+                | (p1.x > self.grown_hi.x)
+                | (p1.y < self.grown_lo.y)
+                | (p1.y > self.grown_hi.y);
             if !end_misses && self.distance_squared(p1) <= r2 {
                 return true;
             }
@@ -667,6 +687,75 @@ impl PreparedWall {
             d1 = self.distance_squared(p1);
         }
         d1 < self.d0 || (crosses && self.d0 > 0.0)
+    }
+}
+
+/// `point_segment_distance_squared(p, wall)`, step by step, for the wall from `a` with
+/// `ab = b - a` and `len2 = ab.length_squared()`.
+#[inline(always)]
+fn wall_distance_squared(a: Vec2, ab: Vec2, len2: f64, p: Vec2) -> f64 {
+    let closest = if len2 == 0.0 {
+        a
+    } else {
+        let t = ((p - a).dot(ab) / len2).clamp(0.0, 1.0);
+        a + ab * t
+    };
+    p.distance_squared(closest)
+}
+
+/// Larger of two numbers that are not NaN: one `maxsd`, without `f64::max`'s NaN handling.
+#[inline(always)]
+fn max_number(x: f64, y: f64) -> f64 {
+    if x > y {
+        x
+    } else {
+        y
+    }
+}
+
+/// Does a body of radius `r` touch `wall` at every midpoint the search of start → target
+/// tests when each one is blocked (`(start + target) * 0.5`, then `(start + previous) * 0.5`,
+/// `steps` of them)? `true` only when it is certain: see "A body pushing against a wall" in
+/// the module docs for the argument and its margins. For a wall the body does not touch at
+/// the start, a `true` means `PreparedWall::blocks` holds for every one of those midpoints,
+/// so the search would end at the start. `start` and `target` must be finite (the search's
+/// box lies within ±1e300); a wall that is not is refused.
+#[inline]
+fn every_midpoint_touches(wall: &Segment, start: Vec2, target: Vec2, r: f64, steps: u32) -> bool {
+    debug_assert!(start.is_finite() && target.is_finite());
+    let (a, b) = (wall.a, wall.b);
+    // The largest coordinate magnitude. The coordinates of a finite wall and of the finite
+    // start and target are numbers, so the plain maximum is exact; a NaN in the wall fails
+    // the finiteness test below.
+    let scale = max_number(
+        max_number(
+            max_number(start.x.abs(), start.y.abs()),
+            max_number(target.x.abs(), target.y.abs()),
+        ),
+        max_number(
+            max_number(a.x.abs(), a.y.abs()),
+            max_number(b.x.abs(), b.y.abs()),
+        ),
+    );
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    // Far above every rounding error of the argument (each below 100 ε (scale + r)).
+    let margin = 1e-12 * (1.0 + scale + r);
+    // Keeps every square below overflow and the margin meaningful, and 2^-steps a
+    // normal float; NaN fails too.
+    let finite = a.is_finite() && b.is_finite();
+    if !(finite && scale <= 1e100 && r <= 1e100 && r > 2.0 * margin && steps <= 1000) {
+        return false;
+    }
+    let reach = r - margin;
+    let reach2 = reach * reach;
+    let first = (start + target) * 0.5;
+    // The first, then (only when it touches) a point within rounding of the last:
+    // start + (target − start)·2^-steps, the power of two built exactly. NaN fails both.
+    wall_distance_squared(a, ab, len2, first) <= reach2 && {
+        let last_scale = f64::from_bits((1023 - u64::from(steps)) << 52);
+        let last = start + (target - start) * last_scale;
+        wall_distance_squared(a, ab, len2, last) <= reach2
     }
 }
 
@@ -750,6 +839,7 @@ fn prepared_search(
     hi: Vec2,
     steps: u32,
     cause: Verdict,
+    first_wall: Option<FirstWall>,
     blockers: &Blockers,
 ) -> Option<(Vec2, Verdict)> {
     let r2 = radius * radius;
@@ -757,19 +847,27 @@ fn prepared_search(
     let mut near = blockers
         .segments
         .iter()
-        .filter(|w| wall_may_block(lo, hi, radius, w));
-    if let (Some(only), None) = (near.next(), near.next()) {
+        .enumerate()
+        .filter(|(_, w)| wall_may_block(lo, hi, radius, w));
+    if let (Some((index, only)), None) = (near.next(), near.next()) {
         if !blockers
             .circles
             .iter()
             .any(|c| circle_may_block(lo, hi, radius, c))
         {
-            let w = PreparedWall::new(only, start, radius);
-            if steps > 0 && !w.touching && w.every_midpoint_touches(start, target, radius, steps) {
+            // The first test already found whether the body touches the wall that blocked
+            // the planned path (with one wall listed and no body, that is this wall).
+            let touching = match first_wall {
+                Some(f) if f.index == index => f.touching,
+                _ => circle_touches_segment(start, radius, only),
+            };
+            if steps > 0 && !touching && every_midpoint_touches(only, start, target, radius, steps)
+            {
                 // Every midpoint blocked: `search` would end at the start, each midpoint's
-                // verdict a wall.
+                // verdict a wall. The wall needs no further preparation.
                 return Some((start, Verdict::Wall));
             }
+            let w = PreparedWall::new(only, start, radius);
             return Some(search(start, target, steps, cause, |p1| {
                 if w.blocks(start, p1, r2) {
                     Verdict::Wall
@@ -914,7 +1012,7 @@ pub fn plan_clamped_move(
     // The first test goes over every blocker given: the shortlists below would give the same
     // verdict (they leave out only blockers that cannot block any path of the search), and
     // most moves are free, so they are built only for a search.
-    let cause = verdict(start, target, radius, blockers);
+    let (cause, first_wall) = first_verdict(start, target, radius, blockers);
     if cause == Verdict::Free {
         return MoveOutcome {
             pose: Pose {
@@ -944,6 +1042,7 @@ pub fn plan_clamped_move(
             hi,
             params.search_steps,
             cause,
+            first_wall,
             blockers,
         )
     };
