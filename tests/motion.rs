@@ -1227,6 +1227,76 @@ fn pushing_against_walls_matches_the_reference_bit_for_bit() {
     assert!(blocked > 2000, "{blocked}");
 }
 
+/// The pushing search reuses the first test's contact at the start for the one wall it
+/// lists, found by its index among all the walls given: far walls listed before and after
+/// the pushed wall (so its index is not 0), bodies resting just clear of it, touching it or
+/// overlapping it, against the reference bit for bit.
+#[test]
+fn pushing_with_far_walls_listed_first_matches_the_reference_bit_for_bit() {
+    let mut r = ChaCha8Rng::seed_from_u64(0xfa11_2026);
+    let (mut blocked, mut touching) = (0, 0);
+    for case in 0..1_500 {
+        let rad = if chance(&mut r, 0.8) {
+            R
+        } else {
+            uniform(&mut r, 0.1, 6.0)
+        };
+        let start = near(&mut r, v(150.0, 150.0), 140.0);
+        let heading = random_heading(&mut r);
+        // From overlapping the wall (gap < 0) to resting just clear of it.
+        let gap = match below(&mut r, 3) {
+            0 => uniform(&mut r, -rad, 0.0),
+            1 => uniform(&mut r, 0.0, 1e-9),
+            _ => uniform(&mut r, 0.0, 4.0),
+        };
+        let ahead = start + heading * (rad + gap);
+        let across = v(-heading.y, heading.x) * uniform(&mut r, 1.0, 300.0);
+        let pushed = Segment::new(ahead - across, ahead + across);
+        // Far walls: beyond any move's reach (at most 2π·2 LU plus the radius).
+        let far = |r: &mut ChaCha8Rng| {
+            let c = start + random_heading(r) * uniform(r, 40.0, 200.0);
+            Segment::new(c, c + random_heading(r) * uniform(r, 0.0, 30.0) * 0.1)
+        };
+        let before = below(&mut r, 4) as usize;
+        let after = below(&mut r, 3) as usize;
+        let mut walls: Vec<Segment> = (0..before).map(|_| far(&mut r)).collect();
+        walls.push(pushed);
+        walls.extend((0..after).map(|_| far(&mut r)));
+        let b = Blockers {
+            segments: &walls,
+            circles: &[],
+        };
+        let params = MotionParams {
+            slippery_walls: chance(&mut r, 0.3),
+            ..MotionParams::default()
+        };
+        let mut p = Pose {
+            position: start,
+            heading,
+        };
+        touching += usize::from(gap <= 0.0);
+        for tick in 0..8 {
+            let (left, right) = match below(&mut r, 3) {
+                0 => (1.0, 1.0),
+                1 => {
+                    let x = uniform(&mut r, 0.01, 1.0);
+                    (x, x)
+                }
+                _ => (uniform(&mut r, 0.0, 1.0), uniform(&mut r, 0.0, 1.0)),
+            };
+            let got = plan_move(p, left, right, rad, &params, &b);
+            let want = reference::plan_move(p, left, right, rad, &params, &b);
+            assert!(
+                same_bits(&got, &want),
+                "case {case} tick {tick}: {got:?} vs reference {want:?}"
+            );
+            blocked += usize::from(want.blocked);
+            p = want.pose;
+        }
+    }
+    assert!(blocked > 4_000 && touching > 300, "{blocked} {touching}");
+}
+
 /// The shortcut for a body pushing against a wall (every midpoint touching, proved once) at
 /// its edges, against the reference bit for bit: bodies resting within rounding of the
 /// contact distance after a blocked move and pushing again at every angle, moves so short
