@@ -1297,6 +1297,63 @@ fn pushing_with_far_walls_listed_first_matches_the_reference_bit_for_bit() {
     assert!(blocked > 4_000 && touching > 300, "{blocked} {touching}");
 }
 
+/// A body pushing against a wall with an infinite, NaN or huge coordinate at its far end
+/// (the pushing proof refuses such walls by their magnitude or by NaN distances), against
+/// the reference bit for bit.
+#[test]
+fn pushing_against_non_finite_walls_matches_the_reference_bit_for_bit() {
+    let mut r = ChaCha8Rng::seed_from_u64(0x1f1f_2026);
+    let odd = [
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NAN,
+        1e200,
+        -1e101,
+        1e99,
+    ];
+    for case in 0..2_000 {
+        let start = near(&mut r, v(150.0, 150.0), 140.0);
+        let heading = random_heading(&mut r);
+        let ahead = start + heading * (R + uniform(&mut r, 0.0, 1e-6));
+        let across = v(-heading.y, heading.x) * uniform(&mut r, 1.0, 50.0);
+        let mut far = ahead + across;
+        let x = odd[below(&mut r, odd.len() as u64) as usize];
+        match below(&mut r, 3) {
+            0 => far.x = x,
+            1 => far.y = x,
+            _ => far = v(x, x),
+        }
+        let walls = if chance(&mut r, 0.5) {
+            vec![Segment::new(ahead - across, far)]
+        } else {
+            vec![Segment::new(far, ahead - across)]
+        };
+        let b = Blockers {
+            segments: &walls,
+            circles: &[],
+        };
+        let params = MotionParams::default();
+        let mut p = Pose {
+            position: start,
+            heading,
+        };
+        for tick in 0..4 {
+            let (left, right) = if chance(&mut r, 0.5) {
+                (1.0, 1.0)
+            } else {
+                (uniform(&mut r, 0.0, 1.0), uniform(&mut r, 0.0, 1.0))
+            };
+            let got = plan_move(p, left, right, R, &params, &b);
+            let want = reference::plan_move(p, left, right, R, &params, &b);
+            assert!(
+                same_bits(&got, &want),
+                "case {case} tick {tick}: {got:?} vs reference {want:?}"
+            );
+            p = want.pose;
+        }
+    }
+}
+
 /// The shortcut for a body pushing against a wall (every midpoint touching, proved once) at
 /// its edges, against the reference bit for bit: bodies resting within rounding of the
 /// contact distance after a blocked move and pushing again at every angle, moves so short

@@ -725,8 +725,9 @@ fn every_midpoint_touches(wall: &Segment, start: Vec2, target: Vec2, r: f64, ste
     debug_assert!(start.is_finite() && target.is_finite());
     let (a, b) = (wall.a, wall.b);
     // The largest coordinate magnitude. The coordinates of a finite wall and of the finite
-    // start and target are numbers, so the plain maximum is exact; a NaN in the wall fails
-    // the finiteness test below.
+    // start and target are numbers, so the plain maximum is exact. An infinite wall
+    // coordinate makes it ∞ (or NaN), which fails `scale <= 1e100` below; a NaN one, if the
+    // maximum drops it, makes both distances below NaN, which fails their comparisons.
     let scale = max_number(
         max_number(
             max_number(start.x.abs(), start.y.abs()),
@@ -743,8 +744,7 @@ fn every_midpoint_touches(wall: &Segment, start: Vec2, target: Vec2, r: f64, ste
     let margin = 1e-12 * (1.0 + scale + r);
     // Keeps every square below overflow and the margin meaningful, and 2^-steps a
     // normal float; NaN fails too.
-    let finite = a.is_finite() && b.is_finite();
-    if !(finite && scale <= 1e100 && r <= 1e100 && r > 2.0 * margin && steps <= 1000) {
+    if !(scale <= 1e100 && r <= 1e100 && r > 2.0 * margin && steps <= 1000) {
         return false;
     }
     let reach = r - margin;
