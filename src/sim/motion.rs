@@ -74,6 +74,11 @@
 //!   by a few ε·|p − a|/|b − a|, the closest point by a few ε·scale), so the search finds it
 //!   touching (at most r·r as computed): 90ε < 10⁻¹⁴ is far below δ.
 //!
+//! The proof needs only the wall's ends and whether the body touches it at the start, which
+//! the first test of the move (over every blocker) has found already for the wall that
+//! blocked it: with one wall listed and no body, that is the listed wall, so the search reuses
+//! that contact and prepares the wall only when the proof does not hold.
+//!
 //! A midpoint that touches blocks in the single-wall search whatever the path test would say,
 //! with a wall as its verdict, so the result is the start and a wall, as the search gives.
 //! With several walls and bodies (a corner) the same holds when one wall not touched at the
