@@ -100,58 +100,51 @@ fn contact_cells_and_brute_force_agree_to_the_bit() {
         };
         checked += 1;
         brute.set_brute_force(true);
-        let mut cc: Vec<Forager> = (0..creatures as u64)
-            .map(|i| Forager(Mix(seed * 100 + i)))
-            .collect();
-        let mut cb: Vec<Forager> = (0..creatures as u64)
-            .map(|i| Forager(Mix(seed * 100 + i)))
-            .collect();
         let mut jumps = Mix(seed ^ 0xc0ffee);
         let [w, h] = cells.arena();
         let reach = cells.creature_radius();
-        for tick in 0..200 {
-            if tick % 10 == 9 {
-                for i in 0..creatures {
-                    let objects: Vec<(Vec2, f64)> = cells
-                        .food()
-                        .iter()
-                        .map(|f| (f.position, f.radius))
-                        .chain(cells.aversives().iter().map(|a| (a.position, a.radius)))
-                        .collect();
-                    let position = match jumps.below(4) {
-                        0 => Vec2::new(
-                            jumps.uniform(-2.0 * w, 3.0 * w),
-                            jumps.uniform(-2.0 * h, 3.0 * h),
-                        ),
-                        1 => Vec2::new(jumps.uniform(0.0, w), jumps.uniform(0.0, h)),
-                        _ => {
-                            // On an object's edge, a hair inside or outside.
-                            let (c, r) = objects[jumps.below(objects.len() as u64) as usize];
-                            let d = (reach + r) * (1.0 + jumps.uniform(-1e-15, 1e-15));
-                            c + sim_common::heading(jumps.uniform(0.0, 360.0)) * d
-                        }
-                    };
-                    let pose = Pose {
-                        position,
-                        heading: sim_common::heading(jumps.uniform(0.0, 360.0)),
-                    };
-                    cells.set_pose(i, pose);
-                    brute.set_pose(i, pose);
-                }
+        let jump = |tick: u64, _: usize, cells: &World| {
+            if tick % 10 != 9 {
+                return None;
             }
-            cells.step(&mut cc);
-            brute.step(&mut cb);
+            let objects: Vec<(Vec2, f64)> = cells
+                .food()
+                .iter()
+                .map(|f| (f.position, f.radius))
+                .chain(cells.aversives().iter().map(|a| (a.position, a.radius)))
+                .collect();
+            let position = match jumps.below(4) {
+                0 => Vec2::new(
+                    jumps.uniform(-2.0 * w, 3.0 * w),
+                    jumps.uniform(-2.0 * h, 3.0 * h),
+                ),
+                1 => Vec2::new(jumps.uniform(0.0, w), jumps.uniform(0.0, h)),
+                _ => {
+                    // On an object's edge, a hair inside or outside.
+                    let (c, r) = objects[jumps.below(objects.len() as u64) as usize];
+                    let d = (reach + r) * (1.0 + jumps.uniform(-1e-15, 1e-15));
+                    c + sim_common::heading(jumps.uniform(0.0, 360.0)) * d
+                }
+            };
+            Some(Pose {
+                position,
+                heading: sim_common::heading(jumps.uniform(0.0, 360.0)),
+            })
+        };
+        let check = |tick: u64, cells: &World, brute: &World| {
             contacts += cells
                 .creatures()
                 .iter()
                 .filter(|c| c.shocked || c.food_detectors.contains(&true))
                 .count();
-            let (a, b) = (state(&cells), state(&brute));
+            let (a, b) = (state(cells), state(brute));
             assert!(
                 a == b,
                 "seed {seed}, tick {tick}: the cells and the plain loops differ\n{text}"
             );
-        }
+        };
+        let forager = |i: u64| Forager(Mix(seed * 100 + i));
+        sim_common::side_by_side((&mut cells, &mut brute), forager, 200, jump, check);
     }
     assert!(checked > 30, "{checked}");
     assert!(contacts > 1000, "{contacts}");

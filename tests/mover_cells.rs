@@ -95,45 +95,38 @@ fn mover_cells_and_brute_force_agree_to_the_bit() {
         };
         checked += 1;
         brute.set_brute_force(true);
-        let mut cc: Vec<Pusher> = (0..creatures as u64)
-            .map(|i| Pusher(Mix(seed * 100 + i)))
-            .collect();
-        let mut cb: Vec<Pusher> = (0..creatures as u64)
-            .map(|i| Pusher(Mix(seed * 100 + i)))
-            .collect();
         let mut jumps = Mix(seed ^ 0x5eed);
         let [w, h] = cells.arena();
-        for tick in 0..250 {
-            if tick % 40 == 39 {
-                for i in 0..creatures {
-                    let position = if jumps.chance(0.3) {
-                        // Far outside, beyond the cells.
-                        Vec2::new(
-                            jumps.uniform(-2.0 * w, 3.0 * w),
-                            jumps.uniform(-2.0 * h, 3.0 * h),
-                        )
-                    } else {
-                        Vec2::new(
-                            jumps.uniform(-0.1 * w, 1.1 * w),
-                            jumps.uniform(-0.1 * h, 1.1 * h),
-                        )
-                    };
-                    let pose = Pose {
-                        position,
-                        heading: sim_common::heading(jumps.uniform(0.0, 360.0)),
-                    };
-                    cells.set_pose(i, pose);
-                    brute.set_pose(i, pose);
-                }
+        let jump = |tick: u64, _: usize, _: &World| {
+            if tick % 40 != 39 {
+                return None;
             }
-            cells.step(&mut cc);
-            brute.step(&mut cb);
-            let (a, b) = (state(&cells), state(&brute));
+            let position = if jumps.chance(0.3) {
+                // Far outside, beyond the cells.
+                Vec2::new(
+                    jumps.uniform(-2.0 * w, 3.0 * w),
+                    jumps.uniform(-2.0 * h, 3.0 * h),
+                )
+            } else {
+                Vec2::new(
+                    jumps.uniform(-0.1 * w, 1.1 * w),
+                    jumps.uniform(-0.1 * h, 1.1 * h),
+                )
+            };
+            Some(Pose {
+                position,
+                heading: sim_common::heading(jumps.uniform(0.0, 360.0)),
+            })
+        };
+        let check = |tick: u64, cells: &World, brute: &World| {
+            let (a, b) = (state(cells), state(brute));
             assert!(
                 a == b,
                 "seed {seed}, tick {tick}: the cells and the plain loops differ\n{text}"
             );
-        }
+        };
+        let pusher = |i: u64| Pusher(Mix(seed * 100 + i));
+        sim_common::side_by_side((&mut cells, &mut brute), pusher, 250, jump, check);
     }
     assert!(checked > 30, "{checked}");
 }

@@ -125,6 +125,33 @@ pub fn twin_worlds(text: &str, creatures: usize, seed: u64) -> Option<(World, Wo
     }
 }
 
+/// Steps twin worlds `fast` and `plain` (see [`twin_worlds`]) side by side for `ticks` ticks,
+/// creature i of each driven by its own `controller(i)`. Before every tick, `jump(tick,
+/// fast)` may give creature i a new pose in both worlds; after it, `check(tick, fast,
+/// plain)` compares them (and counts what the test wants counted).
+pub fn side_by_side<C: Controller>(
+    (fast, plain): (&mut World, &mut World),
+    controller: impl Fn(u64) -> C,
+    ticks: u64,
+    mut jump: impl FnMut(u64, usize, &World) -> Option<Pose>,
+    mut check: impl FnMut(u64, &World, &World),
+) {
+    let n = fast.creatures().len() as u64;
+    let mut cf: Vec<C> = (0..n).map(&controller).collect();
+    let mut cp: Vec<C> = (0..n).map(&controller).collect();
+    for tick in 0..ticks {
+        for i in 0..n as usize {
+            if let Some(pose) = jump(tick, i, fast) {
+                fast.set_pose(i, pose);
+                plain.set_pose(i, pose);
+            }
+        }
+        fast.step(&mut cf);
+        plain.step(&mut cp);
+        check(tick, fast, plain);
+    }
+}
+
 /// A random wall `[x0, y0, x1, y1]` inside a `w` × `h` arena: long (30–100% of the larger
 /// side) with probability `long`, else `short.0`–`short.1` LU; horizontal, vertical or at any
 /// angle, clipped to the arena. `None` when clipping left it under 1 LU.
