@@ -2,7 +2,9 @@
 //! aversive objects of mixed smell ranges (finite and unlimited), areas, teleporters,
 //! wanderers, predators and many creatures run side by side with the grid and with the plain
 //! loops over every object (`World::set_brute_force`), and must agree to the bit after every
-//! tick: whiskers, smell, food detectors, eating, shocks, motion, regeneration, doors.
+//! tick: whiskers, smell, food detectors, eating, shocks, motion, regeneration, doors. Worlds
+//! whose only smells are food and aversive objects of finite range check the tick loop's
+//! common smell path the same way.
 
 mod sim_common;
 
@@ -267,7 +269,7 @@ fn listed_smells_world(seed: u64) -> String {
     ];
     let mut out = String::new();
     let mut block: Vec<&str> = Vec::new();
-    let mut flush = |block: &mut Vec<&str>, out: &mut String| {
+    let flush = |block: &mut Vec<&str>, out: &mut String| {
         let Some(&head) = block.first() else { return };
         if dropped.contains(&head) {
             block.clear();

@@ -16,8 +16,8 @@ use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::Thing;
 use crate::sim::grid::{Scratch, SmellBox, Source, StaticIndex};
 use crate::sim::smell::{
-    accumulate, accumulate_listed, add, add_pair, falloff_pair, reach_pair, saturate, visible_among,
-    Shade, Smell,
+    accumulate, accumulate_listed, add, add_pair, falloff_pair, reach_pair, saturate,
+    visible_among, Shade, Smell,
 };
 use crate::sim::wall::BoxedSegment;
 use crate::sim::world::Creature;
