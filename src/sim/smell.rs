@@ -195,7 +195,7 @@ pub fn add_pair(
 
 /// `acc += f · emission`, component by component.
 #[inline(always)]
-fn add(acc: &mut [f64; 8], f: f64, emission: &[f64; 8]) {
+pub fn add(acc: &mut [f64; 8], f: f64, emission: &[f64; 8]) {
     for (a, e) in acc.iter_mut().zip(emission.iter()) {
         *a += f * e;
     }
