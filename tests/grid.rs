@@ -308,37 +308,27 @@ fn grid_agrees_with_brute_force(text: &str, creatures: usize, seed: u64) -> bool
     brute.set_brute_force(true);
     grid.set_full_sensing(true);
     brute.set_full_sensing(true);
-    let mut cg: Vec<Random> = (0..creatures as u64)
-        .map(|i| Random(Mix(seed * 100 + i)))
-        .collect();
-    let mut cb: Vec<Random> = (0..creatures as u64)
-        .map(|i| Random(Mix(seed * 100 + i)))
-        .collect();
     let mut jumps = Mix(seed ^ 0xABCD);
     let [w, h] = grid.arena();
-    for tick in 0..300 {
-        if tick % 25 == 24 {
-            // Creatures anywhere, some beyond the arena and its grid.
-            for i in 0..creatures {
-                let pose = Pose {
-                    position: Vec2::new(
-                        jumps.uniform(-0.1 * w, 1.1 * w),
-                        jumps.uniform(-0.1 * h, 1.1 * h),
-                    ),
-                    heading: sim_common::heading(jumps.uniform(0.0, 360.0)),
-                };
-                grid.set_pose(i, pose);
-                brute.set_pose(i, pose);
-            }
-        }
-        grid.step(&mut cg);
-        brute.step(&mut cb);
-        let (a, b) = (state(&grid), state(&brute));
+    // Creatures anywhere now and then, some beyond the arena and its grid.
+    let jump = |tick: u64, _: usize, _: &World| {
+        (tick % 25 == 24).then(|| Pose {
+            position: Vec2::new(
+                jumps.uniform(-0.1 * w, 1.1 * w),
+                jumps.uniform(-0.1 * h, 1.1 * h),
+            ),
+            heading: sim_common::heading(jumps.uniform(0.0, 360.0)),
+        })
+    };
+    let check = |tick: u64, grid: &World, brute: &World| {
+        let (a, b) = (state(grid), state(brute));
         assert!(
             a == b,
             "seed {seed}, tick {tick}: the grid and the plain loops differ\n{text}"
         );
-    }
+    };
+    let random = |i: u64| Random(Mix(seed * 100 + i));
+    sim_common::side_by_side((&mut grid, &mut brute), random, 300, jump, check);
     true
 }
 
