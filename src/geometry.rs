@@ -225,6 +225,7 @@ fn within_box(a: Vec2, b: Vec2, p: Vec2) -> bool {
 /// overlap count. The bounding-box rejection of eq. 5–8 comes first; the slope form of
 /// eq. 9–24 is replaced by orientation tests (SPEC-NOTES), which answer the same question
 /// without special cases for vertical, parallel or identical lines.
+#[inline]
 pub fn segments_intersect(s0: &Segment, s1: &Segment) -> bool {
     let (lo0, hi0) = s0.bounds();
     let (lo1, hi1) = s1.bounds();
