@@ -987,6 +987,31 @@ mod reference {
     }
 }
 
+/// Moves a body of radius `rad` from `pose` for `ticks` ticks with the signals `signals()`
+/// gives, by `plan_move` and by the reference, asserting the same bits at every tick (case
+/// `case`); returns how many moves were blocked.
+fn replay(
+    case: usize,
+    mut pose: Pose,
+    (rad, params, b): (f64, &MotionParams, &Blockers),
+    ticks: usize,
+    mut signals: impl FnMut() -> (f64, f64),
+) -> usize {
+    let mut blocked = 0;
+    for tick in 0..ticks {
+        let (left, right) = signals();
+        let got = plan_move(pose, left, right, rad, params, b);
+        let want = reference::plan_move(pose, left, right, rad, params, b);
+        assert!(
+            same_bits(&got, &want),
+            "case {case} tick {tick}: {got:?} vs reference {want:?}"
+        );
+        blocked += usize::from(want.blocked);
+        pose = want.pose;
+    }
+    blocked
+}
+
 fn same_bits(a: &MoveOutcome, b: &MoveOutcome) -> bool {
     let bits = |o: &MoveOutcome| {
         [
@@ -1200,29 +1225,19 @@ fn pushing_against_walls_matches_the_reference_bit_for_bit() {
             slippery_walls: chance(&mut r, 0.3),
             ..MotionParams::default()
         };
-        let mut p = Pose {
+        let p = Pose {
             position: start,
             heading,
         };
-        for tick in 0..12 {
-            let (left, right) = match below(&mut r, 4) {
-                0 => (1.0, 1.0),
-                1 => (-0.0, 0.0),
-                2 => {
-                    let x = uniform(&mut r, 0.05, 1.0);
-                    (x, x)
-                }
-                _ => (uniform(&mut r, 0.0, 1.0), uniform(&mut r, 0.0, 1.0)),
-            };
-            let got = plan_move(p, left, right, rad, &params, &b);
-            let want = reference::plan_move(p, left, right, rad, &params, &b);
-            assert!(
-                same_bits(&got, &want),
-                "case {case} tick {tick}: {got:?} vs reference {want:?}"
-            );
-            blocked += usize::from(want.blocked);
-            p = want.pose;
-        }
+        blocked += replay(case, p, (rad, &params, &b), 12, || match below(&mut r, 4) {
+            0 => (1.0, 1.0),
+            1 => (-0.0, 0.0),
+            2 => {
+                let x = uniform(&mut r, 0.05, 1.0);
+                (x, x)
+            }
+            _ => (uniform(&mut r, 0.0, 1.0), uniform(&mut r, 0.0, 1.0)),
+        });
     }
     assert!(blocked > 2000, "{blocked}");
 }
@@ -1270,29 +1285,19 @@ fn pushing_with_far_walls_listed_first_matches_the_reference_bit_for_bit() {
             slippery_walls: chance(&mut r, 0.3),
             ..MotionParams::default()
         };
-        let mut p = Pose {
+        let p = Pose {
             position: start,
             heading,
         };
         touching += usize::from(gap <= 0.0);
-        for tick in 0..8 {
-            let (left, right) = match below(&mut r, 3) {
-                0 => (1.0, 1.0),
-                1 => {
-                    let x = uniform(&mut r, 0.01, 1.0);
-                    (x, x)
-                }
-                _ => (uniform(&mut r, 0.0, 1.0), uniform(&mut r, 0.0, 1.0)),
-            };
-            let got = plan_move(p, left, right, rad, &params, &b);
-            let want = reference::plan_move(p, left, right, rad, &params, &b);
-            assert!(
-                same_bits(&got, &want),
-                "case {case} tick {tick}: {got:?} vs reference {want:?}"
-            );
-            blocked += usize::from(want.blocked);
-            p = want.pose;
-        }
+        blocked += replay(case, p, (rad, &params, &b), 8, || match below(&mut r, 3) {
+            0 => (1.0, 1.0),
+            1 => {
+                let x = uniform(&mut r, 0.01, 1.0);
+                (x, x)
+            }
+            _ => (uniform(&mut r, 0.0, 1.0), uniform(&mut r, 0.0, 1.0)),
+        });
     }
     assert!(blocked > 4_000 && touching > 300, "{blocked} {touching}");
 }
@@ -1333,24 +1338,17 @@ fn pushing_against_non_finite_walls_matches_the_reference_bit_for_bit() {
             circles: &[],
         };
         let params = MotionParams::default();
-        let mut p = Pose {
+        let p = Pose {
             position: start,
             heading,
         };
-        for tick in 0..4 {
-            let (left, right) = if chance(&mut r, 0.5) {
+        replay(case, p, (R, &params, &b), 4, || {
+            if chance(&mut r, 0.5) {
                 (1.0, 1.0)
             } else {
                 (uniform(&mut r, 0.0, 1.0), uniform(&mut r, 0.0, 1.0))
-            };
-            let got = plan_move(p, left, right, R, &params, &b);
-            let want = reference::plan_move(p, left, right, R, &params, &b);
-            assert!(
-                same_bits(&got, &want),
-                "case {case} tick {tick}: {got:?} vs reference {want:?}"
-            );
-            p = want.pose;
-        }
+            }
+        });
     }
 }
 

@@ -570,6 +570,19 @@ mod tests {
         v.iter().map(|f| f.to_bits()).collect()
     }
 
+    /// The outputs of `single` for the samples of `x` (rows of `inputs`), one pass each: what
+    /// a batch must give bit for bit.
+    fn single_passes(single: &mut Mlp, x: &[f64], inputs: usize, outputs: usize) -> Vec<f64> {
+        let mut expected = vec![0.0; x.len() / inputs * outputs];
+        for (xs, ys) in x
+            .chunks_exact(inputs)
+            .zip(expected.chunks_exact_mut(outputs))
+        {
+            single.activate(xs, ys);
+        }
+        expected
+    }
+
     const SHAPES: [(usize, &[usize], usize); 6] = [
         (24, &[16], 2),
         (24, &[16], 3),
@@ -597,13 +610,7 @@ mod tests {
                         let x: Vec<f64> = (0..n * inputs)
                             .map(|_| uniform(&mut rng, -3.0, 3.0))
                             .collect();
-                        let mut expected = vec![0.0; n * outputs];
-                        for (xs, ys) in x
-                            .chunks_exact(inputs)
-                            .zip(expected.chunks_exact_mut(outputs))
-                        {
-                            single.activate(xs, ys);
-                        }
+                        let expected = single_passes(&mut single, &x, inputs, outputs);
                         let mut batch = vec![f64::NAN; n * outputs];
                         mlp.activate_batch(&x, &mut batch);
                         let what = format!(
@@ -676,13 +683,7 @@ mod tests {
             let mut single = mlp.clone();
             for n in 4..=13 {
                 let x: Vec<f64> = (0..n * inputs).map(|_| pick(&mut rng)).collect();
-                let mut expected = vec![0.0; n * outputs];
-                for (xs, ys) in x
-                    .chunks_exact(inputs)
-                    .zip(expected.chunks_exact_mut(outputs))
-                {
-                    single.activate(xs, ys);
-                }
+                let expected = single_passes(&mut single, &x, inputs, outputs);
                 let mut batch = vec![f64::NAN; n * outputs];
                 mlp.activate_batch(&x, &mut batch);
                 assert_eq!(bits(&batch), bits(&expected), "{activation:?} n={n}");
