@@ -1301,6 +1301,34 @@ impl World {
 /// Placement attempts for one wanderer or predator.
 const ACTOR_ATTEMPTS: u32 = 10_000;
 
+/// Per-cell lists from `(cell, k)` pairs: cell c's items are `items[start[c]..start[c + 1]]`,
+/// `item(k)` for each of its pairs in the order the pairs come (a stable counting sort, so
+/// lists built from pairs in object order stay in object order).
+fn bucket_by_cell<T: Copy>(
+    cells: usize,
+    pairs: &[(u32, u32)],
+    item: impl Fn(u32) -> T,
+) -> (Vec<u32>, Vec<T>) {
+    let mut start = vec![0u32; cells + 1];
+    for &(c, _) in pairs {
+        start[c as usize + 1] += 1;
+    }
+    for c in 0..cells {
+        start[c + 1] += start[c];
+    }
+    let mut next = start.clone();
+    let mut items = Vec::with_capacity(pairs.len());
+    if let Some(&(_, k)) = pairs.first() {
+        items.resize(pairs.len(), item(k));
+    }
+    for &(c, k) in pairs {
+        let slot = &mut next[c as usize];
+        items[*slot as usize] = item(k);
+        *slot += 1;
+    }
+    (start, items)
+}
+
 /// A start pose for a wanderer or predator: at `at` when given, else a uniform point of
 /// `region` (draws x, then y, repeated until free) whose body touches no wall, creature or
 /// blocking thing; then a uniform heading (one draw). None when no free spot was found.
@@ -1481,20 +1509,7 @@ impl MoverCells {
                 }
             }
         }
-        let mut start = vec![0u32; nx * ny + 1];
-        for &(c, _) in &pairs {
-            start[c as usize + 1] += 1;
-        }
-        for c in 0..nx * ny {
-            start[c + 1] += start[c];
-        }
-        let mut next = start.clone();
-        let mut walls = vec![fixed[0].segment; pairs.len()];
-        for (c, k) in pairs {
-            let slot = &mut next[c as usize];
-            walls[*slot as usize] = fixed[k as usize].segment;
-            *slot += 1;
-        }
+        let (start, walls) = bucket_by_cell(nx * ny, &pairs, |k| fixed[k as usize].segment);
         Some(MoverCells {
             origin,
             inv_cell,
@@ -1569,21 +1584,7 @@ impl MoverCells {
                 }
             }
         }
-        let mut start = vec![0u32; cells + 1];
-        for &(c, _) in &pairs {
-            start[c as usize + 1] += 1;
-        }
-        for c in 0..cells {
-            start[c + 1] += start[c];
-        }
-        let mut next = start.clone();
-        let mut items = vec![0u32; pairs.len()];
-        for (c, k) in pairs {
-            let slot = &mut next[c as usize];
-            items[*slot as usize] = k;
-            *slot += 1;
-        }
-        Some((start, items))
+        Some(bucket_by_cell(cells, &pairs, |k| k))
     }
 
     /// The cell `p` lies in, `None` outside the grid (or not finite).
