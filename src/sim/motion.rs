@@ -302,7 +302,7 @@ fn drive_and_sin(wheel: f64, left_rpt: f64, right_rpt: f64) -> (Drive, Option<(f
 
 /// Clamp a motor signal to ±max; NaN counts as 0.
 #[inline]
-fn clamp_rpt(x: f64, max: f64) -> f64 {
+pub(crate) fn clamp_rpt(x: f64, max: f64) -> f64 {
     if x.is_nan() {
         0.0
     } else {

@@ -59,7 +59,9 @@ use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::{Actor, Door, Effect, Flyer, Role, Strategy, Teleporter, Thing};
 use crate::sim::grid::{Scratch, StaticIndex};
 use crate::sim::metabolism::Decay;
-use crate::sim::motion::{plan_clamped_move, plan_move, Blockers, MotionParams, MoveOutcome, Pose};
+use crate::sim::motion::{
+    clamp_rpt, plan_clamped_move, plan_move, Blockers, MotionParams, MoveOutcome, Pose,
+};
 use crate::sim::noise::Noise;
 use crate::sim::placement::{place_creatures, place_objects, PlacementError};
 use crate::sim::sensors::{Body, Offsets, Senses, Surroundings};
@@ -709,27 +711,16 @@ impl World {
             circles: &self.blockers,
         };
         let c = &mut self.creatures[i];
-        // Clamped above: with a positive bound, clamping again in `plan_move` changes nothing.
+        // Clamped above: with a positive bound, clamping again as `plan_move` does changes
+        // nothing, so only a bound of 0 (or below) needs `plan_move`'s own clamp.
         let (pose, radius) = (c.pose, self.body.radius);
-        let outcome = if self.motion.max_rpt > 0.0 {
-            plan_clamped_move(
-                pose,
-                command.left,
-                command.right,
-                radius,
-                &self.motion,
-                &blockers,
-            )
+        let (left, right) = if self.motion.max_rpt > 0.0 {
+            (command.left, command.right)
         } else {
-            plan_move(
-                pose,
-                command.left,
-                command.right,
-                radius,
-                &self.motion,
-                &blockers,
-            )
+            let max = self.motion.max_rpt;
+            (clamp_rpt(command.left, max), clamp_rpt(command.right, max))
         };
+        let outcome = plan_clamped_move(pose, left, right, radius, &self.motion, &blockers);
         c.pose = outcome.pose;
         c.travelled += outcome.travelled;
         c.command = command;
