@@ -241,6 +241,13 @@ fn median(mut values: Vec<f64>) -> f64 {
     }
 }
 
+/// The smallest and largest of `values` (NaN for none).
+fn spread(values: &[f64]) -> (f64, f64) {
+    let low = values.iter().copied().reduce(f64::min).unwrap_or(f64::NAN);
+    let high = values.iter().copied().reduce(f64::max).unwrap_or(f64::NAN);
+    (low, high)
+}
+
 /// `measure` run `repeat` times; the median.
 fn median_of(repeat: u32, mut measure: impl FnMut() -> anyhow::Result<f64>) -> anyhow::Result<f64> {
     let mut values = Vec::with_capacity(repeat as usize);
@@ -289,7 +296,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let repeat = args.repeat.max(1);
     println!(
-        "berry-evolve {} bench; {cores} cores available; every figure is the median of {repeat} run(s)",
+        "berry-evolve {} bench; {cores} cores available; every figure is the median of {repeat} run(s), 1 and 2 threads measured in alternating rounds",
         env!("CARGO_PKG_VERSION")
     );
     for path in &args.world {
@@ -297,18 +304,25 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         let spec = &experiment.world;
         // Warm up caches and the allocator once.
         sim_rate(&experiment, spec, 2, args.ticks.min(500), 1)?;
-        let one = median_of(repeat, || {
-            sim_rate(&experiment, spec, args.worlds, args.ticks, 1)
-        })?;
-        let two = median_of(repeat, || {
-            sim_rate(&experiment, spec, args.worlds, args.ticks, 2)
-        })?;
+        // Rounds of 1 thread then 2 threads back to back: a shared VM's speed drifts from
+        // second to second, so the speed-up is the median of each round's own ratio, not the
+        // ratio of medians measured minutes apart.
+        let mut rounds = Vec::with_capacity(repeat as usize);
+        for _ in 0..repeat {
+            let one = sim_rate(&experiment, spec, args.worlds, args.ticks, 1)?;
+            let two = sim_rate(&experiment, spec, args.worlds, args.ticks, 2)?;
+            rounds.push((one, two));
+        }
+        let ones: Vec<f64> = rounds.iter().map(|r| r.0).collect();
+        let (low, high) = spread(&ones);
         println!(
-            "simulator {}: {:.0} creature-ticks/s on 1 thread, {:.0} on 2 threads ({:.2}x)",
+            "simulator {}: {:.0} creature-ticks/s on 1 thread, {:.0} on 2 threads ({:.2}x); 1-thread runs {:.0}-{:.0}",
             path.display(),
-            one,
-            two,
-            two / one
+            median(ones),
+            median(rounds.iter().map(|r| r.1).collect()),
+            median(rounds.iter().map(|r| r.1 / r.0).collect()),
+            low,
+            high
         );
     }
     if !args.scaling.iter().all(|&k| k == 0) {
@@ -341,25 +355,21 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
             * experiment.evaluation.trials as f64
             * experiment.evaluation.ticks as f64;
         let gens = args.generations as f64;
-        let mut rates = Vec::new();
-        let mut bests = Vec::new();
-        for threads in [1usize, 2] {
-            let mut timings = Vec::new();
-            for _ in 0..repeat {
-                timings.push(time_evolution(&experiment, args.generations, threads)?);
+        // Rounds of 1 thread then 2 threads, as for the simulator.
+        let mut timings: [Vec<EvolutionTiming>; 2] = [Vec::new(), Vec::new()];
+        for _ in 0..repeat {
+            for (threads, runs) in [1usize, 2].into_iter().zip(timings.iter_mut()) {
+                runs.push(time_evolution(&experiment, args.generations, threads)?);
             }
-            let rate = median(
-                timings
-                    .iter()
-                    .map(|t| gens / (t.eval_seconds + t.ga_seconds))
-                    .collect(),
-            );
+        }
+        let rate = |t: &EvolutionTiming| gens / (t.eval_seconds + t.ga_seconds);
+        for (threads, runs) in [1usize, 2].into_iter().zip(&timings) {
             let ga_share = median(
-                timings
-                    .iter()
+                runs.iter()
                     .map(|t| 100.0 * t.ga_seconds / (t.eval_seconds + t.ga_seconds))
                     .collect(),
             );
+            let rate = median(runs.iter().map(rate).collect());
             println!(
                 "evolution {} on {threads} thread(s): {:.3} generations/s, {:.0} creature-ticks/s (agent-steps/s), GA share {:.2}%",
                 args.evolution.display(),
@@ -367,13 +377,20 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
                 per_generation * rate,
                 ga_share
             );
-            rates.push(rate);
-            bests.extend(timings.into_iter().map(|t| t.bests));
         }
+        let speed_up = median(
+            timings[0]
+                .iter()
+                .zip(&timings[1])
+                .map(|(one, two)| rate(two) / rate(one))
+                .collect(),
+        );
+        let mut bests = timings.iter().flatten().map(|t| &t.bests);
+        let first = bests.next();
         println!(
             "evolution speed-up 2 vs 1 thread: {:.2}x; best fitness per generation identical in every run: {}",
-            rates[1] / rates[0],
-            if bests.windows(2).all(|w| w[0] == w[1]) {
+            speed_up,
+            if bests.all(|b| Some(b) == first) {
                 "yes"
             } else {
                 "NO"
