@@ -60,7 +60,7 @@ use crate::sim::gadgets::{Actor, Door, Effect, Flyer, Role, Strategy, Teleporter
 use crate::sim::grid::{Scratch, StaticIndex};
 use crate::sim::metabolism::Decay;
 use crate::sim::motion::{
-    clamp_rpt, plan_clamped_move, plan_move, Blockers, MotionParams, MoveOutcome, Pose,
+    clamp_rpt, plan_clamped_move_inline, plan_move, Blockers, MotionParams, MoveOutcome, Pose,
 };
 use crate::sim::noise::Noise;
 use crate::sim::placement::{place_creatures, place_objects, PlacementError};
@@ -702,10 +702,7 @@ impl World {
             }
         }
         let start = self.creatures[i].pose.position;
-        // The signals are clamped already (not NaN, within ±max_rpt): `max_travel`'s own
-        // clamping would leave their magnitudes as they are.
-        let travel = self.travel_bound(command.left.abs().max(command.right.abs()));
-        let near = self.walls_near(start, travel, Some(i));
+        let near = self.creature_walls_near(i, start, command);
         let blockers = Blockers {
             segments: near.walls(&self.mover_cells, &self.scratch),
             circles: &self.blockers,
@@ -720,7 +717,7 @@ impl World {
             let max = self.motion.max_rpt;
             (clamp_rpt(command.left, max), clamp_rpt(command.right, max))
         };
-        let outcome = plan_clamped_move(pose, left, right, radius, &self.motion, &blockers);
+        let outcome = plan_clamped_move_inline(pose, left, right, radius, &self.motion, &blockers);
         c.pose = outcome.pose;
         c.travelled += outcome.travelled;
         c.command = command;
@@ -747,6 +744,33 @@ impl World {
     #[inline]
     fn travel_bound(&self, rpt: f64) -> f64 {
         travel_bound(self.motion.wheel, rpt)
+    }
+
+    /// [`World::walls_near`] for creature `i` starting at `start` with the clamped `command`.
+    /// With no door standing, the cells of `mover_cells` cover its move: they were built for
+    /// `travel_bound(wheel, |max_rpt|)`, and the clamped signals' magnitudes are at most
+    /// |max_rpt|, so their bound (monotone in the magnitude) is no larger. The bound is then
+    /// not computed; `walls_near` would have compared it and taken the same cell.
+    #[inline]
+    fn creature_walls_near(&mut self, i: usize, start: Vec2, command: MotorCommand) -> NearWalls {
+        if let (Some(cells), false) = (&self.mover_cells, self.brute_force) {
+            if self.walls.felt().len() == self.walls.fixed_count() {
+                debug_assert!(
+                    self.travel_bound(command.left.abs().max(command.right.abs())) <= cells.travel
+                );
+                let (at, k) = self.last_cell[i];
+                if at == start {
+                    return NearWalls::Cell(k);
+                }
+                if let Some(k) = cells.cell_of(start) {
+                    return NearWalls::Cell(k);
+                }
+            }
+        }
+        // The signals are clamped already (not NaN, within ±max_rpt): `max_travel`'s own
+        // clamping would leave their magnitudes as they are.
+        let travel = self.travel_bound(command.left.abs().max(command.right.abs()));
+        self.walls_near(start, travel, Some(i))
     }
 
     /// The walls that may block a body of this world's radius moving at most `travel` from
@@ -798,15 +822,15 @@ impl World {
         let cell = match &self.mover_cells {
             Some(cells) if !self.brute_force => cells.cell_of(position).map(|k| {
                 self.last_cell[i] = (position, k);
-                (cells, k)
+                (cells, cells.lists[k])
             }),
             _ => None,
         };
         let mut received = [0.0; 4];
         if eats {
             // Bites in food list order: `received` adds floats.
-            let near: &[u32] = if let Some((cells, k)) = cell {
-                cells.food(k)
+            let near: &[u32] = if let Some((cells, lists)) = cell {
+                cells.food(lists)
             } else {
                 let (lo, hi) = (position - radius, position + radius);
                 if self.brute_force {
@@ -839,9 +863,9 @@ impl World {
         let touches = |a: &Aversive| circles_touch(position, radius, a.position, a.radius);
         let aversive = if self.brute_force {
             self.aversives.iter().any(touches)
-        } else if let Some((cells, k)) = cell {
+        } else if let Some((cells, lists)) = cell {
             cells
-                .aversives(k)
+                .aversives(lists)
                 .iter()
                 .any(|&a| touches(&self.aversives[a as usize]))
         } else {
@@ -1431,17 +1455,25 @@ struct MoverCells {
     ny_f: f64,
     /// The largest move the lists cover.
     travel: f64,
-    /// Cell k's walls are `walls[start[k]..start[k + 1]]`; cells are numbered row by row.
-    start: Vec<u32>,
+    /// Where each cell's lists lie in `walls`, `food` and `aversives`; cells are numbered row
+    /// by row. One record per cell: a move and its contacts read one cache line and check
+    /// one index for all three lists.
+    lists: Vec<CellLists>,
     walls: Vec<Segment>,
     /// The food objects a body centred in the cell may touch (see
-    /// [`MoverCells::with_contacts`]): cell k's are `food[food_start[k]..food_start[k + 1]]`,
-    /// in food order. Empty (no cell lists any) until `with_contacts`.
-    food_start: Vec<u32>,
+    /// [`MoverCells::with_contacts`]), in food order. Empty (no cell lists any) until
+    /// `with_contacts`.
     food: Vec<u32>,
     /// The same for aversive objects.
-    aversive_start: Vec<u32>,
     aversives: Vec<u32>,
+}
+
+/// Where one cell's lists of [`MoverCells`] lie: `walls[walls.0..walls.1]` and so on.
+#[derive(Debug, Clone, Copy, Default)]
+struct CellLists {
+    walls: (u32, u32),
+    food: (u32, u32),
+    aversives: (u32, u32),
 }
 
 impl MoverCells {
@@ -1501,6 +1533,13 @@ impl MoverCells {
             }
         }
         let (start, walls) = bucket_by_cell(nx * ny, &pairs, |k| fixed[k as usize].segment);
+        let lists = start
+            .windows(2)
+            .map(|w| CellLists {
+                walls: (w[0], w[1]),
+                ..CellLists::default()
+            })
+            .collect();
         Some(MoverCells {
             origin,
             inv_cell,
@@ -1508,11 +1547,9 @@ impl MoverCells {
             nx_f: nx as f64,
             ny_f: ny as f64,
             travel,
-            start,
+            lists,
             walls,
-            food_start: vec![0; nx * ny + 1],
             food: Vec::new(),
-            aversive_start: vec![0; nx * ny + 1],
             aversives: Vec::new(),
         })
     }
@@ -1533,14 +1570,19 @@ impl MoverCells {
         food: &[Food],
         aversives: &[Aversive],
     ) -> Option<MoverCells> {
-        let food_lists = self.object_lists(radius, food.iter().map(|f| (f.position, f.radius)))?;
-        let aversive_lists =
+        let (food_start, food) =
+            self.object_lists(radius, food.iter().map(|f| (f.position, f.radius)))?;
+        let (aversive_start, aversives) =
             self.object_lists(radius, aversives.iter().map(|a| (a.position, a.radius)))?;
+        let mut lists = self.lists;
+        for (k, l) in lists.iter_mut().enumerate() {
+            l.food = (food_start[k], food_start[k + 1]);
+            l.aversives = (aversive_start[k], aversive_start[k + 1]);
+        }
         Some(MoverCells {
-            food_start: food_lists.0,
-            food: food_lists.1,
-            aversive_start: aversive_lists.0,
-            aversives: aversive_lists.1,
+            lists,
+            food,
+            aversives,
             ..self
         })
     }
@@ -1595,18 +1637,19 @@ impl MoverCells {
     /// Cell `k`'s walls.
     #[inline]
     fn walls(&self, k: usize) -> &[Segment] {
-        &self.walls[self.start[k] as usize..self.start[k + 1] as usize]
+        let (a, b) = self.lists[k].walls;
+        &self.walls[a as usize..b as usize]
     }
 
-    /// The food objects a body centred in cell `k` may touch, in food order.
+    /// The food objects a body centred in the cell of `lists` may touch, in food order.
     #[inline]
-    fn food(&self, k: usize) -> &[u32] {
-        &self.food[self.food_start[k] as usize..self.food_start[k + 1] as usize]
+    fn food(&self, lists: CellLists) -> &[u32] {
+        &self.food[lists.food.0 as usize..lists.food.1 as usize]
     }
 
-    /// The aversive objects a body centred in cell `k` may touch.
+    /// The aversive objects a body centred in the cell of `lists` may touch.
     #[inline]
-    fn aversives(&self, k: usize) -> &[u32] {
-        &self.aversives[self.aversive_start[k] as usize..self.aversive_start[k + 1] as usize]
+    fn aversives(&self, lists: CellLists) -> &[u32] {
+        &self.aversives[lists.aversives.0 as usize..lists.aversives.1 as usize]
     }
 }
