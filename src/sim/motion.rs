@@ -1105,6 +1105,37 @@ pub(crate) fn plan_clamped_move_inline(
             ..stay
         };
     }
+    let steps = params.search_steps;
+    if first_wall.is_some_and(|f| {
+        steps > 0
+            && !f.touching
+            && box_is_safe(start, target)
+            && every_midpoint_touches(&blockers.segments[f.index], start, target, radius, steps)
+    }) {
+        // The commonest blocked move, a body pushing against the wall that blocked its
+        // planned path, not touching it at the start: every midpoint touches that wall, so
+        // the search ends at the start with a wall as its verdict, whichever shortlist it
+        // runs over (see "A body pushing against a wall" in the module docs). That wall
+        // passes `wall_may_block` (it blocked a path of the box), so `prepared_search` would
+        // take this very test, or run a search whose every verdict is a wall, and give the
+        // same. Then eq. 38 gives d_I = |start − start| = +0 (the start is finite: its box
+        // is safe), the fraction of eq. 34 is 0/|M| = +0 (M finite, not 0), and its turn
+        // 0·φ = ±0, whose sine `sin_cos` returns as the angle itself and whose cosine as 1.
+        let heading = if params.slippery_walls {
+            free_heading
+        } else {
+            normalise(rotate_sc(pose.heading, 0.0 * d.phi, 1.0))
+        };
+        return MoveOutcome {
+            pose: Pose {
+                position: start,
+                heading,
+            },
+            travelled: 0.0,
+            blocked: true,
+            blocked_by_wall: true,
+        };
+    }
     blocked_move(
         pose,
         target,
@@ -1117,6 +1148,17 @@ pub(crate) fn plan_clamped_move_inline(
         first_wall,
     )
 }
+
+/// The search's box test of [`blocked_move`]: the box of start → target lies within ±1e300
+/// (so both are finite and no midpoint overflows).
+#[inline(always)]
+fn box_is_safe(start: Vec2, target: Vec2) -> bool {
+    let (lo, hi) = Segment::new(start, target).bounds();
+    lo.x >= -SAFE && lo.y >= -SAFE && hi.x <= SAFE && hi.y <= SAFE
+}
+
+/// Coordinates beyond which the search's midpoints could overflow.
+const SAFE: f64 = 1e300;
 
 /// The rest of [`plan_clamped_move`] for a move whose planned path from `pose.position` to
 /// `target` is not admissible (`cause`, and `first_wall` from [`first_verdict`]): the search
@@ -1140,24 +1182,10 @@ fn blocked_move(
     // any path within that box is left out of every test. The box must be finite and far from
     // overflow for the midpoints to stay inside it; otherwise every blocker is tested.
     let (lo, hi) = Segment::new(start, target).bounds();
-    const SAFE: f64 = 1e300;
-    let use_all = !(lo.x >= -SAFE && lo.y >= -SAFE && hi.x <= SAFE && hi.y <= SAFE);
-    let steps = params.search_steps;
+    let use_all = !box_is_safe(start, target);
     // Binary search (eq. 37), with the few candidates prepared when there are few.
     let prepared = if use_all {
         None
-    } else if first_wall.is_some_and(|f| {
-        steps > 0
-            && !f.touching
-            && every_midpoint_touches(&blockers.segments[f.index], start, target, radius, steps)
-    }) {
-        // A body pushing against the wall that blocked its planned path, not touching it at
-        // the start: every midpoint touches that wall, so the search ends at the start with
-        // a wall as its verdict, whichever shortlist it runs over (see "A body pushing
-        // against a wall" in the module docs). That wall passes `wall_may_block` (it blocked
-        // a path of the box), so `prepared_search` would take this very test, or a search
-        // whose every verdict is a wall, and give the same; the shortlists are not built.
-        Some((start, Verdict::Wall))
     } else {
         prepared_search(
             start,
