@@ -47,7 +47,12 @@
 //! `libm::sin` and `libm::cos` run (`k_sin(x, 0, 0)` and `k_cos(x, 0)` up to π/4, else the
 //! same `rem_pio2` and the same kernel and sign for each quadrant; x − x for ±∞ and NaN), so
 //! the bits are theirs. (Only below 2⁻²⁶ do the three differ in their shortcut thresholds.)
+//! For 2⁻²⁷·√2 ≤ |x| ≲ π/4 (almost every turn of one tick) those two kernels are copied here
+//! with the same operations in the same order and inlined, sparing the call.
 //! The tests compare all of this with a plain copy of the original algorithm bit for bit.
+//!
+//! The world moves a creature every tick: the free move is inlined into its caller
+//! ([`plan_clamped_move`] is a wrapper), and a blocked move's search is a function of its own.
 //!
 //! # A body pushing against a wall
 //!
@@ -76,8 +81,10 @@
 //!
 //! The proof needs only the wall's ends and whether the body touches it at the start, which
 //! the first test of the move (over every blocker) has found already for the wall that
-//! blocked it: with one wall listed and no body, that is the listed wall, so the search reuses
-//! that contact and prepares the wall only when the proof does not hold.
+//! blocked it. So the proof is tried for that wall first, before any shortlist is built
+//! (that wall always passes the shortlists' test, so every search would meet it): when it
+//! holds, the move ends at the start, its heading turned by 0·φ. Otherwise, with one wall
+//! listed and no body, the search reuses that contact and prepares the wall.
 //!
 //! A midpoint that touches blocks in the single-wall search whatever the path test would say,
 //! with a wall as its verdict, so the result is the start and a wall, as the search gives.
