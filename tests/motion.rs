@@ -1679,3 +1679,74 @@ fn plan_clamped_move_is_plan_move_for_clamped_signals() {
         }
     }
 }
+
+/// The pushing shortcut runs before any shortlist is built, so it must agree with every
+/// search the shortlists would have run: a wall pushed against among many walls and bodies
+/// near the start (more than the 8 prepared candidates of a kind, sometimes more than the
+/// 32 of a shortlist), with any number of halvings (0 and 1 included), walls and bodies
+/// exactly touching the body at the start, and very short moves; against the reference bit
+/// for bit.
+#[test]
+fn pushing_among_many_blockers_matches_the_reference_bit_for_bit() {
+    let mut r = ChaCha8Rng::seed_from_u64(0x5ca1_ab1e);
+    let mut blocked = 0;
+    for case in 0..800 {
+        let rad = if chance(&mut r, 0.8) {
+            R
+        } else {
+            uniform(&mut r, 0.0, 6.0)
+        };
+        let start = near(&mut r, v(150.0, 150.0), 140.0);
+        let heading = random_heading(&mut r);
+        let gap = match below(&mut r, 3) {
+            0 => 0.0,
+            1 => uniform(&mut r, 0.0, 1e-9),
+            _ => uniform(&mut r, 0.0, 4.0),
+        };
+        let ahead = start + heading * (rad + gap);
+        let across = v(-heading.y, heading.x) * uniform(&mut r, 0.5, 300.0);
+        let mut walls = vec![Segment::new(ahead - across, ahead + across)];
+        let crowd = match below(&mut r, 3) {
+            0 => below(&mut r, 8) as usize,
+            1 => 8 + below(&mut r, 20) as usize,
+            _ => 33 + below(&mut r, 10) as usize,
+        };
+        for _ in 0..crowd {
+            walls.push(random_wall(&mut r, start, rad));
+        }
+        // The pushed wall anywhere in the list.
+        let at = below(&mut r, walls.len() as u64) as usize;
+        walls.swap(0, at);
+        let bodies: Vec<Circle> = (0..below(&mut r, 40))
+            .map(|_| random_body(&mut r, start, rad))
+            .collect();
+        let b = Blockers {
+            segments: &walls,
+            circles: &bodies,
+        };
+        let params = MotionParams {
+            slippery_walls: chance(&mut r, 0.3),
+            search_steps: match below(&mut r, 4) {
+                0 => 0,
+                1 => 1,
+                2 => below(&mut r, 60) as u32,
+                _ => 20,
+            },
+            ..MotionParams::default()
+        };
+        let p = Pose {
+            position: start,
+            heading,
+        };
+        blocked += replay(case, p, (rad, &params, &b), 10, || match below(&mut r, 4) {
+            0 => (1.0, 1.0),
+            1 => {
+                let x = uniform(&mut r, 1e-9, 1e-3);
+                (x, x)
+            }
+            2 => (uniform(&mut r, 0.5, 1.0), uniform(&mut r, 0.5, 1.0)),
+            _ => (uniform(&mut r, -1.0, 1.0), uniform(&mut r, -1.0, 1.0)),
+        });
+    }
+    assert!(blocked > 2000, "{blocked}");
+}

@@ -47,7 +47,12 @@
 //! `libm::sin` and `libm::cos` run (`k_sin(x, 0, 0)` and `k_cos(x, 0)` up to π/4, else the
 //! same `rem_pio2` and the same kernel and sign for each quadrant; x − x for ±∞ and NaN), so
 //! the bits are theirs. (Only below 2⁻²⁶ do the three differ in their shortcut thresholds.)
+//! For 2⁻²⁷·√2 ≤ |x| ≲ π/4 (almost every turn of one tick) those two kernels are copied here
+//! with the same operations in the same order and inlined, sparing the call.
 //! The tests compare all of this with a plain copy of the original algorithm bit for bit.
+//!
+//! The world moves a creature every tick: the free move is inlined into its caller
+//! ([`plan_clamped_move`] is a wrapper), and a blocked move's search is a function of its own.
 //!
 //! # A body pushing against a wall
 //!
@@ -76,8 +81,10 @@
 //!
 //! The proof needs only the wall's ends and whether the body touches it at the start, which
 //! the first test of the move (over every blocker) has found already for the wall that
-//! blocked it: with one wall listed and no body, that is the listed wall, so the search reuses
-//! that contact and prepares the wall only when the proof does not hold.
+//! blocked it. So the proof is tried for that wall first, before any shortlist is built
+//! (that wall always passes the shortlists' test, so every search would meet it): when it
+//! holds, the move ends at the start, its heading turned by 0·φ. Otherwise, with one wall
+//! listed and no body, the search reuses that contact and prepares the wall.
 //!
 //! A midpoint that touches blocks in the single-wall search whatever the path test would say,
 //! with a wall as its verdict, so the result is the start and a wall, as the search gives.
@@ -202,7 +209,7 @@ pub fn rotate(v: Vec2, angle: f64) -> Vec2 {
 fn sin_cos(x: f64) -> (f64, f64) {
     let a = x.abs();
     if a >= SINCOS_FROM {
-        libm::sincos(x)
+        sincos(x)
     } else if a < SINCOS_FROM {
         let high = (x.to_bits() >> 32) as u32 & 0x7fff_ffff;
         let cos = if high < COS_ONE_BELOW {
@@ -214,6 +221,67 @@ fn sin_cos(x: f64) -> (f64, f64) {
     } else {
         (libm::sin(x), libm::cos(x))
     }
+}
+
+/// `libm::sincos(x)`, the same bits: for 2⁻²⁷·√2 ≤ |x| ≲ π/4 (libm's high-word tests, which
+/// hold for nearly every turn of one tick) libm returns `(k_sin(x, 0, 0), k_cos(x, 0))`, and
+/// these are its kernels ([`k_sin0`], [`k_cos0`]), copied with the same float operations in
+/// the same order, inlined here to spare the call; other arguments go to libm.
+#[inline(always)]
+fn sincos(x: f64) -> (f64, f64) {
+    let high = (x.to_bits() >> 32) as u32 & 0x7fff_ffff;
+    if (COS_ONE_BELOW..=PIO4_HIGH).contains(&high) {
+        (k_sin0(x), k_cos0(x))
+    } else {
+        libm::sincos(x)
+    }
+}
+
+/// The high word (sign cleared) up to which libm's sincos takes |x| as at most π/4.
+const PIO4_HIGH: u32 = 0x3fe9_21fb;
+
+// k_sin0 and k_cos0 are libm 0.2.16's k_sin(x, 0.0, 0) and k_cos(x, 0.0), from FreeBSD's
+// /usr/src/lib/msun/src/k_sin.c and k_cos.c, under this notice:
+//
+// Copyright (C) 1993 by Sun Microsystems, Inc. All rights reserved.
+//
+// Developed at SunPro, a Sun Microsystems, Inc. business.
+// Permission to use, copy, modify, and distribute this
+// software is freely granted, provided that this notice
+// is preserved.
+
+/// libm's `k_sin(x, 0.0, 0)`: the sine on [-π/4, π/4].
+#[inline(always)]
+fn k_sin0(x: f64) -> f64 {
+    const S1: f64 = f64::from_bits(0xBFC55555_55555549); // -1.66666666666666324348e-1
+    const S2: f64 = f64::from_bits(0x3F811111_1110F8A6); // 8.33333333332248946124e-3
+    const S3: f64 = f64::from_bits(0xBF2A01A0_19C161D5); // -1.98412698298579493134e-4
+    const S4: f64 = f64::from_bits(0x3EC71DE3_57B1FE7D); // 2.75573137070700676789e-6
+    const S5: f64 = f64::from_bits(0xBE5AE5E6_8A2B9CEB); // -2.50507602534068634195e-8
+    const S6: f64 = f64::from_bits(0x3DE5D93A_5ACFD57C); // 1.58969099521155010221e-10
+    let z = x * x;
+    let w = z * z;
+    let r = S2 + z * (S3 + z * S4) + z * w * (S5 + z * S6);
+    let v = z * x;
+    x + v * (S1 + z * r)
+}
+
+/// libm's `k_cos(x, 0.0)`: the cosine on [-π/4, π/4].
+#[inline(always)]
+fn k_cos0(x: f64) -> f64 {
+    const C1: f64 = f64::from_bits(0x3FA55555_5555554C); // 4.16666666666666019037e-2
+    const C2: f64 = f64::from_bits(0xBF56C16C_16C15177); // -1.38888888888741095749e-3
+    const C3: f64 = f64::from_bits(0x3EFA01A0_19CB1590); // 2.48015872894767294178e-5
+    const C4: f64 = f64::from_bits(0xBE927E4F_809C52AD); // -2.75573143513906633035e-7
+    const C5: f64 = f64::from_bits(0x3E21EE9E_BDB4B1C4); // 2.08757232129817482790e-9
+    const C6: f64 = f64::from_bits(0xBDA8FAE9_BE8838D4); // -1.13596475577881948265e-11
+    let y = 0.0;
+    let z = x * x;
+    let w = z * z;
+    let r = z * (C1 + z * (C2 + z * C3)) + w * w * (C4 + z * (C5 + z * C6));
+    let hz = 0.5 * z;
+    let w = 1.0 - hz;
+    w + (((1.0 - w) - hz) + (z * r - x * y))
 }
 
 /// 2⁻²⁶: from here on `libm::sincos` and `libm::sin`, `libm::cos` run the same code, and
@@ -248,7 +316,7 @@ fn sinc(x: f64) -> (f64, Option<(f64, f64)>) {
     if x.abs() < 1e-4 {
         (1.0 - x * x / 6.0, None)
     } else {
-        let (sin, cos) = libm::sincos(x);
+        let (sin, cos) = sincos(x);
         (sin / x, Some((sin, cos)))
     }
 }
@@ -981,6 +1049,22 @@ pub fn plan_clamped_move(
     params: &MotionParams,
     blockers: &Blockers,
 ) -> MoveOutcome {
+    plan_clamped_move_inline(pose, left, right, radius, params, blockers)
+}
+
+/// [`plan_clamped_move`], inlined into its caller: the world moves a creature every tick, and
+/// most moves are free, so the free move is computed in the caller's registers (no call, no
+/// outcome through memory) while a blocked move's search stays out of line
+/// ([`blocked_move`]).
+#[inline(always)]
+pub(crate) fn plan_clamped_move_inline(
+    pose: Pose,
+    left: f64,
+    right: f64,
+    radius: f64,
+    params: &MotionParams,
+    blockers: &Blockers,
+) -> MoveOutcome {
     let stay = MoveOutcome {
         pose,
         travelled: 0.0,
@@ -1028,13 +1112,84 @@ pub fn plan_clamped_move(
             ..stay
         };
     }
+    let steps = params.search_steps;
+    if first_wall.is_some_and(|f| {
+        steps > 0
+            && !f.touching
+            && box_is_safe(start, target)
+            && every_midpoint_touches(&blockers.segments[f.index], start, target, radius, steps)
+    }) {
+        // The commonest blocked move, a body pushing against the wall that blocked its
+        // planned path, not touching it at the start: every midpoint touches that wall, so
+        // the search ends at the start with a wall as its verdict, whichever shortlist it
+        // runs over (see "A body pushing against a wall" in the module docs). That wall
+        // passes `wall_may_block` (it blocked a path of the box), so `prepared_search` would
+        // take this very test, or run a search whose every verdict is a wall, and give the
+        // same. Then eq. 38 gives d_I = |start − start| = +0 (the start is finite: its box
+        // is safe), the fraction of eq. 34 is 0/|M| = +0 (M finite, not 0), and its turn
+        // 0·φ = ±0, whose sine `sin_cos` returns as the angle itself and whose cosine as 1.
+        let heading = if params.slippery_walls {
+            free_heading
+        } else {
+            normalise(rotate_sc(pose.heading, 0.0 * d.phi, 1.0))
+        };
+        return MoveOutcome {
+            pose: Pose {
+                position: start,
+                heading,
+            },
+            travelled: 0.0,
+            blocked: true,
+            blocked_by_wall: true,
+        };
+    }
+    blocked_move(
+        pose,
+        target,
+        d,
+        free_heading,
+        radius,
+        params,
+        blockers,
+        cause,
+        first_wall,
+    )
+}
+
+/// The search's box test of [`blocked_move`]: the box of start → target lies within ±1e300
+/// (so both are finite and no midpoint overflows).
+#[inline(always)]
+fn box_is_safe(start: Vec2, target: Vec2) -> bool {
+    let (lo, hi) = Segment::new(start, target).bounds();
+    lo.x >= -SAFE && lo.y >= -SAFE && hi.x <= SAFE && hi.y <= SAFE
+}
+
+/// Coordinates beyond which the search's midpoints could overflow.
+const SAFE: f64 = 1e300;
+
+/// The rest of [`plan_clamped_move`] for a move whose planned path from `pose.position` to
+/// `target` is not admissible (`cause`, and `first_wall` from [`first_verdict`]): the search
+/// of eq. 37 and the heading of eq. 34–35 (`free_heading` with slippery walls).
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn blocked_move(
+    pose: Pose,
+    target: Vec2,
+    d: Drive,
+    free_heading: Vec2,
+    radius: f64,
+    params: &MotionParams,
+    blockers: &Blockers,
+    cause: Verdict,
+    first_wall: Option<FirstWall>,
+) -> MoveOutcome {
+    let start = pose.position;
     // Every path the search tests runs from `start` to a point of the box of start → target
     // (a midpoint of two points of the box is in the box), so a blocker that cannot block
     // any path within that box is left out of every test. The box must be finite and far from
     // overflow for the midpoints to stay inside it; otherwise every blocker is tested.
     let (lo, hi) = Segment::new(start, target).bounds();
-    const SAFE: f64 = 1e300;
-    let use_all = !(lo.x >= -SAFE && lo.y >= -SAFE && hi.x <= SAFE && hi.y <= SAFE);
+    let use_all = !box_is_safe(start, target);
     // Binary search (eq. 37), with the few candidates prepared when there are few.
     let prepared = if use_all {
         None
@@ -1082,5 +1237,58 @@ pub fn plan_clamped_move(
         travelled,
         blocked: true,
         blocked_by_wall: cause == Verdict::Wall,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    /// The inlined kernels give `libm::sincos`'s bits, and `libm::sin`'s and `libm::cos`'s,
+    /// on random arguments of every magnitude a turn can have, at the thresholds of the
+    /// shortcut (2⁻²⁷·√2 and π/4, as libm's high words see them) and on special values.
+    #[test]
+    fn sincos_is_libms() {
+        let check = |x: f64| {
+            let (s, c) = sincos(x);
+            let (ls, lc) = libm::sincos(x);
+            assert_eq!(s.to_bits(), ls.to_bits(), "sin {x:e}");
+            assert_eq!(c.to_bits(), lc.to_bits(), "cos {x:e}");
+            if x.abs() >= SINCOS_FROM || x.is_nan() {
+                assert_eq!(s.to_bits(), libm::sin(x).to_bits(), "sin {x:e}");
+                assert_eq!(c.to_bits(), libm::cos(x).to_bits(), "cos {x:e}");
+            }
+        };
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        for _ in 0..200_000 {
+            let x: f64 = rng.gen_range(-4.0..4.0);
+            check(x);
+            check(x * 1e-3);
+            check(x * 1e-6);
+            check(f64::from_bits(rng.gen::<u64>()));
+        }
+        for high in [COS_ONE_BELOW, PIO4_HIGH] {
+            for h in [high - 1, high, high + 1] {
+                for low in [0, 1, 0x5444_2d18, 0x8000_0000, u32::MAX] {
+                    let x = f64::from_bits((u64::from(h) << 32) | u64::from(low));
+                    check(x);
+                    check(-x);
+                }
+            }
+        }
+        for x in [
+            0.0,
+            -0.0,
+            std::f64::consts::FRAC_PI_4,
+            -std::f64::consts::FRAC_PI_4,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            f64::MIN_POSITIVE,
+            5e-324,
+        ] {
+            check(x);
+        }
     }
 }

@@ -60,7 +60,7 @@ use crate::sim::gadgets::{Actor, Door, Effect, Flyer, Role, Strategy, Teleporter
 use crate::sim::grid::{Scratch, StaticIndex};
 use crate::sim::metabolism::Decay;
 use crate::sim::motion::{
-    clamp_rpt, plan_clamped_move, plan_move, Blockers, MotionParams, MoveOutcome, Pose,
+    clamp_rpt, plan_clamped_move_inline, plan_move, Blockers, MotionParams, MoveOutcome, Pose,
 };
 use crate::sim::noise::Noise;
 use crate::sim::placement::{place_creatures, place_objects, PlacementError};
@@ -156,10 +156,7 @@ pub struct World {
     creatures: Vec<Creature>,
     body: Body,
     motion: MotionParams,
-    eating: Eating,
-    decay: Decay,
     smell_c: f64,
-    wall_shock: bool,
     inhibit_smell_on_whisker: bool,
     layout: ObservationLayout,
     offsets: Offsets,
@@ -202,6 +199,37 @@ pub struct World {
     /// The world has teleporters, doors, wanderers or predators: the contacts phase checks
     /// them (most worlds have none, and none is added during a trial).
     gadgets: bool,
+    /// What [`World::apply`] reads of the above on every move, copied side by side.
+    rules: CreatureRules,
+}
+
+/// The world's constants that a creature's move, contacts and metabolism read on every tick
+/// ([`World::apply`]; some are copies of `World` fields other phases read), side by side in
+/// two cache lines. Evaluation runs many worlds in lockstep, so when a world's creature
+/// moves, the world's own lines have mostly left the cache since it sensed; spread over
+/// `World` these values cost a line each.
+#[derive(Debug, Clone, Copy)]
+#[repr(align(64))]
+struct CreatureRules {
+    /// `World::motion`.
+    motion: MotionParams,
+    /// The body radius, `World::body.radius`.
+    radius: f64,
+    /// How m decays (§5.3).
+    decay: Decay,
+    /// How a creature eats.
+    eating: Eating,
+    /// A wall that stops a move shocks (§5.2).
+    wall_shock: bool,
+    /// `World::brute_force` (kept equal by [`World::set_brute_force`]).
+    brute_force: bool,
+    /// `World::gadgets`.
+    gadgets: bool,
+    /// Other bodies may block a move: more than one creature, or things (neither count
+    /// changes during a trial).
+    bodies: bool,
+    /// The world has doors: walls besides the fixed ones may stand.
+    doors: bool,
 }
 
 /// A world and a creature specification validated together: the proof [`World::build`] asks
@@ -430,6 +458,28 @@ impl World {
             });
             flyers.push(f);
         }
+        let rules = CreatureRules {
+            motion: MotionParams {
+                wheel: creature.wheel,
+                max_rpt: creature.max_rpt,
+                search_steps: world.search_steps,
+                slippery_walls: world.slippery_walls,
+            },
+            radius,
+            decay: Decay {
+                per_tick: creature.decay_per_tick,
+                per_lu: creature.decay_per_lu,
+            },
+            eating: creature.eating,
+            wall_shock: world.wall_shock,
+            brute_force: false,
+            gadgets: !(teleporters.is_empty()
+                && doors.is_empty()
+                && actors.is_empty()
+                && flyers.is_empty()),
+            bodies: creatures > 1 || !things.is_empty(),
+            doors: !doors.is_empty(),
+        };
         Ok(World {
             tick: 0,
             arena: world.arena,
@@ -461,13 +511,7 @@ impl World {
                 search_steps: world.search_steps,
                 slippery_walls: world.slippery_walls,
             },
-            eating: creature.eating,
-            decay: Decay {
-                per_tick: creature.decay_per_tick,
-                per_lu: creature.decay_per_lu,
-            },
             smell_c: world.smell_c,
-            wall_shock: world.wall_shock,
             inhibit_smell_on_whisker: creature.inhibit_smell_on_whisker,
             offsets: Offsets::new(&layout),
             observations: vec![0.0; layout.len() * creatures],
@@ -495,6 +539,7 @@ impl World {
             actors,
             waypoints,
             flyers,
+            rules,
         })
     }
 
@@ -681,51 +726,61 @@ impl World {
     /// Phase 2.3: clamp the motors and move creature `i`, blocked by walls and by the other
     /// living creatures.
     fn move_creature(&mut self, i: usize, command: MotorCommand) -> MoveOutcome {
+        let rules = &self.rules;
         let command = MotorCommand {
-            left: clamp_motor(command.left, self.motion.max_rpt),
-            right: clamp_motor(command.right, self.motion.max_rpt),
+            left: clamp_motor(command.left, rules.motion.max_rpt),
+            right: clamp_motor(command.right, rules.motion.max_rpt),
             eat: command.eat,
         };
-        self.blockers.clear();
-        // A lone creature in a world without things has no bodies to meet (the common case).
-        if self.creatures.len() > 1 || !self.things.is_empty() {
-            for (j, other) in self.creatures.iter().enumerate() {
-                if j != i && other.alive {
-                    self.blockers
-                        .push(Circle::new(other.pose.position, self.body.radius));
-                }
-            }
-            for t in &self.things {
-                if t.blocks {
-                    self.blockers.push(Circle::new(t.position, t.radius));
-                }
-            }
-        }
         let start = self.creatures[i].pose.position;
-        // The signals are clamped already (not NaN, within ±max_rpt): `max_travel`'s own
-        // clamping would leave their magnitudes as they are.
-        let travel = self.travel_bound(command.left.abs().max(command.right.abs()));
-        let near = self.walls_near(start, travel, Some(i));
+        let near = self.creature_walls_near(i, start, command);
+        // A lone creature in a world without things has no bodies to meet (the common case),
+        // and its move does not read `blockers` (another cache line).
+        let circles: &[Circle] = if self.rules.bodies {
+            self.fill_blockers(i);
+            &self.blockers
+        } else {
+            &[]
+        };
+        let rules = &self.rules;
         let blockers = Blockers {
             segments: near.walls(&self.mover_cells, &self.scratch),
-            circles: &self.blockers,
+            circles,
         };
         let c = &mut self.creatures[i];
         // Clamped above: with a positive bound, clamping again as `plan_move` does changes
         // nothing, so only a bound of 0 (or below) needs `plan_move`'s own clamp.
-        let (pose, radius) = (c.pose, self.body.radius);
-        let (left, right) = if self.motion.max_rpt > 0.0 {
+        let (pose, radius) = (c.pose, rules.radius);
+        let (left, right) = if rules.motion.max_rpt > 0.0 {
             (command.left, command.right)
         } else {
-            let max = self.motion.max_rpt;
+            let max = rules.motion.max_rpt;
             (clamp_rpt(command.left, max), clamp_rpt(command.right, max))
         };
-        let outcome = plan_clamped_move(pose, left, right, radius, &self.motion, &blockers);
+        let outcome = plan_clamped_move_inline(pose, left, right, radius, &rules.motion, &blockers);
         c.pose = outcome.pose;
         c.travelled += outcome.travelled;
         c.command = command;
         c.blocked = outcome.blocked;
         outcome
+    }
+
+    /// `blockers`: the bodies that may block creature `i`'s move, every other living
+    /// creature and every blocking thing.
+    #[inline(never)]
+    fn fill_blockers(&mut self, i: usize) {
+        self.blockers.clear();
+        for (j, other) in self.creatures.iter().enumerate() {
+            if j != i && other.alive {
+                self.blockers
+                    .push(Circle::new(other.pose.position, self.rules.radius));
+            }
+        }
+        for t in &self.things {
+            if t.blocks {
+                self.blockers.push(Circle::new(t.position, t.radius));
+            }
+        }
     }
 
     /// An upper bound on how far a body's centre moves in one tick with motor signals `left`
@@ -747,6 +802,33 @@ impl World {
     #[inline]
     fn travel_bound(&self, rpt: f64) -> f64 {
         travel_bound(self.motion.wheel, rpt)
+    }
+
+    /// [`World::walls_near`] for creature `i` starting at `start` with the clamped `command`.
+    /// With no door standing, the cells of `mover_cells` cover its move: they were built for
+    /// `travel_bound(wheel, |max_rpt|)`, and the clamped signals' magnitudes are at most
+    /// |max_rpt|, so their bound (monotone in the magnitude) is no larger. The bound is then
+    /// not computed; `walls_near` would have compared it and taken the same cell.
+    #[inline]
+    fn creature_walls_near(&mut self, i: usize, start: Vec2, command: MotorCommand) -> NearWalls {
+        if let (Some(cells), false) = (&self.mover_cells, self.rules.brute_force) {
+            if !self.rules.doors || self.walls.felt().len() == self.walls.fixed_count() {
+                debug_assert!(
+                    self.travel_bound(command.left.abs().max(command.right.abs())) <= cells.travel
+                );
+                let (at, k) = self.last_cell[i];
+                if at == start {
+                    return NearWalls::Cell(k);
+                }
+                if let Some(k) = cells.cell_of(start) {
+                    return NearWalls::Cell(k);
+                }
+            }
+        }
+        // The signals are clamped already (not NaN, within ±max_rpt): `max_travel`'s own
+        // clamping would leave their magnitudes as they are.
+        let travel = self.travel_bound(command.left.abs().max(command.right.abs()));
+        self.walls_near(start, travel, Some(i))
     }
 
     /// The walls that may block a body of this world's radius moving at most `travel` from
@@ -788,28 +870,29 @@ impl World {
     /// `mover_cells` when it ends in one (see [`MoverCells::with_contacts`]), else from the
     /// grid: both hold every object it touches, and each is tested as before, in food order.
     fn contacts(&mut self, i: usize, outcome: &MoveOutcome) {
+        let rules = &self.rules;
         let c = &mut self.creatures[i];
         let position = c.pose.position;
-        let radius = self.body.radius;
-        let eats = match self.eating {
+        let radius = rules.radius;
+        let eats = match rules.eating {
             Eating::Contact => true,
             Eating::Action => c.command.eat > 0.5,
         };
         let cell = match &self.mover_cells {
-            Some(cells) if !self.brute_force => cells.cell_of(position).map(|k| {
+            Some(cells) if !rules.brute_force => cells.cell_of(position).map(|k| {
                 self.last_cell[i] = (position, k);
-                (cells, k)
+                (cells, cells.lists[k])
             }),
             _ => None,
         };
         let mut received = [0.0; 4];
         if eats {
             // Bites in food list order: `received` adds floats.
-            let near: &[u32] = if let Some((cells, k)) = cell {
-                cells.food(k)
+            let near: &[u32] = if let Some((cells, lists)) = cell {
+                cells.food(lists)
             } else {
                 let (lo, hi) = (position - radius, position + radius);
-                if self.brute_force {
+                if rules.brute_force {
                     self.scratch.food.clear();
                     self.scratch.food.extend(0..self.food.len() as u32);
                 } else {
@@ -837,11 +920,11 @@ impl World {
             *e += r;
         }
         let touches = |a: &Aversive| circles_touch(position, radius, a.position, a.radius);
-        let aversive = if self.brute_force {
+        let aversive = if rules.brute_force {
             self.aversives.iter().any(touches)
-        } else if let Some((cells, k)) = cell {
+        } else if let Some((cells, lists)) = cell {
             cells
-                .aversives(k)
+                .aversives(lists)
                 .iter()
                 .any(|&a| touches(&self.aversives[a as usize]))
         } else {
@@ -849,14 +932,15 @@ impl World {
             self.index
                 .any_aversive(lo, hi, |k| touches(&self.aversives[k]))
         };
-        c.shocked = aversive || (self.wall_shock && outcome.blocked_by_wall);
-        self.decay
+        c.shocked = aversive || (rules.wall_shock && outcome.blocked_by_wall);
+        rules
+            .decay
             .apply(&mut c.metabolism, &received, outcome.travelled);
         c.age += 1;
         if c.shocked {
             c.shock_ticks += 1;
         }
-        if self.gadgets {
+        if rules.gadgets {
             self.gadget_contacts(i);
         }
     }
@@ -1177,6 +1261,7 @@ impl World {
     /// two.
     pub fn set_brute_force(&mut self, on: bool) {
         self.brute_force = on;
+        self.rules.brute_force = on;
     }
 
     /// The grid the senses query (for tests and benchmarks).
@@ -1421,7 +1506,11 @@ const MOVER_WALLS: usize = 64;
 /// search, the shortlist) keep only the walls `wall_may_block` keeps, so an extra wall,
 /// which cannot be reached, is in none of them. Doors are not in the lists: while a door
 /// stands, the grid filters as before.
+///
+/// What a move reads of it, the grid's placement and the lists' addresses, fits two cache
+/// lines (boxed slices, aligned), for the same reason as [`CreatureRules`].
 #[derive(Debug, Clone)]
+#[repr(align(64))]
 struct MoverCells {
     origin: Vec2,
     inv_cell: f64,
@@ -1431,17 +1520,25 @@ struct MoverCells {
     ny_f: f64,
     /// The largest move the lists cover.
     travel: f64,
-    /// Cell k's walls are `walls[start[k]..start[k + 1]]`; cells are numbered row by row.
-    start: Vec<u32>,
-    walls: Vec<Segment>,
+    /// Where each cell's lists lie in `walls`, `food` and `aversives`; cells are numbered row
+    /// by row. One record per cell: a move and its contacts read one cache line and check
+    /// one index for all three lists.
+    lists: Box<[CellLists]>,
+    walls: Box<[Segment]>,
     /// The food objects a body centred in the cell may touch (see
-    /// [`MoverCells::with_contacts`]): cell k's are `food[food_start[k]..food_start[k + 1]]`,
-    /// in food order. Empty (no cell lists any) until `with_contacts`.
-    food_start: Vec<u32>,
-    food: Vec<u32>,
+    /// [`MoverCells::with_contacts`]), in food order. Empty (no cell lists any) until
+    /// `with_contacts`.
+    food: Box<[u32]>,
     /// The same for aversive objects.
-    aversive_start: Vec<u32>,
-    aversives: Vec<u32>,
+    aversives: Box<[u32]>,
+}
+
+/// Where one cell's lists of [`MoverCells`] lie: `walls[walls.0..walls.1]` and so on.
+#[derive(Debug, Clone, Copy, Default)]
+struct CellLists {
+    walls: (u32, u32),
+    food: (u32, u32),
+    aversives: (u32, u32),
 }
 
 impl MoverCells {
@@ -1501,6 +1598,13 @@ impl MoverCells {
             }
         }
         let (start, walls) = bucket_by_cell(nx * ny, &pairs, |k| fixed[k as usize].segment);
+        let lists = start
+            .windows(2)
+            .map(|w| CellLists {
+                walls: (w[0], w[1]),
+                ..CellLists::default()
+            })
+            .collect();
         Some(MoverCells {
             origin,
             inv_cell,
@@ -1508,12 +1612,10 @@ impl MoverCells {
             nx_f: nx as f64,
             ny_f: ny as f64,
             travel,
-            start,
-            walls,
-            food_start: vec![0; nx * ny + 1],
-            food: Vec::new(),
-            aversive_start: vec![0; nx * ny + 1],
-            aversives: Vec::new(),
+            lists,
+            walls: walls.into(),
+            food: Box::default(),
+            aversives: Box::default(),
         })
     }
 
@@ -1533,14 +1635,19 @@ impl MoverCells {
         food: &[Food],
         aversives: &[Aversive],
     ) -> Option<MoverCells> {
-        let food_lists = self.object_lists(radius, food.iter().map(|f| (f.position, f.radius)))?;
-        let aversive_lists =
+        let (food_start, food) =
+            self.object_lists(radius, food.iter().map(|f| (f.position, f.radius)))?;
+        let (aversive_start, aversives) =
             self.object_lists(radius, aversives.iter().map(|a| (a.position, a.radius)))?;
+        let mut lists = self.lists;
+        for (k, l) in lists.iter_mut().enumerate() {
+            l.food = (food_start[k], food_start[k + 1]);
+            l.aversives = (aversive_start[k], aversive_start[k + 1]);
+        }
         Some(MoverCells {
-            food_start: food_lists.0,
-            food: food_lists.1,
-            aversive_start: aversive_lists.0,
-            aversives: aversive_lists.1,
+            lists,
+            food: food.into(),
+            aversives: aversives.into(),
             ..self
         })
     }
@@ -1595,18 +1702,19 @@ impl MoverCells {
     /// Cell `k`'s walls.
     #[inline]
     fn walls(&self, k: usize) -> &[Segment] {
-        &self.walls[self.start[k] as usize..self.start[k + 1] as usize]
+        let (a, b) = self.lists[k].walls;
+        &self.walls[a as usize..b as usize]
     }
 
-    /// The food objects a body centred in cell `k` may touch, in food order.
+    /// The food objects a body centred in the cell of `lists` may touch, in food order.
     #[inline]
-    fn food(&self, k: usize) -> &[u32] {
-        &self.food[self.food_start[k] as usize..self.food_start[k + 1] as usize]
+    fn food(&self, lists: CellLists) -> &[u32] {
+        &self.food[lists.food.0 as usize..lists.food.1 as usize]
     }
 
-    /// The aversive objects a body centred in cell `k` may touch.
+    /// The aversive objects a body centred in the cell of `lists` may touch.
     #[inline]
-    fn aversives(&self, k: usize) -> &[u32] {
-        &self.aversives[self.aversive_start[k] as usize..self.aversive_start[k + 1] as usize]
+    fn aversives(&self, lists: CellLists) -> &[u32] {
+        &self.aversives[lists.aversives.0 as usize..lists.aversives.1 as usize]
     }
 }
