@@ -247,6 +247,12 @@ impl Surroundings<'_> {
     /// objects come from the body's cell of the
     /// [`WhiskerCells`](crate::sim::whisker_cells::WhiskerCells) when the query passes their
     /// guard (again a superset, see that module), else from the grid.
+    ///
+    /// Every answer is an "or" of exact tests that do not depend on one another, so the
+    /// order of the passes is free: the fixed walls and food come first, then, only while a
+    /// whisker is free and the world has any, the doors, the other creatures, aversive
+    /// objects and things ([`Surroundings::whiskers_rest`]). A food object far from both
+    /// whiskers is rejected by one box test on the box of both (see [`Whiskers::misses`]).
     pub fn whiskers_and_food(
         &self,
         me: usize,
@@ -254,85 +260,89 @@ impl Surroundings<'_> {
         from: Vec2,
         tips: [Vec2; 2],
     ) -> ([bool; 2], [bool; 4]) {
-        let whiskers = [Segment::new(from, tips[0]), Segment::new(from, tips[1])];
-        let lo = [from.min(tips[0]), from.min(tips[1])];
-        let hi = [from.max(tips[0]), from.max(tips[1])];
-        let (ulo, uhi) = (lo[0].min(lo[1]), hi[0].max(hi[1]));
+        let pair = Whiskers::new(from, tips);
         let index = self.index;
-        let mut touch = [false; 2];
-        let mut wall = |w: &BoxedSegment| {
-            // Most walls miss the box of both whiskers: one box test rejects them for both.
-            if !w.may_meet(ulo, uhi) {
-                return false;
-            }
-            for i in 0..2 {
-                if !touch[i]
-                    && w.may_meet(lo[i], hi[i])
-                    && segments_intersect(&whiskers[i], &w.segment)
-                {
-                    touch[i] = true;
-                }
-            }
-            touch[0] && touch[1]
-        };
-        // The cell's shortlists when the query passes their guard, else the index's.
         let (position, radius) = (from, body.radius);
-        let lists = index
-            .whisker_cells()
-            .and_then(|c| c.lists(position, ulo, uhi, radius));
-        let _ = match lists {
-            Some((walls, _)) => walls.iter().any(|&k| wall(&self.walls[k as usize])),
-            None => index.any_fixed_wall(ulo, uhi, |k| wall(&self.walls[k])),
-        } || self.walls[index.fixed_felt()..].iter().any(&mut wall);
-        let circle = |touch: &mut [bool; 2], centre: Vec2, radius: f64| {
-            for i in 0..2 {
-                if !touch[i] && segment_touches_circle(&whiskers[i], centre, radius) {
-                    touch[i] = true;
-                }
-            }
-            touch[0] && touch[1]
-        };
-        let _ = touch[0] && touch[1]
-            || self.creatures.iter().enumerate().any(|(j, c)| {
-                j != me && c.alive && circle(&mut touch, c.pose.position, body.radius)
-            })
-            || index.any_aversive(ulo, uhi, |k| {
-                let a = &self.aversives[k];
-                a.radius > 0.0 && circle(&mut touch, a.position, a.radius)
-            });
-        // The food pass serves the detectors too, so it runs whatever the whiskers found.
+        let mut touch = [false; 2];
         let mut detected = [false; 4];
-        let mut food = |k: usize| {
-            let f = &self.food[k];
-            if f.radius > 0.0 && !(touch[0] && touch[1]) {
-                circle(&mut touch, f.position, f.radius);
-            }
+        // The detectors: an "or" over the substances of the food objects the body touches.
+        let detect = |detected: &mut [bool; 4], f: &Food| {
             if circles_touch(position, radius, f.position, f.radius) {
                 for (t, d) in detected.iter_mut().enumerate() {
                     *d |= f.holds(t);
                 }
             }
-            false
         };
-        match lists {
-            Some((_, listed)) => {
+        // The cell's shortlists when the query passes their guard, else the index's.
+        match index
+            .whisker_cells()
+            .and_then(|c| c.lists(position, pair.ulo, pair.uhi, radius))
+        {
+            Some((walls, listed)) => {
+                for &k in walls {
+                    if pair.wall(&mut touch, &self.walls[k as usize]) {
+                        break;
+                    }
+                }
+                let finite = pair.finite();
                 for &k in listed {
-                    food(k as usize);
+                    let f = &self.food[k as usize];
+                    if f.radius > 0.0
+                        && !(touch[0] && touch[1])
+                        && !(finite && pair.misses(f.position, f.radius))
+                    {
+                        pair.circle(&mut touch, f.position, f.radius);
+                    }
+                    detect(&mut detected, f);
                 }
             }
             None => {
+                let (ulo, uhi) = (pair.ulo, pair.uhi);
+                let _ = index.any_fixed_wall(ulo, uhi, |k| pair.wall(&mut touch, &self.walls[k]));
                 let (lo, hi) = (ulo.min(position - radius), uhi.max(position + radius));
-                index.any_food(lo, hi, food);
+                index.any_food(lo, hi, |k| {
+                    let f = &self.food[k];
+                    if f.radius > 0.0 && !(touch[0] && touch[1]) {
+                        pair.circle(&mut touch, f.position, f.radius);
+                    }
+                    detect(&mut detected, f);
+                    false
+                });
             }
         }
-        let _ = touch[0] && touch[1]
+        if !(touch[0] && touch[1])
+            && (self.walls.len() > index.fixed_felt()
+                || self.creatures.len() > 1
+                || !self.aversives.is_empty()
+                || !self.things.is_empty())
+        {
+            self.whiskers_rest(me, body, &pair, &mut touch);
+        }
+        (touch, detected)
+    }
+
+    /// The whisker tests of [`Surroundings::whiskers_and_food`] on what the world has besides
+    /// fixed walls and food: doors, the other living creatures, aversive objects (from the
+    /// grid) and things, for each whisker not yet touching (`touch`).
+    #[inline(never)]
+    fn whiskers_rest(&self, me: usize, body: &Body, pair: &Whiskers, touch: &mut [bool; 2]) {
+        let index = self.index;
+        let _ = self.walls[index.fixed_felt()..]
+            .iter()
+            .any(|w| pair.wall(touch, w))
+            || self.creatures.iter().enumerate().any(|(j, c)| {
+                j != me && c.alive && pair.circle(touch, c.pose.position, body.radius)
+            })
+            || index.any_aversive(pair.ulo, pair.uhi, |k| {
+                let a = &self.aversives[k];
+                a.radius > 0.0 && pair.circle(touch, a.position, a.radius)
+            })
             || self.things.iter().enumerate().any(|(k, t)| {
                 k != self.skip_thing
                     && t.felt
                     && t.radius > 0.0
-                    && circle(&mut touch, t.position, t.radius)
+                    && pair.circle(touch, t.position, t.radius)
             });
-        (touch, detected)
     }
 
     /// [`Surroundings::smell_at_all`] at both receptors `tips`. The food and aversive objects
@@ -562,6 +572,7 @@ impl Surroundings<'_> {
     /// [`Surroundings::sense_all`], with the same answers). Smell is computed only when
     /// `smell` is true (the controller receives it, or a trace wants it), and not at all while
     /// a whisker touches under `inhibit_smell_on_whisker` (§7.3).
+    #[inline]
     pub fn sense(
         &self,
         me: usize,
@@ -584,6 +595,87 @@ impl Surroundings<'_> {
             smell,
             food,
         }
+    }
+}
+
+/// A creature's two whiskers in one tick (from the body's centre to each tip), with the
+/// boxes their tests reject by: each whisker's and the box of both.
+struct Whiskers {
+    segments: [Segment; 2],
+    lo: [Vec2; 2],
+    hi: [Vec2; 2],
+    /// The box of both whiskers.
+    ulo: Vec2,
+    uhi: Vec2,
+}
+
+impl Whiskers {
+    #[inline(always)]
+    fn new(from: Vec2, tips: [Vec2; 2]) -> Whiskers {
+        let lo = [from.min(tips[0]), from.min(tips[1])];
+        let hi = [from.max(tips[0]), from.max(tips[1])];
+        Whiskers {
+            segments: [Segment::new(from, tips[0]), Segment::new(from, tips[1])],
+            lo,
+            hi,
+            ulo: lo[0].min(lo[1]),
+            uhi: hi[0].max(hi[1]),
+        }
+    }
+
+    /// Are the centre and both tips finite? Then each whisker's box lies in the box of both
+    /// (no NaN to drop out of a `min` or `max`).
+    #[inline(always)]
+    fn finite(&self) -> bool {
+        let [s0, s1] = self.segments;
+        // x − x is 0 for a finite x and NaN otherwise, and a NaN term makes the sum NaN.
+        let d = |v: Vec2| (v.x - v.x) + (v.y - v.y);
+        d(s0.a) + d(s0.b) + d(s1.b) == 0.0
+    }
+
+    /// The rejection of `circle_touches_segment` (eq. 2–3) for a circle of radius `r` at
+    /// `c`, against the box of both whiskers: when it holds, each whisker's own box, inside
+    /// that box when [`Whiskers::finite`], rejects the circle too (`lo − r` and `hi + r` are
+    /// monotone in `lo` and `hi`), so neither whisker touches it.
+    #[inline(always)]
+    fn misses(&self, c: Vec2, r: f64) -> bool {
+        (c.x < self.ulo.x - r)
+            | (c.x > self.uhi.x + r)
+            | (c.y < self.ulo.y - r)
+            | (c.y > self.uhi.y + r)
+    }
+
+    /// The whisker test of wall `w` for each whisker not yet touching (`touch`); true when
+    /// both touch. Most walls miss the box of both whiskers: one box test rejects them.
+    #[inline(always)]
+    fn wall(&self, touch: &mut [bool; 2], w: &BoxedSegment) -> bool {
+        w.may_meet(self.ulo, self.uhi) && self.wall_near(touch, w)
+    }
+
+    /// [`Whiskers::wall`] past the box of both whiskers.
+    #[inline(never)]
+    fn wall_near(&self, touch: &mut [bool; 2], w: &BoxedSegment) -> bool {
+        for i in 0..2 {
+            if !touch[i]
+                && w.may_meet(self.lo[i], self.hi[i])
+                && segments_intersect(&self.segments[i], &w.segment)
+            {
+                touch[i] = true;
+            }
+        }
+        touch[0] && touch[1]
+    }
+
+    /// The whisker test of a circle of radius `radius` at `centre` for each whisker not yet
+    /// touching (`touch`); true when both touch.
+    #[inline(never)]
+    fn circle(&self, touch: &mut [bool; 2], centre: Vec2, radius: f64) -> bool {
+        for i in 0..2 {
+            if !touch[i] && segment_touches_circle(&self.segments[i], centre, radius) {
+                touch[i] = true;
+            }
+        }
+        touch[0] && touch[1]
     }
 }
 

@@ -567,8 +567,29 @@ impl World {
         if !self.creatures[creature].alive {
             return None;
         }
-        self.sense(creature);
+        let width = self.layout.len();
+        // Out of `self` while `sense` writes into it (no allocation: the buffer moves).
+        let mut observations = std::mem::take(&mut self.observations);
+        self.sense(creature, &mut observations[creature * width..(creature + 1) * width]);
+        self.observations = observations;
         Some(self.observation(creature))
+    }
+
+    /// [`World::observe`], writing the observation into `out` (for instance straight into
+    /// a batch of observations, [`crate::evo::lockstep`]) instead of the world's own buffer:
+    /// the same senses, noise draws and values. Returns false, writing nothing, when the
+    /// creature is dead. [`World::observation`] keeps what `observe` last wrote.
+    ///
+    /// # Panics
+    /// When `creature` is out of range, or `out` is not [`World::layout`]`.len()` long.
+    #[inline]
+    pub fn observe_into(&mut self, creature: usize, out: &mut [f64]) -> bool {
+        if !self.creatures[creature].alive {
+            return false;
+        }
+        assert_eq!(out.len(), self.layout.len(), "one observation's width");
+        self.sense(creature, out);
+        true
     }
 
     /// Phases 3.3 to 3.6 of the tick (see [`World::begin_tick`] for the order): creature
@@ -618,8 +639,8 @@ impl World {
         self.regrowing.truncate(kept);
     }
 
-    /// Phase 2.1: creature `i` senses and its observation is written.
-    fn sense(&mut self, i: usize) {
+    /// Phase 2.1: creature `i` senses and its observation is written into `out`.
+    fn sense(&mut self, i: usize, out: &mut [f64]) {
         let surroundings = Surroundings {
             walls: self.walls.felt(),
             opaque: self.walls.opaque(),
@@ -643,8 +664,6 @@ impl World {
         c.whiskers = senses.whiskers;
         c.smell = senses.smell;
         c.food_detectors = senses.food;
-        let width = self.layout.len();
-        let out = &mut self.observations[i * width..(i + 1) * width];
         self.offsets.write(out, &senses, c.shocked, &c.metabolism);
         let pose = c.pose;
         if let Some(o) = self.offsets.landmarks {
