@@ -253,6 +253,7 @@ impl Surroundings<'_> {
     /// whisker is free and the world has any, the doors, the other creatures, aversive
     /// objects and things ([`Surroundings::whiskers_rest`]). A food object far from both
     /// whiskers is rejected by one box test on the box of both (see [`Whiskers::misses`]).
+    #[inline]
     pub fn whiskers_and_food(
         &self,
         me: usize,
@@ -598,13 +599,52 @@ impl Surroundings<'_> {
     }
 }
 
-/// A creature's two whiskers in one tick (from the body's centre to each tip), with the
-/// boxes their tests reject by: each whisker's and the box of both.
+/// A creature's two whiskers in one tick: from the body's centre `from` to each of `tips`.
+struct WhiskerPair {
+    from: Vec2,
+    tips: [Vec2; 2],
+}
+
+impl WhiskerPair {
+    /// Whisker `i` and its box.
+    #[inline(always)]
+    fn whisker(&self, i: usize) -> (Segment, Vec2, Vec2) {
+        let (from, tip) = (self.from, self.tips[i]);
+        (Segment::new(from, tip), from.min(tip), from.max(tip))
+    }
+
+    /// [`Whiskers::wall`] past the box of both whiskers.
+    #[inline(never)]
+    fn wall_near(&self, touch: &mut [bool; 2], w: &BoxedSegment) -> bool {
+        for i in 0..2 {
+            let (whisker, lo, hi) = self.whisker(i);
+            if !touch[i] && w.may_meet(lo, hi) && segments_intersect(&whisker, &w.segment) {
+                touch[i] = true;
+            }
+        }
+        touch[0] && touch[1]
+    }
+
+    /// The whisker test of a circle of radius `radius` at `centre` for each whisker not yet
+    /// touching (`touch`); true when both touch.
+    #[inline(never)]
+    fn circle(&self, touch: &mut [bool; 2], centre: Vec2, radius: f64) -> bool {
+        for i in 0..2 {
+            let (whisker, _, _) = self.whisker(i);
+            if !touch[i] && segment_touches_circle(&whisker, centre, radius) {
+                touch[i] = true;
+            }
+        }
+        touch[0] && touch[1]
+    }
+}
+
+/// A creature's two whiskers with the box of both, which rejects most walls and food
+/// objects for both whiskers at once.
 struct Whiskers {
-    segments: [Segment; 2],
-    lo: [Vec2; 2],
-    hi: [Vec2; 2],
-    /// The box of both whiskers.
+    pair: WhiskerPair,
+    /// The box of both whiskers: the `min` (`max`) of each whisker's box corner, as
+    /// `Segment::bounds` computes them.
     ulo: Vec2,
     uhi: Vec2,
 }
@@ -615,9 +655,7 @@ impl Whiskers {
         let lo = [from.min(tips[0]), from.min(tips[1])];
         let hi = [from.max(tips[0]), from.max(tips[1])];
         Whiskers {
-            segments: [Segment::new(from, tips[0]), Segment::new(from, tips[1])],
-            lo,
-            hi,
+            pair: WhiskerPair { from, tips },
             ulo: lo[0].min(lo[1]),
             uhi: hi[0].max(hi[1]),
         }
@@ -627,10 +665,10 @@ impl Whiskers {
     /// (no NaN to drop out of a `min` or `max`).
     #[inline(always)]
     fn finite(&self) -> bool {
-        let [s0, s1] = self.segments;
+        let WhiskerPair { from, tips } = self.pair;
         // x − x is 0 for a finite x and NaN otherwise, and a NaN term makes the sum NaN.
         let d = |v: Vec2| (v.x - v.x) + (v.y - v.y);
-        d(s0.a) + d(s0.b) + d(s1.b) == 0.0
+        d(from) + d(tips[0]) + d(tips[1]) == 0.0
     }
 
     /// The rejection of `circle_touches_segment` (eq. 2–3) for a circle of radius `r` at
@@ -649,33 +687,13 @@ impl Whiskers {
     /// both touch. Most walls miss the box of both whiskers: one box test rejects them.
     #[inline(always)]
     fn wall(&self, touch: &mut [bool; 2], w: &BoxedSegment) -> bool {
-        w.may_meet(self.ulo, self.uhi) && self.wall_near(touch, w)
+        w.may_meet(self.ulo, self.uhi) && self.pair.wall_near(touch, w)
     }
 
-    /// [`Whiskers::wall`] past the box of both whiskers.
-    #[inline(never)]
-    fn wall_near(&self, touch: &mut [bool; 2], w: &BoxedSegment) -> bool {
-        for i in 0..2 {
-            if !touch[i]
-                && w.may_meet(self.lo[i], self.hi[i])
-                && segments_intersect(&self.segments[i], &w.segment)
-            {
-                touch[i] = true;
-            }
-        }
-        touch[0] && touch[1]
-    }
-
-    /// The whisker test of a circle of radius `radius` at `centre` for each whisker not yet
-    /// touching (`touch`); true when both touch.
-    #[inline(never)]
+    /// [`WhiskerPair::circle`].
+    #[inline(always)]
     fn circle(&self, touch: &mut [bool; 2], centre: Vec2, radius: f64) -> bool {
-        for i in 0..2 {
-            if !touch[i] && segment_touches_circle(&self.segments[i], centre, radius) {
-                touch[i] = true;
-            }
-        }
-        touch[0] && touch[1]
+        self.pair.circle(touch, centre, radius)
     }
 }
 
@@ -806,22 +824,42 @@ impl Offsets {
     /// areas and the eye are written by the world, which holds what they read.
     #[inline]
     pub fn write(&self, out: &mut [f64], senses: &Senses, shock: bool, metabolism: &[f64; 4]) {
+        let Senses {
+            whiskers,
+            smell,
+            food,
+        } = senses;
+        self.write_senses(out, *whiskers, smell, *food, shock, metabolism);
+    }
+
+    /// [`Offsets::write`] for senses held apart: `whiskers`, `smell` and `food` as in
+    /// [`Senses`].
+    #[inline(always)]
+    pub fn write_senses(
+        &self,
+        out: &mut [f64],
+        whiskers: [bool; 2],
+        smell: &[[f64; 8]; 2],
+        food: [bool; 4],
+        shock: bool,
+        metabolism: &[f64; 4],
+    ) {
         // 0.0 or 1.0 without a branch (a sensor's state is as good as random).
         let bit = |b: bool| f64::from(u8::from(b));
         if let Some(o) = self.report {
             let block: &mut [f64; REPORT_WIDTH] = (&mut out[o..o + REPORT_WIDTH])
                 .try_into()
                 .expect("a block of REPORT_WIDTH values");
-            block[..8].copy_from_slice(&senses.smell[0]);
-            block[8..16].copy_from_slice(&senses.smell[1]);
-            block[16] = bit(senses.whiskers[0]);
-            block[17] = bit(senses.whiskers[1]);
+            block[..8].copy_from_slice(&smell[0]);
+            block[8..16].copy_from_slice(&smell[1]);
+            block[16] = bit(whiskers[0]);
+            block[17] = bit(whiskers[1]);
             for t in 0..4 {
-                block[18 + t] = bit(senses.food[t]);
+                block[18 + t] = bit(food[t]);
             }
             block[22] = bit(shock);
         } else {
-            self.write_groups(out, senses, shock);
+            self.write_groups(out, whiskers, smell, food, shock);
         }
         if let Some(o) = self.metabolism {
             out[o..o + 4].copy_from_slice(metabolism);
@@ -832,19 +870,26 @@ impl Offsets {
     }
 
     /// Smell, whiskers, food detectors and shock of [`Offsets::write`], group by group.
-    fn write_groups(&self, out: &mut [f64], senses: &Senses, shock: bool) {
+    fn write_groups(
+        &self,
+        out: &mut [f64],
+        whiskers: [bool; 2],
+        smell: &[[f64; 8]; 2],
+        food: [bool; 4],
+        shock: bool,
+    ) {
         let bit = |b: bool| f64::from(u8::from(b));
         if let Some(o) = self.smell {
-            out[o..o + 8].copy_from_slice(&senses.smell[0]);
-            out[o + 8..o + 16].copy_from_slice(&senses.smell[1]);
+            out[o..o + 8].copy_from_slice(&smell[0]);
+            out[o + 8..o + 16].copy_from_slice(&smell[1]);
         }
         if let Some(o) = self.whiskers {
-            out[o] = bit(senses.whiskers[0]);
-            out[o + 1] = bit(senses.whiskers[1]);
+            out[o] = bit(whiskers[0]);
+            out[o + 1] = bit(whiskers[1]);
         }
         if let Some(o) = self.food {
             for t in 0..4 {
-                out[o + t] = bit(senses.food[t]);
+                out[o + t] = bit(food[t]);
             }
         }
         if let Some(o) = self.shock {
