@@ -589,7 +589,10 @@ impl World {
         let width = self.layout.len();
         // Out of `self` while `sense` writes into it (no allocation: the buffer moves).
         let mut observations = std::mem::take(&mut self.observations);
-        self.sense(creature, &mut observations[creature * width..(creature + 1) * width]);
+        self.sense(
+            creature,
+            &mut observations[creature * width..(creature + 1) * width],
+        );
         self.observations = observations;
         Some(self.observation(creature))
     }
