@@ -5,7 +5,9 @@
 //! Creature i of world w depends only on world w: each world goes through the phases of
 //! [`World::step`] in their only valid order ([`World::begin_tick`], then per creature
 //! [`World::observe`] and [`World::apply`], then [`World::end_tick`]); the lockstep only
-//! interleaves worlds between those phases. A stateless brain's batch gives every observation
+//! interleaves worlds between those phases. Each world senses with [`World::observe_into`],
+//! which writes the observation straight into its place in the batch (the same bits as
+//! `observe`, without a copy). A stateless brain's batch gives every observation
 //! the bits it gives alone, so each world's trial is the same bits as
 //! [`crate::evo::evaluate::run_trial`]'s, whatever the chunk size or the other worlds.
 

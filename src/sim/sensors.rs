@@ -616,10 +616,10 @@ impl WhiskerPair {
     /// [`Whiskers::wall`] past the box of both whiskers.
     #[inline(never)]
     fn wall_near(&self, touch: &mut [bool; 2], w: &BoxedSegment) -> bool {
-        for i in 0..2 {
+        for (i, touch) in touch.iter_mut().enumerate() {
             let (whisker, lo, hi) = self.whisker(i);
-            if !touch[i] && w.may_meet(lo, hi) && segments_intersect(&whisker, &w.segment) {
-                touch[i] = true;
+            if !*touch && w.may_meet(lo, hi) && segments_intersect(&whisker, &w.segment) {
+                *touch = true;
             }
         }
         touch[0] && touch[1]
@@ -629,10 +629,10 @@ impl WhiskerPair {
     /// touching (`touch`); true when both touch.
     #[inline(never)]
     fn circle(&self, touch: &mut [bool; 2], centre: Vec2, radius: f64) -> bool {
-        for i in 0..2 {
+        for (i, touch) in touch.iter_mut().enumerate() {
             let (whisker, _, _) = self.whisker(i);
-            if !touch[i] && segment_touches_circle(&whisker, centre, radius) {
-                touch[i] = true;
+            if !*touch && segment_touches_circle(&whisker, centre, radius) {
+                *touch = true;
             }
         }
         touch[0] && touch[1]
@@ -664,6 +664,7 @@ impl Whiskers {
     /// Are the centre and both tips finite? Then each whisker's box lies in the box of both
     /// (no NaN to drop out of a `min` or `max`).
     #[inline(always)]
+    #[allow(clippy::eq_op)] // x − x is the finiteness test, on purpose
     fn finite(&self) -> bool {
         let WhiskerPair { from, tips } = self.pair;
         // x − x is 0 for a finite x and NaN otherwise, and a NaN term makes the sum NaN.
@@ -773,6 +774,9 @@ pub struct Offsets {
     pub areas: Option<usize>,
     /// Start of the retina.
     pub eye: Option<usize>,
+    /// Does the controller receive landmarks, areas or the eye (the groups the world writes
+    /// itself)? One test skips all three in the common case.
+    pub world_groups: bool,
     bias: Option<usize>,
     /// Start of smell, whiskers, food detectors and shock when the controller receives all
     /// four ([`REPORT_WIDTH`] values back to back, as the layout always places them):
@@ -797,6 +801,9 @@ impl Offsets {
             landmarks: at(SensorGroup::Landmarks),
             areas: at(SensorGroup::Areas),
             eye: at(SensorGroup::Eye),
+            world_groups: [SensorGroup::Landmarks, SensorGroup::Areas, SensorGroup::Eye]
+                .into_iter()
+                .any(|g| at(g).is_some()),
             bias: at(SensorGroup::Bias),
             report: match (
                 at(SensorGroup::Smell),

@@ -712,6 +712,18 @@ impl World {
         self.offsets
             .write_senses(out, whiskers, smell, food, c.shocked, &c.metabolism);
         let pose = c.pose;
+        if self.offsets.world_groups {
+            self.write_world_groups(i, out, pose);
+        }
+        if !self.noise.is_empty() {
+            self.noise.apply(out, &mut self.rng);
+        }
+    }
+
+    /// Landmark bearings, area flags and the eye's retina of creature `i` at `pose`, into
+    /// its observation `out` (the groups of [`Offsets::world_groups`]).
+    #[inline(never)]
+    fn write_world_groups(&mut self, i: usize, out: &mut [f64], pose: Pose) {
         if let Some(o) = self.offsets.landmarks {
             for (k, &l) in self.landmarks.iter().enumerate() {
                 let (s, c) = bearing(pose.position, pose.heading, l);
@@ -737,9 +749,6 @@ impl World {
             };
             let n = eye.len();
             eye.render(&scene, pose.position, pose.heading, i, &mut out[o..o + n]);
-        }
-        if !self.noise.is_empty() {
-            self.noise.apply(out, &mut self.rng);
         }
     }
 
