@@ -297,19 +297,7 @@ impl Surroundings<'_> {
                     detect(&mut detected, f);
                 }
             }
-            None => {
-                let (ulo, uhi) = (pair.ulo, pair.uhi);
-                let _ = index.any_fixed_wall(ulo, uhi, |k| pair.wall(&mut touch, &self.walls[k]));
-                let (lo, hi) = (ulo.min(position - radius), uhi.max(position + radius));
-                index.any_food(lo, hi, |k| {
-                    let f = &self.food[k];
-                    if f.radius > 0.0 && !(touch[0] && touch[1]) {
-                        pair.circle(&mut touch, f.position, f.radius);
-                    }
-                    detect(&mut detected, f);
-                    false
-                });
-            }
+            None => self.walls_and_food_indexed(&pair, radius, &mut touch, &mut detected),
         }
         if !(touch[0] && touch[1])
             && (self.walls.len() > index.fixed_felt()
@@ -320,6 +308,35 @@ impl Surroundings<'_> {
             self.whiskers_rest(me, body, &pair, &mut touch);
         }
         (touch, detected)
+    }
+
+    /// The fixed walls and food objects of [`Surroundings::whiskers_and_food`] when the query
+    /// fails the lists' guard: from the grid, for the box of both whiskers (and the body's box
+    /// for the food). Out of line, so that the common path keeps its registers.
+    #[inline(never)]
+    fn walls_and_food_indexed(
+        &self,
+        pair: &Whiskers,
+        radius: f64,
+        touch: &mut [bool; 2],
+        detected: &mut [bool; 4],
+    ) {
+        let (index, position) = (self.index, pair.pair.from);
+        let (ulo, uhi) = (pair.ulo, pair.uhi);
+        let _ = index.any_fixed_wall(ulo, uhi, |k| pair.wall(touch, &self.walls[k]));
+        let (lo, hi) = (ulo.min(position - radius), uhi.max(position + radius));
+        index.any_food(lo, hi, |k| {
+            let f = &self.food[k];
+            if f.radius > 0.0 && !(touch[0] && touch[1]) {
+                pair.circle(touch, f.position, f.radius);
+            }
+            if circles_touch(position, radius, f.position, f.radius) {
+                for (t, d) in detected.iter_mut().enumerate() {
+                    *d |= f.holds(t);
+                }
+            }
+            false
+        });
     }
 
     /// The whisker tests of [`Surroundings::whiskers_and_food`] on what the world has besides
