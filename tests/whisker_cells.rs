@@ -353,3 +353,81 @@ fn worlds_that_are_not_finite_get_no_lists() {
     let nan = Vec2::new(f64::NAN, 50.0);
     assert!(cells.lists(nan, nan, nan, 1.0).is_none());
 }
+
+/// Whiskers whose tips (or centre) are not finite: the box of both whiskers, which rejects
+/// far food before the exact test only when everything is finite, and the lists' guard must
+/// still give the plain loops' answers. The left tip gets NaN or an infinity (a NaN there
+/// drops out of the box of both, so the lists serve the query), the right one huge finite
+/// values. (A NaN in the right tip makes the box of both NaN, and the grid's query over it
+/// then hands out no wall, as it always has: not asked here.)
+#[test]
+fn tips_that_are_not_finite_give_the_plain_loops_answers() {
+    let odd = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 1e300, -1e300];
+    let mut asked = 0;
+    for seed in 0..30u64 {
+        let text = random_world(seed);
+        let setup = sim_common::setup(&text);
+        let Ok(w) = World::new(&setup.world, &setup.creature, 3, sim_common::rng(seed)) else {
+            continue;
+        };
+        let walls = Walls::build(&setup.world);
+        let r = &mut Mix(seed ^ 0xBAD);
+        let body = Body {
+            radius: r.uniform(0.1, 8.0),
+            whisker_length: setup.creature.whisker_length,
+            whisker_cos: 0.8,
+            whisker_sin: 0.6,
+            smell: Smell::new(&[0.0; 8], 0.0, None),
+        };
+        let reach = body.whisker_length.max(body.radius);
+        let index = StaticIndex::build(w.arena(), reach, w.food(), w.aversives(), &walls);
+        let (_, cell) = index.whisker_cells().expect("lists").dimensions();
+        let surroundings = Surroundings {
+            walls: walls.felt(),
+            opaque: walls.opaque(),
+            food: w.food(),
+            aversives: w.aversives(),
+            areas: w.areas(),
+            creatures: w.creatures(),
+            things: w.things(),
+            skip_thing: usize::MAX,
+            smell_c: 0.01,
+            index: &index,
+        };
+        for _ in 0..2000 {
+            let mut p = near_point(r, &w, walls.felt(), cell);
+            let heading = sim_common::heading(r.uniform(0.0, 360.0));
+            let mut tips = body.whisker_tips(p, heading);
+            // Spoil one to three coordinates of the tips, and sometimes the centre.
+            for _ in 0..1 + r.below(3) {
+                let side = r.below(2) as usize;
+                let v = if side == 0 {
+                    odd[r.below(odd.len() as u64) as usize]
+                } else {
+                    odd[3 + r.below(2) as usize]
+                };
+                let t = &mut tips[side];
+                if r.chance(0.5) {
+                    t.x = v;
+                } else {
+                    t.y = v;
+                }
+            }
+            if r.chance(0.1) {
+                p.x = odd[r.below(odd.len() as u64) as usize];
+            }
+            let me = r.below(4) as usize;
+            let got = surroundings.whiskers_and_food(me, &body, p, tips);
+            let want = (
+                [
+                    surroundings.whisker_touches_all(me, &body, p, tips[0]),
+                    surroundings.whisker_touches_all(me, &body, p, tips[1]),
+                ],
+                surroundings.food_detectors_all(p, body.radius),
+            );
+            assert_eq!(got, want, "seed {seed}: at {p:?} tips {tips:?}");
+            asked += 1;
+        }
+    }
+    assert!(asked > 20_000, "{asked} queries");
+}

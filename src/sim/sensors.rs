@@ -247,6 +247,13 @@ impl Surroundings<'_> {
     /// objects come from the body's cell of the
     /// [`WhiskerCells`](crate::sim::whisker_cells::WhiskerCells) when the query passes their
     /// guard (again a superset, see that module), else from the grid.
+    ///
+    /// Every answer is an "or" of exact tests that do not depend on one another, so the
+    /// order of the passes is free: the fixed walls and food come first, then, only while a
+    /// whisker is free and the world has any, the doors, the other creatures, aversive
+    /// objects and things ([`Surroundings::whiskers_rest`]). A food object far from both
+    /// whiskers is rejected by one box test on the box of both (see [`Whiskers::misses`]).
+    #[inline]
     pub fn whiskers_and_food(
         &self,
         me: usize,
@@ -254,58 +261,74 @@ impl Surroundings<'_> {
         from: Vec2,
         tips: [Vec2; 2],
     ) -> ([bool; 2], [bool; 4]) {
-        let whiskers = [Segment::new(from, tips[0]), Segment::new(from, tips[1])];
-        let lo = [from.min(tips[0]), from.min(tips[1])];
-        let hi = [from.max(tips[0]), from.max(tips[1])];
-        let (ulo, uhi) = (lo[0].min(lo[1]), hi[0].max(hi[1]));
+        let pair = Whiskers::new(from, tips);
         let index = self.index;
+        let (position, radius) = (from, body.radius);
         let mut touch = [false; 2];
-        let mut wall = |w: &BoxedSegment| {
-            // Most walls miss the box of both whiskers: one box test rejects them for both.
-            if !w.may_meet(ulo, uhi) {
-                return false;
-            }
-            for i in 0..2 {
-                if !touch[i]
-                    && w.may_meet(lo[i], hi[i])
-                    && segments_intersect(&whiskers[i], &w.segment)
-                {
-                    touch[i] = true;
+        let mut detected = [false; 4];
+        // The detectors: an "or" over the substances of the food objects the body touches.
+        let detect = |detected: &mut [bool; 4], f: &Food| {
+            if circles_touch(position, radius, f.position, f.radius) {
+                for (t, d) in detected.iter_mut().enumerate() {
+                    *d |= f.holds(t);
                 }
             }
-            touch[0] && touch[1]
         };
         // The cell's shortlists when the query passes their guard, else the index's.
-        let (position, radius) = (from, body.radius);
-        let lists = index
+        match index
             .whisker_cells()
-            .and_then(|c| c.lists(position, ulo, uhi, radius));
-        let _ = match lists {
-            Some((walls, _)) => walls.iter().any(|&k| wall(&self.walls[k as usize])),
-            None => index.any_fixed_wall(ulo, uhi, |k| wall(&self.walls[k])),
-        } || self.walls[index.fixed_felt()..].iter().any(&mut wall);
-        let circle = |touch: &mut [bool; 2], centre: Vec2, radius: f64| {
-            for i in 0..2 {
-                if !touch[i] && segment_touches_circle(&whiskers[i], centre, radius) {
-                    touch[i] = true;
+            .and_then(|c| c.lists(position, pair.ulo, pair.uhi, radius))
+        {
+            Some((walls, listed)) => {
+                for &k in walls {
+                    if pair.wall(&mut touch, &self.walls[k as usize]) {
+                        break;
+                    }
+                }
+                let finite = pair.finite();
+                for &k in listed {
+                    let f = &self.food[k as usize];
+                    if f.radius > 0.0
+                        && !(touch[0] && touch[1])
+                        && !(finite && pair.misses(f.position, f.radius))
+                    {
+                        pair.circle(&mut touch, f.position, f.radius);
+                    }
+                    detect(&mut detected, f);
                 }
             }
-            touch[0] && touch[1]
-        };
-        let _ = touch[0] && touch[1]
-            || self.creatures.iter().enumerate().any(|(j, c)| {
-                j != me && c.alive && circle(&mut touch, c.pose.position, body.radius)
-            })
-            || index.any_aversive(ulo, uhi, |k| {
-                let a = &self.aversives[k];
-                a.radius > 0.0 && circle(&mut touch, a.position, a.radius)
-            });
-        // The food pass serves the detectors too, so it runs whatever the whiskers found.
-        let mut detected = [false; 4];
-        let mut food = |k: usize| {
+            None => self.walls_and_food_indexed(&pair, radius, &mut touch, &mut detected),
+        }
+        if !(touch[0] && touch[1])
+            && (self.walls.len() > index.fixed_felt()
+                || self.creatures.len() > 1
+                || !self.aversives.is_empty()
+                || !self.things.is_empty())
+        {
+            self.whiskers_rest(me, body, &pair, &mut touch);
+        }
+        (touch, detected)
+    }
+
+    /// The fixed walls and food objects of [`Surroundings::whiskers_and_food`] when the query
+    /// fails the lists' guard: from the grid, for the box of both whiskers (and the body's box
+    /// for the food). Out of line, so that the common path keeps its registers.
+    #[inline(never)]
+    fn walls_and_food_indexed(
+        &self,
+        pair: &Whiskers,
+        radius: f64,
+        touch: &mut [bool; 2],
+        detected: &mut [bool; 4],
+    ) {
+        let (index, position) = (self.index, pair.pair.from);
+        let (ulo, uhi) = (pair.ulo, pair.uhi);
+        let _ = index.any_fixed_wall(ulo, uhi, |k| pair.wall(touch, &self.walls[k]));
+        let (lo, hi) = (ulo.min(position - radius), uhi.max(position + radius));
+        index.any_food(lo, hi, |k| {
             let f = &self.food[k];
             if f.radius > 0.0 && !(touch[0] && touch[1]) {
-                circle(&mut touch, f.position, f.radius);
+                pair.circle(touch, f.position, f.radius);
             }
             if circles_touch(position, radius, f.position, f.radius) {
                 for (t, d) in detected.iter_mut().enumerate() {
@@ -313,26 +336,31 @@ impl Surroundings<'_> {
                 }
             }
             false
-        };
-        match lists {
-            Some((_, listed)) => {
-                for &k in listed {
-                    food(k as usize);
-                }
-            }
-            None => {
-                let (lo, hi) = (ulo.min(position - radius), uhi.max(position + radius));
-                index.any_food(lo, hi, food);
-            }
-        }
-        let _ = touch[0] && touch[1]
+        });
+    }
+
+    /// The whisker tests of [`Surroundings::whiskers_and_food`] on what the world has besides
+    /// fixed walls and food: doors, the other living creatures, aversive objects (from the
+    /// grid) and things, for each whisker not yet touching (`touch`).
+    #[inline(never)]
+    fn whiskers_rest(&self, me: usize, body: &Body, pair: &Whiskers, touch: &mut [bool; 2]) {
+        let index = self.index;
+        let _ = self.walls[index.fixed_felt()..]
+            .iter()
+            .any(|w| pair.wall(touch, w))
+            || self.creatures.iter().enumerate().any(|(j, c)| {
+                j != me && c.alive && pair.circle(touch, c.pose.position, body.radius)
+            })
+            || index.any_aversive(pair.ulo, pair.uhi, |k| {
+                let a = &self.aversives[k];
+                a.radius > 0.0 && pair.circle(touch, a.position, a.radius)
+            })
             || self.things.iter().enumerate().any(|(k, t)| {
                 k != self.skip_thing
                     && t.felt
                     && t.radius > 0.0
-                    && circle(&mut touch, t.position, t.radius)
+                    && pair.circle(touch, t.position, t.radius)
             });
-        (touch, detected)
     }
 
     /// [`Surroundings::smell_at_all`] at both receptors `tips`. The food and aversive objects
@@ -562,6 +590,7 @@ impl Surroundings<'_> {
     /// [`Surroundings::sense_all`], with the same answers). Smell is computed only when
     /// `smell` is true (the controller receives it, or a trace wants it), and not at all while
     /// a whisker touches under `inhibit_smell_on_whisker` (§7.3).
+    #[inline]
     pub fn sense(
         &self,
         me: usize,
@@ -584,6 +613,105 @@ impl Surroundings<'_> {
             smell,
             food,
         }
+    }
+}
+
+/// A creature's two whiskers in one tick: from the body's centre `from` to each of `tips`.
+struct WhiskerPair {
+    from: Vec2,
+    tips: [Vec2; 2],
+}
+
+impl WhiskerPair {
+    /// Whisker `i` and its box.
+    #[inline(always)]
+    fn whisker(&self, i: usize) -> (Segment, Vec2, Vec2) {
+        let (from, tip) = (self.from, self.tips[i]);
+        (Segment::new(from, tip), from.min(tip), from.max(tip))
+    }
+
+    /// [`Whiskers::wall`] past the box of both whiskers.
+    #[inline(never)]
+    fn wall_near(&self, touch: &mut [bool; 2], w: &BoxedSegment) -> bool {
+        for (i, touch) in touch.iter_mut().enumerate() {
+            let (whisker, lo, hi) = self.whisker(i);
+            if !*touch && w.may_meet(lo, hi) && segments_intersect(&whisker, &w.segment) {
+                *touch = true;
+            }
+        }
+        touch[0] && touch[1]
+    }
+
+    /// The whisker test of a circle of radius `radius` at `centre` for each whisker not yet
+    /// touching (`touch`); true when both touch.
+    #[inline(never)]
+    fn circle(&self, touch: &mut [bool; 2], centre: Vec2, radius: f64) -> bool {
+        for (i, touch) in touch.iter_mut().enumerate() {
+            let (whisker, _, _) = self.whisker(i);
+            if !*touch && segment_touches_circle(&whisker, centre, radius) {
+                *touch = true;
+            }
+        }
+        touch[0] && touch[1]
+    }
+}
+
+/// A creature's two whiskers with the box of both, which rejects most walls and food
+/// objects for both whiskers at once.
+struct Whiskers {
+    pair: WhiskerPair,
+    /// The box of both whiskers: the `min` (`max`) of each whisker's box corner, as
+    /// `Segment::bounds` computes them.
+    ulo: Vec2,
+    uhi: Vec2,
+}
+
+impl Whiskers {
+    #[inline(always)]
+    fn new(from: Vec2, tips: [Vec2; 2]) -> Whiskers {
+        let lo = [from.min(tips[0]), from.min(tips[1])];
+        let hi = [from.max(tips[0]), from.max(tips[1])];
+        Whiskers {
+            pair: WhiskerPair { from, tips },
+            ulo: lo[0].min(lo[1]),
+            uhi: hi[0].max(hi[1]),
+        }
+    }
+
+    /// Are the centre and both tips finite? Then each whisker's box lies in the box of both
+    /// (no NaN to drop out of a `min` or `max`).
+    #[inline(always)]
+    #[allow(clippy::eq_op)] // x − x is the finiteness test, on purpose
+    fn finite(&self) -> bool {
+        let WhiskerPair { from, tips } = self.pair;
+        // x − x is 0 for a finite x and NaN otherwise, and a NaN term makes the sum NaN.
+        let d = |v: Vec2| (v.x - v.x) + (v.y - v.y);
+        d(from) + d(tips[0]) + d(tips[1]) == 0.0
+    }
+
+    /// The rejection of `circle_touches_segment` (eq. 2–3) for a circle of radius `r` at
+    /// `c`, against the box of both whiskers: when it holds, each whisker's own box, inside
+    /// that box when [`Whiskers::finite`], rejects the circle too (`lo − r` and `hi + r` are
+    /// monotone in `lo` and `hi`), so neither whisker touches it.
+    #[inline(always)]
+    fn misses(&self, c: Vec2, r: f64) -> bool {
+        (c.x < self.ulo.x - r)
+            | (c.x > self.uhi.x + r)
+            | (c.y < self.ulo.y - r)
+            | (c.y > self.uhi.y + r)
+    }
+
+    /// The whisker test of wall `w` for each whisker not yet touching (`touch`); true when
+    /// both touch. Most walls miss the box of both whiskers: one box test rejects them.
+    #[inline(always)]
+    fn wall(&self, touch: &mut [bool; 2], w: &BoxedSegment) -> bool {
+        w.may_meet(self.ulo, self.uhi) && self.pair.wall_near(touch, w)
+    }
+
+    /// [`WhiskerPair::circle`].
+    #[inline(always)]
+    fn circle(&self, touch: &mut [bool; 2], centre: Vec2, radius: f64) -> bool {
+        self.pair.circle(touch, centre, radius)
     }
 }
 
@@ -663,6 +791,9 @@ pub struct Offsets {
     pub areas: Option<usize>,
     /// Start of the retina.
     pub eye: Option<usize>,
+    /// Does the controller receive landmarks, areas or the eye (the groups the world writes
+    /// itself)? One test skips all three in the common case.
+    pub world_groups: bool,
     bias: Option<usize>,
     /// Start of smell, whiskers, food detectors and shock when the controller receives all
     /// four ([`REPORT_WIDTH`] values back to back, as the layout always places them):
@@ -687,6 +818,9 @@ impl Offsets {
             landmarks: at(SensorGroup::Landmarks),
             areas: at(SensorGroup::Areas),
             eye: at(SensorGroup::Eye),
+            world_groups: [SensorGroup::Landmarks, SensorGroup::Areas, SensorGroup::Eye]
+                .into_iter()
+                .any(|g| at(g).is_some()),
             bias: at(SensorGroup::Bias),
             report: match (
                 at(SensorGroup::Smell),
@@ -714,22 +848,42 @@ impl Offsets {
     /// areas and the eye are written by the world, which holds what they read.
     #[inline]
     pub fn write(&self, out: &mut [f64], senses: &Senses, shock: bool, metabolism: &[f64; 4]) {
+        let Senses {
+            whiskers,
+            smell,
+            food,
+        } = senses;
+        self.write_senses(out, *whiskers, smell, *food, shock, metabolism);
+    }
+
+    /// [`Offsets::write`] for senses held apart: `whiskers`, `smell` and `food` as in
+    /// [`Senses`].
+    #[inline(always)]
+    pub fn write_senses(
+        &self,
+        out: &mut [f64],
+        whiskers: [bool; 2],
+        smell: &[[f64; 8]; 2],
+        food: [bool; 4],
+        shock: bool,
+        metabolism: &[f64; 4],
+    ) {
         // 0.0 or 1.0 without a branch (a sensor's state is as good as random).
         let bit = |b: bool| f64::from(u8::from(b));
         if let Some(o) = self.report {
             let block: &mut [f64; REPORT_WIDTH] = (&mut out[o..o + REPORT_WIDTH])
                 .try_into()
                 .expect("a block of REPORT_WIDTH values");
-            block[..8].copy_from_slice(&senses.smell[0]);
-            block[8..16].copy_from_slice(&senses.smell[1]);
-            block[16] = bit(senses.whiskers[0]);
-            block[17] = bit(senses.whiskers[1]);
+            block[..8].copy_from_slice(&smell[0]);
+            block[8..16].copy_from_slice(&smell[1]);
+            block[16] = bit(whiskers[0]);
+            block[17] = bit(whiskers[1]);
             for t in 0..4 {
-                block[18 + t] = bit(senses.food[t]);
+                block[18 + t] = bit(food[t]);
             }
             block[22] = bit(shock);
         } else {
-            self.write_groups(out, senses, shock);
+            self.write_groups(out, whiskers, smell, food, shock);
         }
         if let Some(o) = self.metabolism {
             out[o..o + 4].copy_from_slice(metabolism);
@@ -740,19 +894,26 @@ impl Offsets {
     }
 
     /// Smell, whiskers, food detectors and shock of [`Offsets::write`], group by group.
-    fn write_groups(&self, out: &mut [f64], senses: &Senses, shock: bool) {
+    fn write_groups(
+        &self,
+        out: &mut [f64],
+        whiskers: [bool; 2],
+        smell: &[[f64; 8]; 2],
+        food: [bool; 4],
+        shock: bool,
+    ) {
         let bit = |b: bool| f64::from(u8::from(b));
         if let Some(o) = self.smell {
-            out[o..o + 8].copy_from_slice(&senses.smell[0]);
-            out[o + 8..o + 16].copy_from_slice(&senses.smell[1]);
+            out[o..o + 8].copy_from_slice(&smell[0]);
+            out[o + 8..o + 16].copy_from_slice(&smell[1]);
         }
         if let Some(o) = self.whiskers {
-            out[o] = bit(senses.whiskers[0]);
-            out[o + 1] = bit(senses.whiskers[1]);
+            out[o] = bit(whiskers[0]);
+            out[o + 1] = bit(whiskers[1]);
         }
         if let Some(o) = self.food {
             for t in 0..4 {
-                out[o + t] = bit(senses.food[t]);
+                out[o + t] = bit(food[t]);
             }
         }
         if let Some(o) = self.shock {

@@ -253,6 +253,25 @@ impl<'a> ValidSpecs<'a> {
     }
 }
 
+/// The [`Surroundings`] of a world's creatures: borrows only the fields it names, so that
+/// the scratch space stays free for the senses to use alongside.
+macro_rules! surroundings {
+    ($world:expr) => {
+        Surroundings {
+            walls: $world.walls.felt(),
+            opaque: $world.walls.opaque(),
+            food: &$world.food,
+            aversives: &$world.aversives,
+            areas: &$world.areas,
+            creatures: &$world.creatures,
+            things: &$world.things,
+            skip_thing: usize::MAX,
+            smell_c: $world.smell_c,
+            index: &$world.index,
+        }
+    };
+}
+
 impl World {
     /// Builds a trial world: validates both specifications, places the explicit objects, the
     /// placement rules' objects and `creatures` creatures with `rng` (in that order), then
@@ -612,8 +631,32 @@ impl World {
         if !self.creatures[creature].alive {
             return None;
         }
-        self.sense(creature);
+        let width = self.layout.len();
+        // Out of `self` while `sense` writes into it (no allocation: the buffer moves).
+        let mut observations = std::mem::take(&mut self.observations);
+        self.sense(
+            creature,
+            &mut observations[creature * width..(creature + 1) * width],
+        );
+        self.observations = observations;
         Some(self.observation(creature))
+    }
+
+    /// [`World::observe`], writing the observation into `out` (for instance straight into
+    /// a batch of observations, [`crate::evo::lockstep`]) instead of the world's own buffer:
+    /// the same senses, noise draws and values. Returns false, writing nothing, when the
+    /// creature is dead. [`World::observation`] keeps what `observe` last wrote.
+    ///
+    /// # Panics
+    /// When `creature` is out of range, or `out` is not [`World::layout`]`.len()` long.
+    #[inline]
+    pub fn observe_into(&mut self, creature: usize, out: &mut [f64]) -> bool {
+        if !self.creatures[creature].alive {
+            return false;
+        }
+        assert_eq!(out.len(), self.layout.len(), "one observation's width");
+        self.sense(creature, out);
+        true
     }
 
     /// Phases 3.3 to 3.6 of the tick (see [`World::begin_tick`] for the order): creature
@@ -663,35 +706,69 @@ impl World {
         self.regrowing.truncate(kept);
     }
 
-    /// Phase 2.1: creature `i` senses and its observation is written.
-    fn sense(&mut self, i: usize) {
-        let surroundings = Surroundings {
-            walls: self.walls.felt(),
-            opaque: self.walls.opaque(),
-            food: &self.food,
-            aversives: &self.aversives,
-            areas: &self.areas,
-            creatures: &self.creatures,
-            things: &self.things,
-            skip_thing: usize::MAX,
-            smell_c: self.smell_c,
-            index: &self.index,
+    /// Phase 2.1: creature `i` senses and its observation is written into `out`.
+    ///
+    /// [`Surroundings::sense`] step by step, so that the smell sensors land in one local
+    /// that both the creature and the observation are copied from (no [`Senses`] in
+    /// between); [`World::set_brute_force`] goes through [`World::sense_brute_force`].
+    fn sense(&mut self, i: usize, out: &mut [f64]) {
+        if self.brute_force {
+            return self.sense_brute_force(i, out);
+        }
+        let surroundings = surroundings!(self);
+        let body = &self.body;
+        let pose = self.creatures[i].pose;
+        let tips = body.whisker_tips(pose.position, pose.heading);
+        let (whiskers, food) = surroundings.whiskers_and_food(i, body, pose.position, tips);
+        let inhibited = self.inhibit_smell_on_whisker && (whiskers[0] || whiskers[1]);
+        let smell = if (self.full_sensing || self.offsets.has_smell()) && !inhibited {
+            surroundings.smell_pair(i, body, tips, &mut self.scratch)
+        } else {
+            [[0.0; 8]; 2]
         };
+        self.record_senses(i, out, whiskers, &smell, food);
+    }
+
+    /// [`World::sense`] with the plain loops ([`Surroundings::sense_all`]).
+    #[inline(never)]
+    fn sense_brute_force(&mut self, i: usize, out: &mut [f64]) {
         let smell = self.full_sensing || self.offsets.has_smell();
         let inhibit = self.inhibit_smell_on_whisker;
-        let senses: Senses = if self.brute_force {
-            surroundings.sense_all(i, &self.body, smell, inhibit)
-        } else {
-            surroundings.sense(i, &self.body, smell, inhibit, &mut self.scratch)
-        };
+        let senses: Senses = surroundings!(self).sense_all(i, &self.body, smell, inhibit);
+        self.record_senses(i, out, senses.whiskers, &senses.smell, senses.food);
+    }
+
+    /// The rest of phase 2.1 once creature `i` has sensed `whiskers`, `smell` and `food`:
+    /// they are kept in the creature, the observation is written into `out`, then sensor
+    /// noise is applied to it.
+    #[inline(always)]
+    fn record_senses(
+        &mut self,
+        i: usize,
+        out: &mut [f64],
+        whiskers: [bool; 2],
+        smell: &[[f64; 8]; 2],
+        food: [bool; 4],
+    ) {
         let c = &mut self.creatures[i];
-        c.whiskers = senses.whiskers;
-        c.smell = senses.smell;
-        c.food_detectors = senses.food;
-        let width = self.layout.len();
-        let out = &mut self.observations[i * width..(i + 1) * width];
-        self.offsets.write(out, &senses, c.shocked, &c.metabolism);
+        c.whiskers = whiskers;
+        c.smell = *smell;
+        c.food_detectors = food;
+        self.offsets
+            .write_senses(out, whiskers, smell, food, c.shocked, &c.metabolism);
         let pose = c.pose;
+        if self.offsets.world_groups {
+            self.write_world_groups(i, out, pose);
+        }
+        if !self.noise.is_empty() {
+            self.noise.apply(out, &mut self.rng);
+        }
+    }
+
+    /// Landmark bearings, area flags and the eye's retina of creature `i` at `pose`, into
+    /// its observation `out` (the groups of [`Offsets::world_groups`]).
+    #[inline(never)]
+    fn write_world_groups(&mut self, i: usize, out: &mut [f64], pose: Pose) {
         if let Some(o) = self.offsets.landmarks {
             for (k, &l) in self.landmarks.iter().enumerate() {
                 let (s, c) = bearing(pose.position, pose.heading, l);
@@ -717,9 +794,6 @@ impl World {
             };
             let n = eye.len();
             eye.render(&scene, pose.position, pose.heading, i, &mut out[o..o + n]);
-        }
-        if !self.noise.is_empty() {
-            self.noise.apply(out, &mut self.rng);
         }
     }
 
