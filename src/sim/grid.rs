@@ -577,6 +577,13 @@ impl StaticIndex {
         &self.smell.walls[source.w0 as usize..source.w1 as usize]
     }
 
+    /// Per wall of [`StaticIndex::source_walls`] of `source`, in the same order, its
+    /// [`WallShade`] from the source's centre.
+    #[inline]
+    pub fn source_shades(&self, source: &Source) -> &[WallShade] {
+        &self.smell.shades[source.w0 as usize..source.w1 as usize]
+    }
+
     /// The smelly food and aversive objects of unlimited range, as [`Source::id`]s in
     /// increasing order: every receptor may smell them.
     #[inline]
@@ -770,6 +777,64 @@ pub struct Source {
     w1: u32,
 }
 
+impl Source {
+    /// Are there fixed opaque walls that may hide it from its cell
+    /// ([`StaticIndex::source_walls`] is not empty)?
+    #[inline(always)]
+    pub fn has_walls(&self) -> bool {
+        self.w1 > self.w0
+    }
+}
+
+/// A wall as seen from a smell source's centre p: the box `[x0, x1] × [y0, y1]` (bounds may be
+/// infinite) a receptor r must lie in for the box of the segment from r to p to meet the
+/// wall's box. The segment's box misses the wall's box on the low x side only when both ends
+/// are below the wall's `lo.x`, which p settles: if p is below, r must not be (x0 = lo.x),
+/// else nothing is required (x0 = −∞); likewise for the other three sides. So for r and p not
+/// NaN, "r is in the box" is exactly [`BoxedSegment::may_meet`] of the segment's box, the
+/// first test of [`crate::sim::smell::visible_among`], settled per source and wall when the
+/// index is built rather than per receptor (the same construction as
+/// [`crate::sim::smell::Shade`], with the roles of the two ends swapped, which the box of a
+/// segment does not see).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WallShade {
+    /// Least x.
+    pub x0: f64,
+    /// Greatest x.
+    pub x1: f64,
+    /// Least y.
+    pub y0: f64,
+    /// Greatest y.
+    pub y1: f64,
+}
+
+impl WallShade {
+    /// The wall whose box is `[lo, hi]` seen from `p`.
+    fn new(p: Vec2, lo: Vec2, hi: Vec2) -> WallShade {
+        let pick = |cut: bool, v: f64, none: f64| if cut { v } else { none };
+        WallShade {
+            x0: pick(p.x < lo.x, lo.x, f64::NEG_INFINITY),
+            x1: pick(hi.x < p.x, hi.x, f64::INFINITY),
+            y0: pick(p.y < lo.y, lo.y, f64::NEG_INFINITY),
+            y1: pick(hi.y < p.y, hi.y, f64::INFINITY),
+        }
+    }
+
+    /// Does the box of the segment from `r` to the source's centre meet the wall's box (`r`
+    /// and the centre not NaN), and is `ask` true? One branch for the caller rather than one
+    /// per side (the answers are as good as random): the tests are counted, which the
+    /// compiler keeps free of branches where it turns `&` and `&&` alike into jumps.
+    #[inline(always)]
+    pub fn holds(&self, r: Vec2, ask: bool) -> bool {
+        let n = u8::from(r.x >= self.x0)
+            + u8::from(r.x <= self.x1)
+            + u8::from(r.y >= self.y0)
+            + u8::from(r.y <= self.y1)
+            + u8::from(ask);
+        n == 5
+    }
+}
+
 /// Per cell, the food and aversive objects of finite range whose smell may reach a receptor
 /// in the cell, in increasing id order, each with the fixed opaque walls that may hide it
 /// from there (see the module docs). Each cell is taken as its box grown by `grow` (the
@@ -785,6 +850,8 @@ struct SmellGrid {
     sources: Vec<Source>,
     /// Indices into the fixed opaque walls, referenced by [`Source`] ranges.
     walls: Vec<u32>,
+    /// Per entry of `walls`, its [`WallShade`] from the source's centre.
+    shades: Vec<WallShade>,
     /// The bounds of the columns' grown boxes (infinite on the border sides).
     xs: Vec<(f64, f64)>,
     /// The bounds of the rows' grown boxes (infinite on the border sides).
@@ -808,6 +875,7 @@ impl SmellGrid {
             start: vec![0, 0],
             sources: Vec::new(),
             walls: Vec::new(),
+            shades: Vec::new(),
             xs: all.clone(),
             ys: all,
         }
@@ -1023,6 +1091,7 @@ fn smell_grid(
         start: vec![0; nx * ny + 1],
         sources: Vec::new(),
         walls: Vec::new(),
+        shades: Vec::new(),
         xs: Vec::new(),
         ys: Vec::new(),
     };
@@ -1034,6 +1103,7 @@ fn smell_grid(
     let per = (2.0 * SMELL_CELLS_PER_RANGE + 2.0) as usize;
     let mut pairs: Vec<(u32, Source)> = Vec::with_capacity(sources.len() * per * per);
     let mut walls: Vec<u32> = Vec::with_capacity(2 * pairs.capacity());
+    let mut shades: Vec<WallShade> = Vec::with_capacity(walls.capacity());
     let mut near = Vec::new();
     let mut hiders: Vec<Hider> = Vec::new();
     for &(id, p, range_squared) in sources {
@@ -1090,10 +1160,12 @@ fn smell_grid(
                             break;
                         }
                         walls.push(h.k);
+                        shades.push(WallShade::new(p, h.lo, h.hi));
                     }
                 }
                 if hidden {
                     walls.truncate(w0 as usize);
+                    shades.truncate(w0 as usize);
                     continue;
                 }
                 let w1 = walls.len() as u32;
@@ -1109,6 +1181,7 @@ fn smell_grid(
         }
     }
     grid.walls = walls;
+    grid.shades = shades;
     // A counting sort by cell, stable: each cell's sources keep their increasing id order.
     for &(cell, _) in &pairs {
         grid.start[cell as usize + 1] += 1;

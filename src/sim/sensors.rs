@@ -378,7 +378,10 @@ impl Surroundings<'_> {
     /// [`Surroundings::smell_pair`] when only `list`, the food and aversive objects of finite
     /// range listed for both receptors, may be smelled, and only the fixed opaque walls hide
     /// them: the terms of [`accumulate_listed`] in list order, into accumulators local to this
-    /// small function (so that they may stay in registers).
+    /// small function (so that they may stay in registers). The occlusion tests of a source
+    /// with walls run for both receptors wall by wall, each wall's box test settled by its
+    /// [`WallShade`](crate::sim::grid::WallShade) (the same answers as
+    /// [`visible_among`]'s box test, without a branch per side).
     #[inline(never)]
     fn smell_listed(&self, list: &[Source], tips: [Vec2; 2]) -> [[f64; 8]; 2] {
         let index = self.index;
@@ -406,11 +409,26 @@ impl Surroundings<'_> {
             if scale == 0.0 {
                 continue;
             }
-            let walls = index.source_walls(s);
-            if f0 != 0.0 && visible_among(tips[0], s.centre, walls, fixed, &[]) {
+            let mut seen = [f0 != 0.0, f1 != 0.0];
+            if s.has_walls() {
+                // visible_among without doors, both receptors per wall, with the box test
+                // of each settled by the wall's shade.
+                let walls = index.source_walls(s).iter().zip(index.source_shades(s));
+                for (&w, shade) in walls {
+                    let wall = &fixed[w as usize].segment;
+                    for (i, &tip) in tips.iter().enumerate() {
+                        if shade.holds(tip, seen[i])
+                            && segments_intersect(&Segment::new(tip, s.centre), wall)
+                        {
+                            seen[i] = false;
+                        }
+                    }
+                }
+            }
+            if seen[0] {
                 add(&mut acc0, f0 * scale, emission);
             }
-            if f1 != 0.0 && visible_among(tips[1], s.centre, walls, fixed, &[]) {
+            if seen[1] {
                 add(&mut acc1, f1 * scale, emission);
             }
         }
