@@ -16,8 +16,8 @@ use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::Thing;
 use crate::sim::grid::{Scratch, SmellBox, Source, StaticIndex};
 use crate::sim::smell::{
-    accumulate, accumulate_listed, add, add_pair, falloff_pair, reach_pair, saturate,
-    visible_among, Shade, Smell,
+    accumulate, accumulate_listed, add, add_pair, falloff_pair, reach_pair, saturate, Shade,
+    Smell,
 };
 use crate::sim::wall::BoxedSegment;
 use crate::sim::world::Creature;
@@ -381,11 +381,12 @@ impl Surroundings<'_> {
     /// small function (so that they may stay in registers). The occlusion tests of a source
     /// with walls run for both receptors wall by wall, each wall's box test settled by its
     /// [`WallShade`](crate::sim::grid::WallShade) (the same answers as
-    /// [`visible_among`]'s box test, without a branch per side).
+    /// [`visible_among`](crate::sim::smell::visible_among)'s box test, without a branch per
+    /// side).
     #[inline(never)]
     fn smell_listed(&self, list: &[Source], tips: [Vec2; 2]) -> [[f64; 8]; 2] {
         let index = self.index;
-        let (c, food_count, fixed) = (self.smell_c, index.food_count(), self.opaque);
+        let (c, fixed) = (self.smell_c, self.opaque);
         let mut acc0 = [0.0; 8];
         let mut acc1 = [0.0; 8];
         for s in list {
@@ -399,12 +400,11 @@ impl Surroundings<'_> {
             if f0 == 0.0 && f1 == 0.0 {
                 continue;
             }
-            let k = s.id as usize;
-            let (emission, scale) = if k < food_count {
-                let f = &self.food[k];
-                (&f.smell.emission, f.smell_scale())
+            let odour = index.odour(s);
+            let scale = if odour.follows {
+                self.food[s.id as usize].smell_scale()
             } else {
-                (&self.aversives[k - food_count].smell.emission, 1.0)
+                1.0
             };
             if scale == 0.0 {
                 continue;
@@ -425,11 +425,26 @@ impl Surroundings<'_> {
                     }
                 }
             }
-            if seen[0] {
-                add(&mut acc0, f0 * scale, emission);
-            }
-            if seen[1] {
-                add(&mut acc1, f1 * scale, emission);
+            let g = [f0 * scale, f1 * scale];
+            match odour.lone {
+                // One term instead of eight (see Odour::lone), when its factors are finite.
+                Some(k) if g[0].is_finite() & g[1].is_finite() => {
+                    let (k, e) = (k as usize, odour.emission[k as usize]);
+                    if seen[0] {
+                        acc0[k] += g[0] * e;
+                    }
+                    if seen[1] {
+                        acc1[k] += g[1] * e;
+                    }
+                }
+                _ => {
+                    if seen[0] {
+                        add(&mut acc0, g[0], &odour.emission);
+                    }
+                    if seen[1] {
+                        add(&mut acc1, g[1], &odour.emission);
+                    }
+                }
             }
         }
         saturate(&mut acc0);
