@@ -311,7 +311,16 @@ fn one_component_smells_world(seed: u64) -> String {
             in_kind = line.starts_with("[world.kinds.");
         }
         if in_kind && line.starts_with("odour") {
-            let mut v = ["0".to_string(), "0".into(), "0".into(), "0".into(), "0".into(), "0".into(), "0".into(), "0".into()];
+            let mut v = [
+                "0".to_string(),
+                "0".into(),
+                "0".into(),
+                "0".into(),
+                "0".into(),
+                "0".into(),
+                "0".into(),
+                "0".into(),
+            ];
             v[r.below(8) as usize] = format!("{:.3}", r.uniform(0.01, 1.0));
             writeln!(out, "odour = [{}]", v.join(", ")).unwrap();
         } else {
@@ -373,7 +382,10 @@ fn grid_and_brute_force_agree_on_worlds_of_one_component_smells() {
     let mut checked = 0;
     for seed in 0..30u64 {
         let text = one_component_smells_world(seed);
-        assert!(text.contains("odour = ["), "seed {seed}: no odour to cut down");
+        assert!(
+            text.contains("odour = ["),
+            "seed {seed}: no odour to cut down"
+        );
         let creatures = if seed % 2 == 0 { 1 } else { 6 };
         checked += usize::from(grid_agrees_with_brute_force(&text, creatures, seed));
     }
@@ -571,8 +583,9 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
                         let o = index.odour(e);
                         let bits = |v: &[f64; 8]| v.map(f64::to_bits);
                         assert_eq!(bits(&o.emission), bits(&smell.emission), "seed {seed}");
-                        let nonzero: Vec<u8> =
-                            (0..8u8).filter(|&j| smell.emission[j as usize] != 0.0).collect();
+                        let nonzero: Vec<u8> = (0..8u8)
+                            .filter(|&j| smell.emission[j as usize] != 0.0)
+                            .collect();
                         let lone = (nonzero.len() == 1).then(|| nonzero[0]);
                         assert_eq!(o.lone, lone, "seed {seed}: object {k}");
                         assert_eq!(o.follows, follows[k], "seed {seed}: object {k}");

@@ -25,10 +25,14 @@
 //! close, so they are tested apart). Most lists of walls are empty, and an object that one
 //! wall hides from the whole cell is left out. Since the box is grown by the whisker reach,
 //! the cell holding the midpoint of a creature's two whisker tips serves both tips with one
-//! list. Its cells are half the largest finite θ wide ([`SMELL_CELLS_PER_RANGE`]), and at
-//! most [`CELLS_PER_ITEM`] per listed object (at least [`MIN_CELLS`]): each object is listed
-//! in about (2θ / cell + 1)² cells, so narrower cells would hand a receptor fewer objects but
-//! cost more to build, and the grid is built for every trial world. Objects of unlimited
+//! list. Each listed wall carries its [`WallShade`] from the object's centre (the box test of
+//! a segment from a receptor to the centre, settled when the grid is built), and each object
+//! its [`Odour`] (a copy of its emission), so that summing a listed smell reads the grid alone
+//! unless the smell follows the food's amount. Its cells are half the largest finite θ wide
+//! ([`SMELL_CELLS_PER_RANGE`]), and at most [`CELLS_PER_ITEM`] per listed object (at least
+//! [`MIN_CELLS`]): each object is listed in about (2θ / cell + 1)² cells, so narrower cells
+//! would hand a receptor fewer objects but cost more to build, and the grid is built for
+//! every trial world. Objects of unlimited
 //! range are in a short list apart, merged into every query in id order.
 //!
 //! # Cell size
@@ -361,10 +365,13 @@ impl StaticIndex {
                 return None;
             }
             let odour = Odour::new(&s.emission, follows);
-            let k = odours.iter().position(|o| o.same(&odour)).unwrap_or_else(|| {
-                odours.push(odour);
-                odours.len() - 1
-            });
+            let k = odours
+                .iter()
+                .position(|o| o.same(&odour))
+                .unwrap_or_else(|| {
+                    odours.push(odour);
+                    odours.len() - 1
+                });
             Some(Source {
                 centre: p,
                 range_squared: s.range_squared,
@@ -852,10 +859,11 @@ impl Odour {
     /// The same emission, to the bit, and the same scale?
     fn same(&self, other: &Odour) -> bool {
         self.follows == other.follows
-            && self.emission
-            .iter()
-            .zip(other.emission.iter())
-            .all(|(a, b)| a.to_bits() == b.to_bits())
+            && self
+                .emission
+                .iter()
+                .zip(other.emission.iter())
+                .all(|(a, b)| a.to_bits() == b.to_bits())
     }
 }
 
@@ -1269,7 +1277,11 @@ fn smell_grid(
                     continue;
                 }
                 let w1 = walls.len() as u32;
-                let source = Source { w0, w1, ..*template };
+                let source = Source {
+                    w0,
+                    w1,
+                    ..*template
+                };
                 pairs.push(((y * nx + x) as u32, source));
             }
         }

@@ -16,8 +16,7 @@ use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::Thing;
 use crate::sim::grid::{Scratch, SmellBox, Source, StaticIndex};
 use crate::sim::smell::{
-    accumulate, accumulate_listed, add, add_pair, falloff_pair, reach_pair, saturate, Shade,
-    Smell,
+    accumulate, accumulate_listed, add, add_pair, falloff_pair, reach_pair, saturate, Shade, Smell,
 };
 use crate::sim::wall::BoxedSegment;
 use crate::sim::world::Creature;
@@ -378,11 +377,13 @@ impl Surroundings<'_> {
     /// [`Surroundings::smell_pair`] when only `list`, the food and aversive objects of finite
     /// range listed for both receptors, may be smelled, and only the fixed opaque walls hide
     /// them: the terms of [`accumulate_listed`] in list order, into accumulators local to this
-    /// small function (so that they may stay in registers). The occlusion tests of a source
-    /// with walls run for both receptors wall by wall, each wall's box test settled by its
-    /// [`WallShade`](crate::sim::grid::WallShade) (the same answers as
-    /// [`visible_among`](crate::sim::smell::visible_among)'s box test, without a branch per
-    /// side).
+    /// small function. What a term needs beyond the list comes from the grid too: the
+    /// source's [`Odour`](crate::sim::grid::Odour) (its emission, one term instead of eight
+    /// when only one component is not 0, and whether its amount scales it, the only case that
+    /// reads the food object), and for a source with walls, each wall's
+    /// [`WallShade`](crate::sim::grid::WallShade), which settles the box test of
+    /// [`visible_among`](crate::sim::smell::visible_among) for both receptors without a branch
+    /// per side.
     #[inline(never)]
     fn smell_listed(&self, list: &[Source], tips: [Vec2; 2]) -> [[f64; 8]; 2] {
         let index = self.index;
