@@ -398,9 +398,8 @@ impl Surroundings<'_> {
             let q = [1.0 / (1.0 + c * d2[0]), 1.0 / (1.0 + c * d2[1])];
             let f0 = if reach[0] { q[0] } else { 0.0 };
             let f1 = if reach[1] { q[1] } else { 0.0 };
-            if f0 == 0.0 && f1 == 0.0 {
-                continue;
-            }
+            // accumulate_listed skips a source whose falloffs are both 0 before its scale:
+            // here that scale (pure) is read anyway, and neither receptor adds it.
             let odour = index.odour(s);
             let scale = if odour.follows {
                 self.food[s.id as usize].smell_scale()
