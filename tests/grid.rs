@@ -299,6 +299,38 @@ fn listed_smells_world(seed: u64) -> String {
     out
 }
 
+/// [`listed_smells_world`] with every kind's odour cut down to one component (a random one of
+/// the eight, of random strength), the smells the smell grid sums one term at a time
+/// ([`berry_evolve::sim::grid::Odour::lone`]).
+fn one_component_smells_world(seed: u64) -> String {
+    let mut r = Mix(seed ^ 0x0D0E);
+    let mut out = String::new();
+    let mut in_kind = false;
+    for line in listed_smells_world(seed).lines() {
+        if line.starts_with('[') {
+            in_kind = line.starts_with("[world.kinds.");
+        }
+        if in_kind && line.starts_with("odour") {
+            let mut v = [
+                "0".to_string(),
+                "0".into(),
+                "0".into(),
+                "0".into(),
+                "0".into(),
+                "0".into(),
+                "0".into(),
+                "0".into(),
+            ];
+            v[r.below(8) as usize] = format!("{:.3}", r.uniform(0.01, 1.0));
+            writeln!(out, "odour = [{}]", v.join(", ")).unwrap();
+        } else {
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    out
+}
+
 /// Runs `text` with the grid and with the plain loops for 300 ticks, `creatures` creatures,
 /// and checks that both agree after every tick; false when the world leaves no room.
 fn grid_agrees_with_brute_force(text: &str, creatures: usize, seed: u64) -> bool {
@@ -338,6 +370,22 @@ fn grid_and_brute_force_agree_on_worlds_of_listed_smells_only() {
     for seed in 0..30u64 {
         let text = listed_smells_world(seed);
         // One creature (nothing else smells) or several whose bodies give off no smell.
+        let creatures = if seed % 2 == 0 { 1 } else { 6 };
+        checked += usize::from(grid_agrees_with_brute_force(&text, creatures, seed));
+    }
+    eprintln!("{checked} random worlds checked");
+    assert!(checked >= 15, "only {checked} random worlds could be built");
+}
+
+#[test]
+fn grid_and_brute_force_agree_on_worlds_of_one_component_smells() {
+    let mut checked = 0;
+    for seed in 0..30u64 {
+        let text = one_component_smells_world(seed);
+        assert!(
+            text.contains("odour = ["),
+            "seed {seed}: no odour to cut down"
+        );
         let creatures = if seed % 2 == 0 { 1 } else { 6 };
         checked += usize::from(grid_agrees_with_brute_force(&text, creatures, seed));
     }
@@ -461,6 +509,7 @@ count = 25
 fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
     use berry_evolve::geometry::{segments_intersect, Segment};
     use berry_evolve::sim::grid::Source;
+    use berry_evolve::sim::wall::BoxedSegment;
     let (mut checked, mut listed_in_range) = (0, 0);
     let (mut pairs, mut pairs_served, mut hidden_unlisted) = (0, 0, 0);
     for seed in 0..40u64 {
@@ -479,6 +528,10 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
             .take(index.fixed_opaque())
             .collect();
         let n = w.food().len();
+        let follows: Vec<bool> = (0..n)
+            .map(|k| w.food()[k].smell_follows_amount)
+            .chain(w.aversives().iter().map(|_| false))
+            .collect();
         let smells: Vec<(Vec2, _)> = w
             .food()
             .iter()
@@ -525,6 +578,38 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
                     if let Some(e) = entry {
                         assert_eq!(e.centre, *centre, "seed {seed}: object {k}");
                         assert_eq!(e.range_squared, smell.range_squared, "seed {seed}: {k}");
+                        // The odour is the object's emission to the bit, with its lone
+                        // non-zero component and its scale.
+                        let o = index.odour(e);
+                        let bits = |v: &[f64; 8]| v.map(f64::to_bits);
+                        assert_eq!(bits(&o.emission), bits(&smell.emission), "seed {seed}");
+                        let nonzero: Vec<u8> = (0..8u8)
+                            .filter(|&j| smell.emission[j as usize] != 0.0)
+                            .collect();
+                        let lone = (nonzero.len() == 1).then(|| nonzero[0]);
+                        assert_eq!(o.lone, lone, "seed {seed}: object {k}");
+                        assert_eq!(o.follows, follows[k], "seed {seed}: object {k}");
+                        // Each wall's shade answers the box test of the segment from any
+                        // receptor (infinite ones too) to the centre.
+                        let walls = index.source_walls(e);
+                        let shades = index.source_shades(e);
+                        assert_eq!(walls.len(), shades.len(), "seed {seed}");
+                        assert_eq!(e.has_walls(), !walls.is_empty(), "seed {seed}");
+                        let inf = f64::INFINITY;
+                        let points = [
+                            p,
+                            Vec2::new(inf, p.y),
+                            Vec2::new(p.x, -inf),
+                            Vec2::new(-inf, inf),
+                        ];
+                        for (&j, shade) in walls.iter().zip(shades) {
+                            let wall = BoxedSegment::new(opaque[j as usize]);
+                            for r in points {
+                                let meets = wall.may_meet(r.min(*centre), r.max(*centre));
+                                assert_eq!(shade.holds(r, true), meets, "seed {seed}: {k} {r}");
+                                assert!(!shade.holds(r, false), "seed {seed}");
+                            }
+                        }
                     }
                     if p.distance_squared(*centre) >= smell.range_squared {
                         continue;

@@ -25,10 +25,14 @@
 //! close, so they are tested apart). Most lists of walls are empty, and an object that one
 //! wall hides from the whole cell is left out. Since the box is grown by the whisker reach,
 //! the cell holding the midpoint of a creature's two whisker tips serves both tips with one
-//! list. Its cells are half the largest finite θ wide ([`SMELL_CELLS_PER_RANGE`]), and at
-//! most [`CELLS_PER_ITEM`] per listed object (at least [`MIN_CELLS`]): each object is listed
-//! in about (2θ / cell + 1)² cells, so narrower cells would hand a receptor fewer objects but
-//! cost more to build, and the grid is built for every trial world. Objects of unlimited
+//! list. Each listed wall carries its [`WallShade`] from the object's centre (the box test of
+//! a segment from a receptor to the centre, settled when the grid is built), and each object
+//! its [`Odour`] (a copy of its emission), so that summing a listed smell reads the grid alone
+//! unless the smell follows the food's amount. Its cells are half the largest finite θ wide
+//! ([`SMELL_CELLS_PER_RANGE`]), and at most [`CELLS_PER_ITEM`] per listed object (at least
+//! [`MIN_CELLS`]): each object is listed in about (2θ / cell + 1)² cells, so narrower cells
+//! would hand a receptor fewer objects but cost more to build, and the grid is built for
+//! every trial world. Objects of unlimited
 //! range are in a short list apart, merged into every query in id order.
 //!
 //! # Cell size
@@ -353,21 +357,36 @@ impl StaticIndex {
             aversive_count: aversives.len(),
             whisker: WhiskerCells::build(arena, reach, &felt[..fixed_felt], food),
         };
-        // The smelly objects of finite range, in id order (food, then aversive objects).
-        let finite = |id: usize, p: Vec2, s: &Smell| {
-            (!s.silent && s.range_squared.is_finite()).then_some((id as u32, p, s.range_squared))
+        // The smelly objects of finite range, in id order (food, then aversive objects), and
+        // their distinct emissions.
+        let mut odours: Vec<Odour> = Vec::new();
+        let mut finite = |id: usize, p: Vec2, s: &Smell, follows: bool| {
+            if s.silent || !s.range_squared.is_finite() {
+                return None;
+            }
+            let odour = Odour::new(&s.emission, follows);
+            let k = odours
+                .iter()
+                .position(|o| o.same(&odour))
+                .unwrap_or_else(|| {
+                    odours.push(odour);
+                    odours.len() - 1
+                });
+            Some(Source {
+                centre: p,
+                range_squared: s.range_squared,
+                id: id as u32,
+                odour: k as u32,
+                ..Source::NONE
+            })
         };
-        let sources: Vec<(u32, Vec2, f64)> = food
-            .iter()
-            .enumerate()
-            .filter_map(|(k, f)| finite(k, f.position, &f.smell))
-            .chain(
-                aversives
-                    .iter()
-                    .enumerate()
-                    .filter_map(|(k, a)| finite(food_count + k, a.position, &a.smell)),
-            )
-            .collect();
+        let mut sources: Vec<Source> = Vec::with_capacity(food.len() + aversives.len());
+        for (k, f) in food.iter().enumerate() {
+            sources.extend(finite(k, f.position, &f.smell, f.smell_follows_amount));
+        }
+        for (k, a) in aversives.iter().enumerate() {
+            sources.extend(finite(food_count + k, a.position, &a.smell, false));
+        }
         let fixed = &opaque[..fixed_opaque];
         let mut bits = vec![0u64; fixed_opaque / 64 + 1];
         let smell = smell_grid(
@@ -389,7 +408,7 @@ impl StaticIndex {
                 }
             },
         );
-        index.smell = smell;
+        index.smell = SmellGrid { odours, ..smell };
         index
     }
 
@@ -550,11 +569,11 @@ impl StaticIndex {
         let s = &self.smell;
         let g = &s.geometry;
         let mid = (tips[0] + tips[1]) * 0.5;
-        let (x, y) = (g.col(mid.x), g.row(mid.y));
-        let ((x0, x1), (y0, y1)) = (s.xs[x], s.ys[y]);
-        let within = |p: Vec2| (p.x >= x0) & (p.x <= x1) & (p.y >= y0) & (p.y <= y1);
+        let c = &s.cells[g.row(mid.y) * g.nx + g.col(mid.x)];
+        let (lo, hi) = (c.lo, c.hi);
+        let within = |p: Vec2| (p.x >= lo.x) & (p.x <= hi.x) & (p.y >= lo.y) & (p.y <= hi.y);
         if within(tips[0]) & within(tips[1]) {
-            Some(self.smell_sources(y * g.nx + x))
+            Some(&s.sources[c.start as usize..c.end as usize])
         } else {
             None
         }
@@ -575,6 +594,20 @@ impl StaticIndex {
     #[inline]
     pub fn source_walls(&self, source: &Source) -> &[u32] {
         &self.smell.walls[source.w0 as usize..source.w1 as usize]
+    }
+
+    /// The emission of `source` (a copy of its object's [`Smell::emission`]) and whether its
+    /// smell follows its amount.
+    #[inline(always)]
+    pub fn odour(&self, source: &Source) -> &Odour {
+        &self.smell.odours[source.odour as usize]
+    }
+
+    /// Per wall of [`StaticIndex::source_walls`] of `source`, in the same order, its
+    /// [`WallShade`] from the source's centre.
+    #[inline]
+    pub fn source_shades(&self, source: &Source) -> &[WallShade] {
+        &self.smell.shades[source.w0 as usize..source.w1 as usize]
     }
 
     /// The smelly food and aversive objects of unlimited range, as [`Source::id`]s in
@@ -768,6 +801,119 @@ pub struct Source {
     pub id: u32,
     w0: u32,
     w1: u32,
+    /// Index of its [`Odour`] in the grid's.
+    odour: u32,
+}
+
+impl Source {
+    const NONE: Source = Source {
+        centre: Vec2::ZERO,
+        range_squared: 0.0,
+        id: 0,
+        w0: 0,
+        w1: 0,
+        odour: 0,
+    };
+
+    /// Are there fixed opaque walls that may hide it from its cell
+    /// ([`StaticIndex::source_walls`] is not empty)?
+    #[inline(always)]
+    pub fn has_walls(&self) -> bool {
+        self.w1 > self.w0
+    }
+}
+
+/// The emission of listed smell sources ([`Smell::emission`], copied when the index is built:
+/// food and aversive objects never change their smell), its lone non-zero component if it
+/// has one, and whether it is food whose smell follows its amount: so that summing a source's
+/// smell reads the grid alone, unless its smell follows its amount.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Odour {
+    /// i · o.
+    pub emission: [f64; 8],
+    /// The only component of `emission` that is not ±0.0, when there is exactly one. Then
+    /// every other term `f · emission[k]` of a finite factor f is ±0.0, and adding ±0.0
+    /// leaves a smell accumulator as it is (an accumulator starts at +0.0 and a sum of
+    /// floats is −0.0 only when both terms are, so it is never −0.0, and x ± 0.0 is x for
+    /// every other x, NaN included): adding this one term gives the bits of adding all eight.
+    pub lone: Option<u8>,
+    /// Food whose smell follows its amount (else [`Food::smell_scale`] is 1, or it is an
+    /// aversive object).
+    pub follows: bool,
+}
+
+impl Odour {
+    fn new(emission: &[f64; 8], follows: bool) -> Odour {
+        let mut nonzero = (0..8u8).filter(|&k| emission[k as usize] != 0.0);
+        let lone = match (nonzero.next(), nonzero.next()) {
+            (Some(k), None) => Some(k),
+            _ => None,
+        };
+        Odour {
+            emission: *emission,
+            lone,
+            follows,
+        }
+    }
+
+    /// The same emission, to the bit, and the same scale?
+    fn same(&self, other: &Odour) -> bool {
+        self.follows == other.follows
+            && self
+                .emission
+                .iter()
+                .zip(other.emission.iter())
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+    }
+}
+
+/// A wall as seen from a smell source's centre p: the box `[x0, x1] × [y0, y1]` (bounds may be
+/// infinite) a receptor r must lie in for the box of the segment from r to p to meet the
+/// wall's box. The segment's box misses the wall's box on the low x side only when both ends
+/// are below the wall's `lo.x`, which p settles: if p is below, r must not be (x0 = lo.x),
+/// else nothing is required (x0 = −∞); likewise for the other three sides. So for r and p not
+/// NaN, "r is in the box" is exactly [`BoxedSegment::may_meet`] of the segment's box, the
+/// first test of [`crate::sim::smell::visible_among`], settled per source and wall when the
+/// index is built rather than per receptor (the same construction as
+/// [`crate::sim::smell::Shade`], with the roles of the two ends swapped, which the box of a
+/// segment does not see).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WallShade {
+    /// Least x.
+    pub x0: f64,
+    /// Greatest x.
+    pub x1: f64,
+    /// Least y.
+    pub y0: f64,
+    /// Greatest y.
+    pub y1: f64,
+}
+
+impl WallShade {
+    /// The wall whose box is `[lo, hi]` seen from `p`.
+    fn new(p: Vec2, lo: Vec2, hi: Vec2) -> WallShade {
+        let pick = |cut: bool, v: f64, none: f64| if cut { v } else { none };
+        WallShade {
+            x0: pick(p.x < lo.x, lo.x, f64::NEG_INFINITY),
+            x1: pick(hi.x < p.x, hi.x, f64::INFINITY),
+            y0: pick(p.y < lo.y, lo.y, f64::NEG_INFINITY),
+            y1: pick(hi.y < p.y, hi.y, f64::INFINITY),
+        }
+    }
+
+    /// Does the box of the segment from `r` to the source's centre meet the wall's box (`r`
+    /// and the centre not NaN), and is `ask` true? One branch for the caller rather than one
+    /// per side (the answers are as good as random): the tests are counted, which the
+    /// compiler keeps free of branches where it turns `&` and `&&` alike into jumps.
+    #[inline(always)]
+    pub fn holds(&self, r: Vec2, ask: bool) -> bool {
+        let n = u8::from(r.x >= self.x0)
+            + u8::from(r.x <= self.x1)
+            + u8::from(r.y >= self.y0)
+            + u8::from(r.y <= self.y1)
+            + u8::from(ask);
+        n == 5
+    }
 }
 
 /// Per cell, the food and aversive objects of finite range whose smell may reach a receptor
@@ -783,10 +929,17 @@ struct SmellGrid {
     /// The sources of cell k are `sources[start[k]..start[k + 1]]`.
     start: Vec<u32>,
     sources: Vec<Source>,
+    /// The distinct emissions of the listed sources, referenced by [`Source::odour`].
+    odours: Vec<Odour>,
     /// Indices into the fixed opaque walls, referenced by [`Source`] ranges.
     walls: Vec<u32>,
+    /// Per entry of `walls`, its [`WallShade`] from the source's centre.
+    shades: Vec<WallShade>,
     /// The bounds of the columns' grown boxes (infinite on the border sides).
     xs: Vec<(f64, f64)>,
+    /// Per cell, its grown box and its range of `sources`, side by side for
+    /// [`StaticIndex::smell_pair_sources`] (one read of one cache line or two).
+    cells: Vec<PairCell>,
     /// The bounds of the rows' grown boxes (infinite on the border sides).
     ys: Vec<(f64, f64)>,
 }
@@ -807,9 +960,17 @@ impl SmellGrid {
             },
             start: vec![0, 0],
             sources: Vec::new(),
+            odours: Vec::new(),
             walls: Vec::new(),
+            shades: Vec::new(),
             xs: all.clone(),
             ys: all,
+            cells: vec![PairCell {
+                lo: Vec2::NEG_INFINITY,
+                hi: Vec2::INFINITY,
+                start: 0,
+                end: 0,
+            }],
         }
     }
 
@@ -835,6 +996,16 @@ impl SmellGrid {
             })
             .collect()
     }
+}
+
+/// One cell of the [`SmellGrid`] as [`StaticIndex::smell_pair_sources`] reads it: its grown box
+/// (the bounds of its column and row in `xs` and `ys`) and its range of sources.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct PairCell {
+    lo: Vec2,
+    hi: Vec2,
+    start: u32,
+    end: u32,
 }
 
 /// A fixed opaque wall as seen from a smell source's centre `p`, prepared for the test "can
@@ -994,13 +1165,15 @@ fn term(f: f64, v: f64, o: f64) -> f64 {
 /// that may meet a box.
 #[allow(clippy::needless_range_loop)] // indexing both bounds tables by cell is clearer
 fn smell_grid(
-    sources: &[(u32, Vec2, f64)],
+    sources: &[Source],
     (w, h, extent, reach): (f64, f64, f64, f64),
     opaque: &[BoxedSegment],
     slack: f64,
     mut near_walls: impl FnMut(Vec2, Vec2, &mut Vec<u32>),
 ) -> SmellGrid {
-    let theta = sources.iter().fold(0.0f64, |acc, s| acc.max(s.2.sqrt()));
+    let theta = sources
+        .iter()
+        .fold(0.0f64, |acc, s| acc.max(s.range_squared.sqrt()));
     if sources.is_empty() || !(theta.is_finite() && theta > 0.0) {
         return SmellGrid::empty(extent);
     }
@@ -1022,9 +1195,12 @@ fn smell_grid(
         geometry,
         start: vec![0; nx * ny + 1],
         sources: Vec::new(),
+        odours: Vec::new(),
         walls: Vec::new(),
+        shades: Vec::new(),
         xs: Vec::new(),
         ys: Vec::new(),
+        cells: Vec::new(),
     };
     let bound = 1e6 * (1.0 + extent + theta);
     grid.xs = grid.bounds(nx, grid.geometry.origin.x, slack + grow);
@@ -1034,9 +1210,11 @@ fn smell_grid(
     let per = (2.0 * SMELL_CELLS_PER_RANGE + 2.0) as usize;
     let mut pairs: Vec<(u32, Source)> = Vec::with_capacity(sources.len() * per * per);
     let mut walls: Vec<u32> = Vec::with_capacity(2 * pairs.capacity());
+    let mut shades: Vec<WallShade> = Vec::with_capacity(walls.capacity());
     let mut near = Vec::new();
     let mut hiders: Vec<Hider> = Vec::new();
-    for &(id, p, range_squared) in sources {
+    for template in sources {
+        let (p, range_squared) = (template.centre, template.range_squared);
         let r = range_squared.sqrt() + slack;
         let (lo, hi) = (p - r, p + r);
         near.clear();
@@ -1090,25 +1268,26 @@ fn smell_grid(
                             break;
                         }
                         walls.push(h.k);
+                        shades.push(WallShade::new(p, h.lo, h.hi));
                     }
                 }
                 if hidden {
                     walls.truncate(w0 as usize);
+                    shades.truncate(w0 as usize);
                     continue;
                 }
                 let w1 = walls.len() as u32;
                 let source = Source {
-                    centre: p,
-                    range_squared,
-                    id,
                     w0,
                     w1,
+                    ..*template
                 };
                 pairs.push(((y * nx + x) as u32, source));
             }
         }
     }
     grid.walls = walls;
+    grid.shades = shades;
     // A counting sort by cell, stable: each cell's sources keep their increasing id order.
     for &(cell, _) in &pairs {
         grid.start[cell as usize + 1] += 1;
@@ -1117,16 +1296,18 @@ fn smell_grid(
         grid.start[k + 1] += grid.start[k];
     }
     let mut next = grid.start.clone();
-    grid.sources = vec![
-        Source {
-            centre: Vec2::ZERO,
-            range_squared: 0.0,
-            id: 0,
-            w0: 0,
-            w1: 0
-        };
-        pairs.len()
-    ];
+    grid.cells = (0..nx * ny)
+        .map(|k| {
+            let ((x0, x1), (y0, y1)) = (grid.xs[k % nx], grid.ys[k / nx]);
+            PairCell {
+                lo: Vec2::new(x0, y0),
+                hi: Vec2::new(x1, y1),
+                start: grid.start[k],
+                end: grid.start[k + 1],
+            }
+        })
+        .collect();
+    grid.sources = vec![Source::NONE; pairs.len()];
     for (cell, s) in pairs {
         let slot = &mut next[cell as usize];
         grid.sources[*slot as usize] = s;

@@ -16,8 +16,7 @@ use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::Thing;
 use crate::sim::grid::{Scratch, SmellBox, Source, StaticIndex};
 use crate::sim::smell::{
-    accumulate, accumulate_listed, add, add_pair, falloff_pair, reach_pair, saturate,
-    visible_among, Shade, Smell,
+    accumulate, accumulate_listed, add, add_pair, falloff_pair, reach_pair, saturate, Shade, Smell,
 };
 use crate::sim::wall::BoxedSegment;
 use crate::sim::world::Creature;
@@ -406,11 +405,17 @@ impl Surroundings<'_> {
     /// [`Surroundings::smell_pair`] when only `list`, the food and aversive objects of finite
     /// range listed for both receptors, may be smelled, and only the fixed opaque walls hide
     /// them: the terms of [`accumulate_listed`] in list order, into accumulators local to this
-    /// small function (so that they may stay in registers).
+    /// small function. What a term needs beyond the list comes from the grid too: the
+    /// source's [`Odour`](crate::sim::grid::Odour) (its emission, one term instead of eight
+    /// when only one component is not 0, and whether its amount scales it, the only case that
+    /// reads the food object), and for a source with walls, each wall's
+    /// [`WallShade`](crate::sim::grid::WallShade), which settles the box test of
+    /// [`visible_among`](crate::sim::smell::visible_among) for both receptors without a branch
+    /// per side.
     #[inline(never)]
     fn smell_listed(&self, list: &[Source], tips: [Vec2; 2]) -> [[f64; 8]; 2] {
         let index = self.index;
-        let (c, food_count, fixed) = (self.smell_c, index.food_count(), self.opaque);
+        let (c, fixed) = (self.smell_c, self.opaque);
         let mut acc0 = [0.0; 8];
         let mut acc1 = [0.0; 8];
         for s in list {
@@ -421,25 +426,53 @@ impl Surroundings<'_> {
             let q = [1.0 / (1.0 + c * d2[0]), 1.0 / (1.0 + c * d2[1])];
             let f0 = if reach[0] { q[0] } else { 0.0 };
             let f1 = if reach[1] { q[1] } else { 0.0 };
-            if f0 == 0.0 && f1 == 0.0 {
-                continue;
-            }
-            let k = s.id as usize;
-            let (emission, scale) = if k < food_count {
-                let f = &self.food[k];
-                (&f.smell.emission, f.smell_scale())
+            // accumulate_listed skips a source whose falloffs are both 0 before its scale:
+            // here that scale (pure) is read anyway, and neither receptor adds it.
+            let odour = index.odour(s);
+            let scale = if odour.follows {
+                self.food[s.id as usize].smell_scale()
             } else {
-                (&self.aversives[k - food_count].smell.emission, 1.0)
+                1.0
             };
             if scale == 0.0 {
                 continue;
             }
-            let walls = index.source_walls(s);
-            if f0 != 0.0 && visible_among(tips[0], s.centre, walls, fixed, &[]) {
-                add(&mut acc0, f0 * scale, emission);
+            let mut seen = [f0 != 0.0, f1 != 0.0];
+            if s.has_walls() {
+                // visible_among without doors, both receptors per wall, with the box test
+                // of each settled by the wall's shade.
+                let walls = index.source_walls(s).iter().zip(index.source_shades(s));
+                for (&w, shade) in walls {
+                    let wall = &fixed[w as usize].segment;
+                    for (i, &tip) in tips.iter().enumerate() {
+                        if shade.holds(tip, seen[i])
+                            && segments_intersect(&Segment::new(tip, s.centre), wall)
+                        {
+                            seen[i] = false;
+                        }
+                    }
+                }
             }
-            if f1 != 0.0 && visible_among(tips[1], s.centre, walls, fixed, &[]) {
-                add(&mut acc1, f1 * scale, emission);
+            let g = [f0 * scale, f1 * scale];
+            match odour.lone {
+                // One term instead of eight (see Odour::lone), when its factors are finite.
+                Some(k) if g[0].is_finite() & g[1].is_finite() => {
+                    let (k, e) = (k as usize, odour.emission[k as usize]);
+                    if seen[0] {
+                        acc0[k] += g[0] * e;
+                    }
+                    if seen[1] {
+                        acc1[k] += g[1] * e;
+                    }
+                }
+                _ => {
+                    if seen[0] {
+                        add(&mut acc0, g[0], &odour.emission);
+                    }
+                    if seen[1] {
+                        add(&mut acc1, g[1], &odour.emission);
+                    }
+                }
             }
         }
         saturate(&mut acc0);
