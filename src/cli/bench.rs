@@ -24,11 +24,16 @@ pub struct BenchArgs {
     ])]
     pub world: Vec<PathBuf>,
     /// Worlds per simulator measurement. They run in lockstep chunks of 16 worlds, one
-    /// thread per chunk, as evolution runs trials: 64 give both threads whole chunks.
-    #[arg(long, default_value_t = 64)]
+    /// rayon job per chunk, as evolution runs trials. Chunks differ in cost (their creatures take
+    /// different paths: the 4 chunks of 64 worlds cost 117M–148M
+    /// instructions over 3,000 ticks), so with few chunks the 2-thread figure measures how
+    /// evenly 4 jobs split; 256 give the threads 16 jobs to share, as a generation's 64 or
+    /// more do.
+    #[arg(long, default_value_t = 256)]
     pub worlds: u64,
-    /// Ticks per world (long enough that one measurement takes about half a second).
-    #[arg(long, default_value_t = 5000)]
+    /// Ticks per world: 256 × 2,500 = 640,000 creature-ticks per measurement (about a
+    /// quarter of a second on the standard world).
+    #[arg(long, default_value_t = 2500)]
     pub ticks: u64,
     /// Evolution benchmark experiment.
     #[arg(long, default_value = "experiments/foraging.toml")]
