@@ -97,6 +97,22 @@ fn random_world(seed: u64) -> String {
     t
 }
 
+/// What the senses of a creature in `w` see, with `walls` and `index` built from it.
+fn surroundings<'a>(w: &'a World, walls: &'a Walls, index: &'a StaticIndex) -> Surroundings<'a> {
+    Surroundings {
+        walls: walls.felt(),
+        opaque: walls.opaque(),
+        food: w.food(),
+        aversives: w.aversives(),
+        areas: w.areas(),
+        creatures: w.creatures(),
+        things: w.things(),
+        skip_thing: usize::MAX,
+        smell_c: 0.01,
+        index,
+    }
+}
+
 /// A point near something worth grazing: a wall's end or a point on it, a food object's rim,
 /// a cell's edge, or anywhere (beyond the arena too).
 fn near_point(r: &mut Mix, w: &World, felt: &[BoxedSegment], cell: f64) -> Vec2 {
@@ -183,18 +199,7 @@ fn shortlists_give_the_plain_loops_answers_on_random_worlds() {
             .whisker_cells()
             .expect("a finite world has whisker cells");
         let (_, cell) = cells.dimensions();
-        let surroundings = Surroundings {
-            walls: walls.felt(),
-            opaque: walls.opaque(),
-            food: w.food(),
-            aversives: w.aversives(),
-            areas: w.areas(),
-            creatures: w.creatures(),
-            things: w.things(),
-            skip_thing: usize::MAX,
-            smell_c: 0.01,
-            index: &index,
-        };
+        let surroundings = surroundings(&w, &walls, &index);
         for _ in 0..3000 {
             let p = near_point(r, &w, walls.felt(), cell);
             let tips = tips(r, &body, p, walls.felt());
@@ -382,18 +387,7 @@ fn tips_that_are_not_finite_give_the_plain_loops_answers() {
         let reach = body.whisker_length.max(body.radius);
         let index = StaticIndex::build(w.arena(), reach, w.food(), w.aversives(), &walls);
         let (_, cell) = index.whisker_cells().expect("lists").dimensions();
-        let surroundings = Surroundings {
-            walls: walls.felt(),
-            opaque: walls.opaque(),
-            food: w.food(),
-            aversives: w.aversives(),
-            areas: w.areas(),
-            creatures: w.creatures(),
-            things: w.things(),
-            skip_thing: usize::MAX,
-            smell_c: 0.01,
-            index: &index,
-        };
+        let surroundings = surroundings(&w, &walls, &index);
         for _ in 0..2000 {
             let mut p = near_point(r, &w, walls.felt(), cell);
             let heading = sim_common::heading(r.uniform(0.0, 360.0));

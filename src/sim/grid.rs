@@ -890,8 +890,10 @@ pub struct WallShade {
 }
 
 impl WallShade {
-    /// The wall whose box is `[lo, hi]` seen from `p`.
-    fn new(p: Vec2, lo: Vec2, hi: Vec2) -> WallShade {
+    /// The wall whose box is `[lo, hi]` seen from `p` (also the first part of a receptor's
+    /// [`Shade`]).
+    #[inline]
+    pub(crate) fn new(p: Vec2, lo: Vec2, hi: Vec2) -> WallShade {
         let pick = |cut: bool, v: f64, none: f64| if cut { v } else { none };
         WallShade {
             x0: pick(p.x < lo.x, lo.x, f64::NEG_INFINITY),

@@ -2,6 +2,7 @@
 //! (eq. 25, cut off by the range θ of eq. 26), and how opaque walls hide it from a receptor.
 
 use crate::geometry::{segments_intersect, Segment, Vec2};
+use crate::sim::grid::WallShade;
 use crate::sim::wall::BoxedSegment;
 use serde::{Deserialize, Serialize};
 
@@ -109,13 +110,13 @@ impl Shade {
     /// the other three sides. NaN bounds require nothing, as in `may_meet`.
     #[inline]
     pub fn new(receptor: Vec2, wall: &BoxedSegment) -> Shade {
-        let (lo, hi) = (wall.lo, wall.hi);
-        let pick = |cut: bool, v: f64, none: f64| if cut { v } else { none };
+        // The same box as a source's wall shade, seen from the receptor instead.
+        let WallShade { x0, x1, y0, y1 } = WallShade::new(receptor, wall.lo, wall.hi);
         Shade {
-            x0: pick(receptor.x < lo.x, lo.x, f64::NEG_INFINITY),
-            x1: pick(hi.x < receptor.x, hi.x, f64::INFINITY),
-            y0: pick(receptor.y < lo.y, lo.y, f64::NEG_INFINITY),
-            y1: pick(hi.y < receptor.y, hi.y, f64::INFINITY),
+            x0,
+            x1,
+            y0,
+            y1,
             segment: wall.segment,
         }
     }
