@@ -4,7 +4,7 @@
 # series (the bench world tiled 1, 2, 5 and 10 times in each direction), and whole
 # generations of experiments/foraging.toml with the GA's share of the time.
 #
-#   bash scripts/bench.sh                 # about 2 minutes on 2 cores
+#   bash scripts/bench.sh                 # about half a minute on 2 cores
 #   bash scripts/bench.sh --ticks 1000    # any other `berry-evolve bench` option
 #
 # Run it on an otherwise idle machine: the figures are wall-clock rates.
