@@ -1184,6 +1184,18 @@ fn prefiltered_search_matches_the_reference_bit_for_bit() {
     assert!(by_body > 300, "{by_body}");
 }
 
+/// A body about to push: its radius (mostly R, else uniform from `min_radius` to 6), its
+/// start within 140 of (150, 150) and its heading, drawn in that order.
+fn pusher(r: &mut ChaCha8Rng, min_radius: f64) -> (f64, Vec2, Vec2) {
+    let rad = if chance(r, 0.8) {
+        R
+    } else {
+        uniform(r, min_radius, 6.0)
+    };
+    let start = near(r, v(150.0, 150.0), 140.0);
+    (rad, start, random_heading(r))
+}
+
 /// A body pushing against walls tick after tick (the search's commonest case: one wall, every
 /// midpoint blocked, or a few walls near a corner), each tick starting where the last ended,
 /// matches the reference bit for bit. Straight moves (φ = ±0) are frequent here.
@@ -1192,14 +1204,8 @@ fn pushing_against_walls_matches_the_reference_bit_for_bit() {
     let mut r = ChaCha8Rng::seed_from_u64(0x9a5e_2026);
     let mut blocked = 0;
     for case in 0..600 {
-        let rad = if chance(&mut r, 0.8) {
-            R
-        } else {
-            uniform(&mut r, 0.0, 6.0)
-        };
-        let start = near(&mut r, v(150.0, 150.0), 140.0);
         // One wall ahead (sometimes a second one: a corner), and sometimes a body.
-        let heading = random_heading(&mut r);
+        let (rad, start, heading) = pusher(&mut r, 0.0);
         let ahead = start + heading * (rad + uniform(&mut r, 0.0, 8.0));
         let across = v(-heading.y, heading.x) * uniform(&mut r, 1.0, 300.0);
         let mut walls = vec![Segment::new(ahead - across, ahead + across)];
@@ -1251,13 +1257,7 @@ fn pushing_with_far_walls_listed_first_matches_the_reference_bit_for_bit() {
     let mut r = ChaCha8Rng::seed_from_u64(0xfa11_2026);
     let (mut blocked, mut touching) = (0, 0);
     for case in 0..1_500 {
-        let rad = if chance(&mut r, 0.8) {
-            R
-        } else {
-            uniform(&mut r, 0.1, 6.0)
-        };
-        let start = near(&mut r, v(150.0, 150.0), 140.0);
-        let heading = random_heading(&mut r);
+        let (rad, start, heading) = pusher(&mut r, 0.1);
         // From overlapping the wall (gap < 0) to resting just clear of it.
         let gap = match below(&mut r, 3) {
             0 => uniform(&mut r, -rad, 0.0),
@@ -1691,13 +1691,7 @@ fn pushing_among_many_blockers_matches_the_reference_bit_for_bit() {
     let mut r = ChaCha8Rng::seed_from_u64(0x5ca1_ab1e);
     let mut blocked = 0;
     for case in 0..800 {
-        let rad = if chance(&mut r, 0.8) {
-            R
-        } else {
-            uniform(&mut r, 0.0, 6.0)
-        };
-        let start = near(&mut r, v(150.0, 150.0), 140.0);
-        let heading = random_heading(&mut r);
+        let (rad, start, heading) = pusher(&mut r, 0.0);
         let gap = match below(&mut r, 3) {
             0 => 0.0,
             1 => uniform(&mut r, 0.0, 1e-9),

@@ -113,6 +113,23 @@ fn surroundings<'a>(w: &'a World, walls: &'a Walls, index: &'a StaticIndex) -> S
     }
 }
 
+/// The whiskers' and food detectors' answers of the plain loops over every wall and object.
+fn plain_loops(
+    s: &Surroundings,
+    me: usize,
+    body: &Body,
+    p: Vec2,
+    tips: [Vec2; 2],
+) -> ([bool; 2], [bool; 4]) {
+    (
+        [
+            s.whisker_touches_all(me, body, p, tips[0]),
+            s.whisker_touches_all(me, body, p, tips[1]),
+        ],
+        s.food_detectors_all(p, body.radius),
+    )
+}
+
 /// A point near something worth grazing: a wall's end or a point on it, a food object's rim,
 /// a cell's edge, or anywhere (beyond the arena too).
 fn near_point(r: &mut Mix, w: &World, felt: &[BoxedSegment], cell: f64) -> Vec2 {
@@ -205,13 +222,7 @@ fn shortlists_give_the_plain_loops_answers_on_random_worlds() {
             let tips = tips(r, &body, p, walls.felt());
             let me = r.below(4) as usize; // 3: no creature is the sensing one
             let got = surroundings.whiskers_and_food(me, &body, p, tips);
-            let want = (
-                [
-                    surroundings.whisker_touches_all(me, &body, p, tips[0]),
-                    surroundings.whisker_touches_all(me, &body, p, tips[1]),
-                ],
-                surroundings.food_detectors_all(p, body.radius),
-            );
+            let want = plain_loops(&surroundings, me, &body, p, tips);
             assert_eq!(got, want, "seed {seed}: at {p:?} tips {tips:?}");
             let (lo, hi) = (p.min(tips[0]).min(tips[1]), p.max(tips[0]).max(tips[1]));
             if cells.lists(p, lo, hi, body.radius).is_some() {
@@ -412,13 +423,7 @@ fn tips_that_are_not_finite_give_the_plain_loops_answers() {
             }
             let me = r.below(4) as usize;
             let got = surroundings.whiskers_and_food(me, &body, p, tips);
-            let want = (
-                [
-                    surroundings.whisker_touches_all(me, &body, p, tips[0]),
-                    surroundings.whisker_touches_all(me, &body, p, tips[1]),
-                ],
-                surroundings.food_detectors_all(p, body.radius),
-            );
+            let want = plain_loops(&surroundings, me, &body, p, tips);
             assert_eq!(got, want, "seed {seed}: at {p:?} tips {tips:?}");
             asked += 1;
         }
