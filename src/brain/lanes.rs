@@ -20,6 +20,11 @@
 //! inputs are copied into tiles ([`load_tile`], a 4 × 4 transpose) and the outputs out of
 //! them.
 //!
+//! The first layer leaves out the inputs that are ±0 in every sample of the batch (in a
+//! world, the smell components no odour uses, the shock without aversive objects):
+//! [`LiveInputs`] finds them, and their terms are dropped only where that provably keeps
+//! every bit (see there).
+//!
 //! # Same bits
 //!
 //! Each lane's sum is the same sequence as in the single pass: the bias, then + w_ji · x_i
@@ -95,6 +100,199 @@ pub fn load_tile(x: &[f64], count: usize, xt: &mut [Lanes]) {
         for (t, row) in x.chunks_exact(p.max(1)).take(count).enumerate() {
             for (lane, &v) in xt.iter_mut().zip(row) {
                 lane[t] = v;
+            }
+        }
+    }
+}
+
+/// The first layer's inputs that are zero in every sample of a batch, and how to leave them
+/// out of the sums.
+///
+/// # Why it keeps the bits
+///
+/// A sum is acc = b_j, then acc += w_ji · x_i for i = 0, 1, … (separate multiply and add,
+/// rounded to nearest). With x_i = ±0 and w_ji finite the term is ±0, and a + (±0) is a, bit
+/// for bit, unless a is −0 (−0 + +0 = +0). In round-to-nearest a sum is −0 only when both of
+/// its operands are −0, so if b_j is not −0 the accumulator is never −0 and a zero term
+/// changes nothing: leaving it out keeps every bit. A NaN b_j is excluded too (its sum is NaN
+/// whatever the terms, but a signalling NaN is only quieted by an addition). So a network is
+/// skip-safe when no first-layer bias is −0 or NaN ([`LiveInputs::new`]), and then an input
+/// is skipped only when it is ±0 in every sample of the batch and all its weights are finite
+/// (w · 0 is NaN for w = ±∞ or NaN).
+///
+/// # How
+///
+/// Per batch: the inputs' bits (sign cleared) OR-ed over the samples tell the zero columns;
+/// the live inputs' weights are compacted into a copy of the first layer in the [`repeat`]
+/// layout for that many inputs, rebuilt only when the set of live inputs changes (the zero
+/// columns of a world, such as smell components no odour uses, stay zero for the whole run),
+/// and the tiles take only the live inputs ([`load_live_tile`]), so [`sums`] runs as for a
+/// narrower layer. On the standard foraging world 9 of the 24 inputs never change from 0.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LiveInputs {
+    /// Per input, where its OR starts: 0 if a zero there may be skipped (all its first-layer
+    /// weights finite), all ones otherwise (so that it is always live).
+    start: Vec<u64>,
+    /// Per input: the OR of its bits over the batch's samples (scratch).
+    seen: Vec<u64>,
+    /// The live inputs of the last batch as a bit set, 64 inputs a word (input i at bit
+    /// i % 64 of word i / 64).
+    mask: Vec<u64>,
+    /// The live inputs the compacted weights are for, in index order (never empty: input 0
+    /// stays live when every input is zero, since [`sums`] needs an input).
+    live: Vec<usize>,
+    /// The first layer's weights for the `live` inputs only ([`compact`]).
+    weights: Vec<Lanes>,
+}
+
+/// The bits of a value but its sign: 0 exactly for ±0.
+const MAGNITUDE: u64 = !(1 << 63);
+
+impl LiveInputs {
+    /// The skipping state of a first layer of `units` units whose input-major weights are
+    /// `transposed` (inputs × units) and biases `biases`; `None` when the layer is not
+    /// skip-safe (a bias is −0 or NaN) or no input has all-finite weights.
+    pub fn new(transposed: &[f64], biases: &[f64], units: usize) -> Option<LiveInputs> {
+        let unsafe_bias = biases
+            .iter()
+            .any(|b| b.is_nan() || b.to_bits() == (-0.0f64).to_bits());
+        if unsafe_bias || units == 0 {
+            return None;
+        }
+        let start: Vec<u64> = transposed
+            .chunks_exact(units)
+            .map(|weights| {
+                if weights.iter().all(|w| w.is_finite()) {
+                    0
+                } else {
+                    u64::MAX
+                }
+            })
+            .collect();
+        let p = start.len();
+        // Every input live to begin with: what `repeat` gives, so no compaction is needed
+        // until a batch has a zero column.
+        let mut mask = vec![u64::MAX; p.div_ceil(64)];
+        if let Some(last) = mask.last_mut().filter(|_| p % 64 != 0) {
+            *last = (1 << (p % 64)) - 1;
+        }
+        start.contains(&0).then(|| LiveInputs {
+            start,
+            seen: vec![0; p],
+            mask,
+            live: (0..p).collect(),
+            weights: Vec::with_capacity(p * units),
+        })
+    }
+
+    /// Finds the live inputs of the batch `x` (rows of p inputs, p the layer's input count)
+    /// and, if they changed, compacts the first layer's `weights` ([`repeat`] layout, `units`
+    /// units) for them. Returns the live inputs and their weights, or `None` when every input
+    /// is live (the full layer then runs as it is).
+    #[inline(always)]
+    pub fn update(
+        &mut self,
+        x: &[f64],
+        weights: &[Lanes],
+        units: usize,
+    ) -> Option<(&[usize], &[Lanes])> {
+        let p = self.seen.len();
+        let c = or_columns::<4>(x, p, (&self.start, &mut self.seen), 0);
+        let c = or_columns::<2>(x, p, (&self.start, &mut self.seen), c);
+        let c = or_columns::<1>(x, p, (&self.start, &mut self.seen), c);
+        for (i, (seen, &start)) in self.seen.iter_mut().zip(&self.start).enumerate().skip(c) {
+            *seen = x
+                .chunks_exact(p)
+                .fold(start, |or, row| or | row[i].to_bits());
+        }
+        let mut same = true;
+        for (cached, seen) in self.mask.iter_mut().zip(self.seen.chunks(64)) {
+            let mut word = 0;
+            for (b, &s) in seen.iter().enumerate() {
+                word |= u64::from(s & MAGNITUDE != 0) << b;
+            }
+            same &= *cached == word;
+            *cached = word;
+        }
+        if !same {
+            self.live.clear();
+            for (i, &seen) in self.seen.iter().enumerate() {
+                if seen & MAGNITUDE != 0 {
+                    self.live.push(i);
+                }
+            }
+            if self.live.is_empty() {
+                self.live.push(0);
+            }
+            compact(weights, units, p, &self.live, &mut self.weights);
+        }
+        (self.live.len() < p).then_some((&self.live[..], &self.weights[..]))
+    }
+}
+
+/// The OR of the bits of the inputs c.. of every row of `x` (rows of `p`), each starting from
+/// `start`, into `seen`, in whole groups of `G` × 4 inputs (their ORs stay in registers while
+/// the rows are walked); returns where it stopped.
+#[inline(always)]
+fn or_columns<const G: usize>(
+    x: &[f64],
+    p: usize,
+    (start, seen): (&[u64], &mut [u64]),
+    mut c: usize,
+) -> usize {
+    while c + 4 * G <= p {
+        let mut or = [[0u64; LANES]; G];
+        for (or, start) in or.iter_mut().zip(start[c..c + 4 * G].chunks_exact(LANES)) {
+            or.copy_from_slice(start);
+        }
+        for row in x.chunks_exact(p) {
+            for (or, v) in or.iter_mut().zip(row[c..c + 4 * G].chunks_exact(LANES)) {
+                for t in 0..LANES {
+                    or[t] |= v[t].to_bits();
+                }
+            }
+        }
+        seen[c..c + 4 * G].copy_from_slice(or.as_flattened());
+        c += 4 * G;
+    }
+    c
+}
+
+/// The weights of a layer laid out by [`repeat`] (`weights`, `units` units, `p` inputs) for
+/// the inputs `live` only (in index order), in the layout [`repeat`] gives a layer of
+/// `live.len()` inputs, into `out` (cleared first; within its capacity once it has held a
+/// layer's weights, so no allocation).
+pub fn compact(weights: &[Lanes], units: usize, p: usize, live: &[usize], out: &mut Vec<Lanes>) {
+    out.clear();
+    let mut j = 0;
+    while j < units {
+        let n = block_width(units - j);
+        // The block j..j + n owns p·j..p·(j + n), input i's n weights at p·j + i·n.
+        let block = &weights[p * j..p * (j + n)];
+        for &i in live {
+            out.extend_from_slice(&block[i * n..(i + 1) * n]);
+        }
+        j += n;
+    }
+}
+
+/// [`load_tile`] for the inputs `live` only: `x` holds `count` (1 to 4) rows of `p` inputs,
+/// and `xt[k]` receives input `live[k]` of each sample (the empty lanes 0).
+#[inline(always)]
+pub fn load_live_tile(x: &[f64], p: usize, count: usize, live: &[usize], xt: &mut [Lanes]) {
+    if count == LANES {
+        let (r0, rest) = x.split_at(p);
+        let (r1, rest) = rest.split_at(p);
+        let (r2, r3) = rest.split_at(p);
+        let r3 = &r3[..p];
+        for (lane, &i) in xt.iter_mut().zip(live) {
+            *lane = [r0[i], r1[i], r2[i], r3[i]];
+        }
+    } else {
+        xt.fill([0.0; LANES]);
+        for (t, row) in x.chunks_exact(p).take(count).enumerate() {
+            for (lane, &i) in xt.iter_mut().zip(live) {
+                lane[t] = row[i];
             }
         }
     }
@@ -228,6 +426,126 @@ mod tests {
                         }
                         let got = y[k * units + j][t];
                         assert_eq!(got.to_bits(), sum.to_bits(), "{units} x {inputs}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// Deterministic values for a test, varied by index.
+    fn value(k: usize) -> f64 {
+        ((k * 37 % 23) as f64 - 11.0) / 7.3
+    }
+
+    /// The live inputs of a batch: those not ±0 in every sample, plus those with a
+    /// non-finite weight; input 0 when all are zero; `None` while all are live. The
+    /// compacted weights are the full layer's for the live inputs.
+    #[test]
+    fn live_inputs_are_the_nonzero_and_the_unskippable_columns() {
+        let (units, p) = (11, 70);
+        let mut transposed: Vec<f64> = (0..units * p).map(value).collect();
+        transposed[5 * units + 3] = f64::INFINITY;
+        transposed[66 * units] = f64::NAN;
+        let biases: Vec<f64> = (0..units).map(|j| j as f64 - 5.0).collect();
+        let full = repeat(&transposed, units);
+        let mut live = LiveInputs::new(&transposed, &biases, units).expect("skip-safe");
+        let rows = 6;
+        let batch = |zero: &dyn Fn(usize) -> bool| -> Vec<f64> {
+            (0..rows * p)
+                .map(|k| match (zero(k % p), k / p) {
+                    (true, r) if r % 2 == 0 => 0.0,
+                    (true, _) => -0.0,
+                    (false, r) => value(k) + r as f64 * 0.01 + 0.5,
+                })
+                .collect()
+        };
+        assert!(live.update(&batch(&|_| false), &full, units).is_none());
+        // Input 9 nonzero in one sample only: live.
+        let mut x = batch(&|i| i % 3 != 0 || i == 5 || i == 66);
+        x[4 * p + 9] = 1e-310;
+        for round in 0..2 {
+            let (inputs, weights) = live.update(&x, &full, units).expect("zero columns");
+            let expected: Vec<usize> = (0..p)
+                .filter(|&i| i % 3 == 0 || [5, 9, 66].contains(&i))
+                .collect();
+            assert_eq!(inputs, expected, "round {round}");
+            let mut by_hand = Vec::new();
+            compact(&full, units, p, &expected, &mut by_hand);
+            let bits = |w: &[Lanes]| -> Vec<u64> {
+                w.as_flattened().iter().map(|v| v.to_bits()).collect()
+            };
+            assert!(bits(weights) == bits(&by_hand));
+            let narrow: Vec<f64> = expected
+                .iter()
+                .flat_map(|&i| transposed[i * units..(i + 1) * units].to_vec())
+                .collect();
+            assert!(bits(&by_hand) == bits(&repeat(&narrow, units)));
+        }
+        let (inputs, _) = live.update(&batch(&|_| true), &full, units).expect("zero");
+        assert_eq!(inputs, [5, 66]);
+        let mut all_zero = LiveInputs::new(&transposed[..units * 4], &biases, units).unwrap();
+        let (inputs, _) = all_zero
+            .update(&vec![0.0; 4 * 3], &full[..units * 4], units)
+            .unwrap();
+        assert_eq!(inputs, [0]);
+        assert!(live.update(&batch(&|_| false), &full, units).is_none());
+    }
+
+    /// Not skip-safe: a first-layer bias that is −0 or NaN (its sum could differ without
+    /// the zero terms), or no input whose weights are all finite.
+    #[test]
+    fn layers_with_a_negative_zero_or_nan_bias_skip_nothing() {
+        let transposed = [1.0, 2.0, 3.0, 4.0];
+        assert!(LiveInputs::new(&transposed, &[0.0, 1.0], 2).is_some());
+        assert!(LiveInputs::new(&transposed, &[1.0, -0.0], 2).is_none());
+        assert!(LiveInputs::new(&transposed, &[f64::NAN, 1.0], 2).is_none());
+        assert!(LiveInputs::new(&[1.0, f64::INFINITY, f64::NAN, 4.0], &[0.0, 1.0], 2).is_none());
+        assert!(LiveInputs::new(&[1.0, f64::INFINITY, 3.0, 4.0], &[0.0, 1.0], 2).is_some());
+    }
+
+    /// The tiles of the live inputs and the compacted weights give, in every lane and for
+    /// every tile remainder, the single-sample sums over all the inputs when the skipped
+    /// ones are ±0 in every sample (and the biases are not −0).
+    #[test]
+    fn sums_over_the_live_inputs_are_the_full_sums() {
+        for (units, p) in [(1, 1), (3, 5), (16, 24), (15, 7), (2, 16), (9, 70)] {
+            let transposed: Vec<f64> = (0..units * p).map(value).collect();
+            let biases: Vec<f64> = (0..units).map(|j| j as f64 * 0.31 - 1.0).collect();
+            let full = repeat(&transposed, units);
+            let zero = |i: usize| i % 3 == 1 || i % 7 == 2;
+            let mut live = LiveInputs::new(&transposed, &biases, units).unwrap();
+            for n in 1..=9 {
+                let x: Vec<f64> = (0..n * p)
+                    .map(|k| match (zero(k % p), k % 2) {
+                        (true, 0) => 0.0,
+                        (true, _) => -0.0,
+                        _ => libm::sin(k as f64 * 0.77),
+                    })
+                    .collect();
+                let Some((inputs, weights)) = live.update(&x, &full, units) else {
+                    assert!((0..p).all(|i| !zero(i)), "{units} x {p}");
+                    continue;
+                };
+                let (inputs, weights) = (inputs.to_vec(), weights.to_vec());
+                let width = inputs.len();
+                let tiles = n.div_ceil(LANES);
+                let mut xt = vec![[f64::NAN; LANES]; tiles * width];
+                for k in 0..tiles {
+                    let count = (n - k * LANES).min(LANES);
+                    let rows = &x[k * LANES * p..(k * LANES + count) * p];
+                    let tile = &mut xt[k * width..(k + 1) * width];
+                    load_live_tile(rows, p, count, &inputs, tile);
+                }
+                let mut y = vec![[f64::NAN; LANES]; tiles * units];
+                sums(&weights, &biases, &xt, width, &mut y);
+                for (s, x) in x.chunks_exact(p).enumerate() {
+                    for j in 0..units {
+                        let mut sum = biases[j];
+                        for (i, &xi) in x.iter().enumerate() {
+                            sum += transposed[i * units + j] * xi;
+                        }
+                        let got = y[s / LANES * units + j][s % LANES];
+                        assert_eq!(got.to_bits(), sum.to_bits(), "{units} x {p}, n = {n}");
                     }
                 }
             }

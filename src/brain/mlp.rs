@@ -97,6 +97,9 @@ struct SampleLanes {
     values: Vec<Lanes>,
     /// The values one tile takes in `values`: its inputs and all the units.
     tile: usize,
+    /// Which inputs to leave out of the first layer's sums in a batch (zero in every sample;
+    /// `None` when the network is not skip-safe, see [`lanes::LiveInputs`]).
+    live: Option<lanes::LiveInputs>,
 }
 
 /// The float type of the pass and its buffers.
@@ -177,10 +180,18 @@ impl Mlp {
                 lanes: (transposed.len() <= lanes::MAX_WEIGHTS
                     && inputs > 0
                     && hidden.iter().all(|&units| units > 0))
-                .then(|| SampleLanes {
-                    weights: lane_weights(&transposed, &layers, &output),
-                    values: Vec::new(),
-                    tile: inputs + buffer + outputs,
+                .then(|| {
+                    let first = layers.first().unwrap_or(&output);
+                    SampleLanes {
+                        weights: lane_weights(&transposed, &layers, &output),
+                        values: Vec::new(),
+                        tile: inputs + buffer + outputs,
+                        live: lanes::LiveInputs::new(
+                            &transposed[first.weights.clone()],
+                            &parameters[first.biases.clone()],
+                            first.units,
+                        ),
+                    }
                 }),
                 buffers: Buffers {
                     transposed,
@@ -455,32 +466,44 @@ fn lane_pass(
     n: usize,
 ) {
     let SampleLanes {
-        weights, values, ..
+        weights,
+        values,
+        live,
+        ..
     } = lanes;
     let tiles = n.div_ceil(LANES);
     let p = inputs.len() / n;
-    let (xt, mut free) = values.split_at_mut(tiles * p);
+    let first = hidden.first().unwrap_or(output);
+    // The first layer's live inputs and their weights when some inputs are zero in every
+    // sample (see `lanes::LiveInputs`): the tiles then hold only those.
+    let live = match live {
+        Some(live) => live.update(inputs, &weights[first.weights.clone()], first.units),
+        None => None,
+    };
+    let width = live.map_or(p, |(live, _)| live.len());
+    let (xt, mut free) = values.split_at_mut(tiles * width);
     for k in 0..tiles {
         let s = k * LANES;
         let count = (n - s).min(LANES);
-        lanes::load_tile(
-            &inputs[s * p..(s + count) * p],
-            count,
-            &mut xt[k * p..(k + 1) * p],
-        );
+        let x = &inputs[s * p..(s + count) * p];
+        let xt = &mut xt[k * width..(k + 1) * width];
+        match live {
+            Some((live, _)) => lanes::load_live_tile(x, p, count, live, xt),
+            None => lanes::load_tile(x, count, xt),
+        }
     }
-    let (mut x, mut width): (&[Lanes], usize) = (xt, p);
+    let (mut x, mut width): (&[Lanes], usize) = (xt, width);
     let layers = hidden
         .iter()
         .map(|layer| (layer, Stage::Hidden(activation)));
-    for (layer, stage) in layers.chain([(output, Stage::Output)]) {
+    for (l, (layer, stage)) in layers.chain([(output, Stage::Output)]).enumerate() {
         let units = layer.units;
         let (y, after) = std::mem::take(&mut free).split_at_mut(tiles * units);
-        let (w, b) = (
-            &weights[layer.weights.clone()],
-            &params[layer.biases.clone()],
-        );
-        lanes::sums(w, b, x, width, y);
+        let w = match live {
+            Some((_, compacted)) if l == 0 => compacted,
+            _ => &weights[layer.weights.clone()],
+        };
+        lanes::sums(w, &params[layer.biases.clone()], x, width, y);
         lanes::finish(y, stage);
         (x, width) = (y, units);
         free = after;
@@ -687,6 +710,126 @@ mod tests {
                 let mut batch = vec![f64::NAN; n * outputs];
                 mlp.activate_batch(&x, &mut batch);
                 assert_eq!(bits(&batch), bits(&expected), "{activation:?} n={n}");
+            }
+        }
+    }
+
+    /// Batches with inputs that are ±0 in every sample in many columns (which the first layer
+    /// of the sample-lane pass leaves out of its sums) keep the single-pass bits: also with
+    /// first-layer biases of ±0 (a −0 one forbids skipping), weights of ±∞ or NaN on zero
+    /// inputs (those inputs stay), every input zero, and columns zero in all samples but one,
+    /// for every batch size 1 to 17, on the dispatched and the portable paths.
+    #[test]
+    fn batches_with_zero_columns_match_single_passes_bit_for_bit() {
+        let mut rng = rng(54);
+        let shapes: [(usize, &[usize], usize); 5] = [
+            (24, &[16], 2),
+            (6, &[9], 3),
+            (7, &[], 5),
+            (70, &[20], 2),
+            (13, &[1, 15, 9], 7),
+        ];
+        let activations = [Activation::Tanh, Activation::Sigmoid, Activation::Relu];
+        let specials = [f64::INFINITY, f64::NEG_INFINITY, f64::NAN];
+        for (inputs, hidden, outputs) in shapes {
+            let units = hidden.first().copied().unwrap_or(outputs);
+            for case in 0..18 {
+                let count = parameter_count(inputs, hidden, outputs);
+                let mut parameters: Vec<f64> =
+                    (0..count).map(|_| uniform(&mut rng, -2.0, 2.0)).collect();
+                // The first layer: units × inputs weights, then its biases.
+                let (w, b) = parameters[..units * (inputs + 1)].split_at_mut(units * inputs);
+                match case % 6 {
+                    1 => b[case % units] = -0.0,
+                    2 => b.fill(0.0),
+                    3 => b.fill(-0.0),
+                    _ => {}
+                }
+                if case % 4 == 3 {
+                    let k = (uniform(&mut rng, 0.0, 1.0) * w.len() as f64) as usize;
+                    w[k.min(w.len() - 1)] = specials[case % 3];
+                }
+                let activation = activations[case % 3];
+                let mut mlp = Mlp::new(
+                    inputs,
+                    hidden,
+                    outputs,
+                    activation,
+                    Precision::F64,
+                    &parameters,
+                );
+                let (mut single, mut portable) = (mlp.clone(), mlp.clone());
+                let share = [0.6, 0.9, 1.0][case % 3];
+                let zero: Vec<bool> = (0..inputs)
+                    .map(|_| uniform(&mut rng, 0.0, 1.0) < share)
+                    .collect();
+                for n in (1..=17).chain((1..=17).rev()) {
+                    let mut x: Vec<f64> = (0..n * inputs)
+                        .map(|k| match (zero[k % inputs], uniform(&mut rng, 0.0, 1.0)) {
+                            (true, u) if u < 0.5 => 0.0,
+                            (true, _) => -0.0,
+                            (false, _) => uniform(&mut rng, -3.0, 3.0),
+                        })
+                        .collect();
+                    if uniform(&mut rng, 0.0, 1.0) < 0.3 {
+                        // One sample wakes a column up.
+                        let last = x.len() - 1;
+                        let k = (uniform(&mut rng, 0.0, 1.0) * x.len() as f64) as usize;
+                        x[k.min(last)] = uniform(&mut rng, -1.0, 1.0);
+                    }
+                    let expected = single_passes(&mut single, &x, inputs, outputs);
+                    let mut batch = vec![f64::NAN; n * outputs];
+                    mlp.activate_batch(&x, &mut batch);
+                    let what = format!("{inputs} {hidden:?} {outputs} case {case} n={n}");
+                    assert_eq!(bits(&batch), bits(&expected), "{what}");
+                    portable.grow(n);
+                    let mut by_portable = vec![f64::NAN; n * outputs];
+                    portable.forward(&x, &mut by_portable, n);
+                    assert_eq!(bits(&by_portable), bits(&expected), "portable {what}");
+                }
+            }
+        }
+    }
+
+    /// A zero input still counts when leaving it out would change a bit: under a bias of −0
+    /// (−0 + +0 is +0, so the zero terms turn the sum to +0) and with an infinite weight
+    /// (∞ · 0 is NaN, an output of 0). Both cases are checked to matter.
+    #[test]
+    fn zero_inputs_that_change_bits_are_not_skipped() {
+        let (inputs, outputs) = (3, 2);
+        let zero = 0.0f64.to_bits();
+        assert_eq!(tanh(-0.0).to_bits(), (-0.0f64).to_bits(), "−0 would show");
+        assert_ne!(tanh(0.5).to_bits(), zero, "∞ · 0 would show");
+        // Outputs straight from the inputs, weights 1: biases −0 and 0.5, then 0.25 and 0.5
+        // with an infinite weight from input 2 to output 1 (input 0 stays live when all are
+        // zero).
+        let mut negative_zero = vec![1.0; inputs * outputs];
+        negative_zero.extend([-0.0, 0.5]);
+        let mut infinite = vec![1.0; inputs * outputs];
+        infinite.extend([0.25, 0.5]);
+        infinite[inputs + 2] = f64::INFINITY;
+        let cases = [
+            (negative_zero, [zero, tanh(0.5).to_bits()]),
+            (infinite, [tanh(0.25).to_bits(), zero]),
+        ];
+        for (parameters, expected) in cases {
+            let mut mlp = Mlp::new(
+                inputs,
+                &[],
+                outputs,
+                Activation::Tanh,
+                Precision::F64,
+                &parameters,
+            );
+            for n in 1..=9 {
+                let x: Vec<f64> = (0..n * inputs)
+                    .map(|k| if k % 2 == 0 { 0.0 } else { -0.0 })
+                    .collect();
+                let mut y = vec![f64::NAN; n * outputs];
+                mlp.activate_batch(&x, &mut y);
+                for sample in y.chunks_exact(outputs) {
+                    assert_eq!(bits(sample), expected, "n = {n}");
+                }
             }
         }
     }
