@@ -524,7 +524,7 @@ mod tests {
         assert_eq!(inputs, [5, 66]);
         let mut all_zero = LiveInputs::new(&transposed[..units * 4], &biases, units).unwrap();
         let (inputs, _) = all_zero
-            .update(&vec![0.0; 4 * 3], &full[..units * 4], units)
+            .update(&[0.0; 4 * 3], &full[..units * 4], units)
             .unwrap();
         assert_eq!(inputs, [0]);
         // Every input live: the full layer, and the next batch runs it without looking.
