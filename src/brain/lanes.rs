@@ -128,6 +128,8 @@ pub fn load_tile(x: &[f64], count: usize, xt: &mut [Lanes]) {
 /// columns of a world, such as smell components no odour uses, stay zero for the whole run),
 /// and the tiles take only the live inputs ([`load_live_tile`]), so [`sums`] runs as for a
 /// narrower layer. On the standard foraging world 9 of the 24 inputs never change from 0.
+/// Where few inputs are zero the search and the gather cost more than they save: then the
+/// full layer runs and the search backs off ([`LiveInputs::worth_it`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct LiveInputs {
     /// Per input, where its OR starts: 0 if a zero there may be skipped (all its first-layer
