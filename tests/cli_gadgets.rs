@@ -73,6 +73,10 @@ fn bench_runs_both_benchmark_worlds() {
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("foraging-world.toml:"), "{text}");
     assert!(text.contains("eye-predators-world.toml:"), "{text}");
+    assert!(
+        text.contains("machine check: a fixed arithmetic loop ran at"),
+        "{text}"
+    );
     // The scaling series of the performance issue: 40 food and 12 walls in 300 x 300, then
     // 100 times as much of both in 3000 x 3000.
     assert!(

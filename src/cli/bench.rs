@@ -246,6 +246,48 @@ fn median(mut values: Vec<f64>) -> f64 {
     }
 }
 
+/// Steps per second of a fixed arithmetic loop that touches no memory beyond the stack and
+/// keeps the core's floating-point units as busy as the simulator does (16 independent
+/// 4-lane multiply-add chains, vectorised; about 15 ms).
+///
+/// # Why
+/// On a shared host a virtual CPU is often one hardware thread of a core whose other thread
+/// runs another tenant's work. While that thread is busy, code that issues several
+/// instructions per cycle, as the simulator does, runs up to twice as slowly, while
+/// latency-bound code barely notices. Timing this loop next to every 1-thread run tells a
+/// slow machine from a slow program: on the 2-vCPU VM of docs/performance.md it ran at
+/// 22–40M steps/s from one second to the next, in step with the simulator.
+fn reference_speed() -> f64 {
+    const STEPS: u32 = 500_000;
+    let start = Instant::now();
+    let mut chains = [[1.0f64; 4]; 16];
+    for _ in 0..STEPS {
+        for (j, chain) in chains.iter_mut().enumerate() {
+            for (l, x) in chain.iter_mut().enumerate() {
+                *x = *x * 0.999_999_9 + (j + l) as f64 * 1e-12;
+            }
+        }
+        // Keeps the compiler from folding the loop.
+        chains = std::hint::black_box(chains);
+    }
+    f64::from(STEPS) / start.elapsed().as_secs_f64()
+}
+
+/// How far below its fastest run the reference loop may be for a round to count as quiet.
+const QUIET: f64 = 0.1;
+
+/// The 1-thread rates (`ones`) of the rounds whose reference loop speed (`machine`, same
+/// order) is within [`QUIET`] of the fastest.
+fn quiet_rounds(machine: &[f64], ones: &[f64]) -> Vec<f64> {
+    let fastest = machine.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    machine
+        .iter()
+        .zip(ones)
+        .filter(|(&m, _)| m >= (1.0 - QUIET) * fastest)
+        .map(|(_, &one)| one)
+        .collect()
+}
+
 /// The smallest and largest of `values` (NaN for none).
 fn spread(values: &[f64]) -> (f64, f64) {
     let low = values.iter().copied().reduce(f64::min).unwrap_or(f64::NAN);
@@ -312,9 +354,13 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         // Rounds of 1 thread then 2 threads back to back: a shared VM's speed drifts from
         // second to second, so the speed-up is the median of each round's own ratio, not the
         // ratio of medians measured minutes apart.
+        // The reference loop runs just before and after each 1-thread run, on the same thread.
         let mut rounds = Vec::with_capacity(repeat as usize);
+        let mut machine = Vec::with_capacity(repeat as usize);
         for _ in 0..repeat {
+            let before = reference_speed();
             let one = sim_rate(&experiment, spec, args.worlds, args.ticks, 1)?;
+            machine.push(0.5 * (before + reference_speed()));
             let two = sim_rate(&experiment, spec, args.worlds, args.ticks, 2)?;
             rounds.push((one, two));
         }
@@ -323,11 +369,22 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         println!(
             "simulator {}: {:.0} creature-ticks/s on 1 thread, {:.0} on 2 threads ({:.2}x); 1-thread runs {:.0}-{:.0}",
             path.display(),
-            median(ones),
+            median(ones.clone()),
             median(rounds.iter().map(|r| r.1).collect()),
             median(rounds.iter().map(|r| r.1 / r.0).collect()),
             low,
             high
+        );
+        let (slowest, fastest) = spread(&machine);
+        let quiet = quiet_rounds(&machine, &ones);
+        println!(
+            "  machine check: a fixed arithmetic loop ran at {:.1}-{:.1}M steps/s around the 1-thread runs ({:.2}x spread); 1 thread in the {} round(s) where it ran within {:.0}% of its fastest: {:.0} creature-ticks/s",
+            slowest / 1e6,
+            fastest / 1e6,
+            fastest / slowest,
+            quiet.len(),
+            100.0 * QUIET,
+            median(quiet)
         );
     }
     if !args.scaling.iter().all(|&k| k == 0) {
@@ -409,6 +466,21 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
 mod tests {
     use super::*;
     use std::path::Path;
+
+    #[test]
+    fn quiet_rounds_are_those_near_the_fastest_reference_loop() {
+        let machine = [30.0, 40.0, 37.0, 35.9, 22.0];
+        let ones = [2.0, 3.0, 2.8, 2.6, 1.6];
+        // 36 = 90% of 40: 37 counts, 35.9 does not.
+        assert_eq!(quiet_rounds(&machine, &ones), vec![3.0, 2.8]);
+        assert!(quiet_rounds(&[], &[]).is_empty());
+    }
+
+    #[test]
+    fn the_reference_loop_reports_a_finite_speed() {
+        let speed = reference_speed();
+        assert!(speed.is_finite() && speed > 0.0, "{speed}");
+    }
 
     fn bench_world() -> Experiment {
         let root = Path::new(env!("CARGO_MANIFEST_DIR"));
