@@ -246,18 +246,21 @@ fn median(mut values: Vec<f64>) -> f64 {
     }
 }
 
-/// Steps per second of a fixed arithmetic loop that touches no memory beyond the stack and
-/// keeps the core's floating-point units as busy as the simulator does (16 independent
-/// 4-lane multiply-add chains, vectorised; about 15 ms).
+/// Steps per second of two fixed arithmetic loops that touch no memory beyond the stack:
+/// `[throughput, latency]`. The first keeps the core's floating-point units as busy as the
+/// simulator does (16 independent 4-lane multiply-add chains, vectorised; about 15 ms); the
+/// second is one chain of dependent multiply-adds, which waits on each result and leaves the
+/// units mostly idle (about 5 ms).
 ///
 /// # Why
 /// On a shared host a virtual CPU is often one hardware thread of a core whose other thread
 /// runs another tenant's work. While that thread is busy, code that issues several
 /// instructions per cycle, as the simulator does, runs up to twice as slowly, while
-/// latency-bound code barely notices. Timing this loop next to every 1-thread run tells a
-/// slow machine from a slow program: on the 2-vCPU VM of docs/performance.md it ran at
-/// 22–40M steps/s from one second to the next, in step with the simulator.
-fn reference_speed() -> f64 {
+/// latency-bound code barely notices. Timing both loops next to every 1-thread run tells a
+/// slow machine from a slow program: on the 2-vCPU VM of docs/performance.md the first ran
+/// at 17–40M steps/s from one second to the next, in step with the simulator, while the
+/// second stayed at 460–530M.
+fn machine_speeds() -> [f64; 2] {
     const STEPS: u32 = 500_000;
     let start = Instant::now();
     let mut chains = [[1.0f64; 4]; 16];
@@ -270,7 +273,15 @@ fn reference_speed() -> f64 {
         // Keeps the compiler from folding the loop.
         chains = std::hint::black_box(chains);
     }
-    f64::from(STEPS) / start.elapsed().as_secs_f64()
+    let throughput = f64::from(STEPS) / start.elapsed().as_secs_f64();
+    const CHAIN: u32 = 4 * STEPS;
+    let start = Instant::now();
+    let mut x = std::hint::black_box(1.0f64);
+    for _ in 0..CHAIN {
+        x = x * 0.999_999_9 + 1e-12;
+    }
+    std::hint::black_box(x);
+    [throughput, f64::from(CHAIN) / start.elapsed().as_secs_f64()]
 }
 
 /// How far below its fastest run the reference loop may be for a round to count as quiet.
@@ -358,9 +369,10 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         let mut rounds = Vec::with_capacity(repeat as usize);
         let mut machine = Vec::with_capacity(repeat as usize);
         for _ in 0..repeat {
-            let before = reference_speed();
+            let before = machine_speeds();
             let one = sim_rate(&experiment, spec, args.worlds, args.ticks, 1)?;
-            machine.push(0.5 * (before + reference_speed()));
+            let after = machine_speeds();
+            machine.push([0.5 * (before[0] + after[0]), 0.5 * (before[1] + after[1])]);
             let two = sim_rate(&experiment, spec, args.worlds, args.ticks, 2)?;
             rounds.push((one, two));
         }
@@ -375,13 +387,18 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
             low,
             high
         );
-        let (slowest, fastest) = spread(&machine);
-        let quiet = quiet_rounds(&machine, &ones);
+        let throughput: Vec<f64> = machine.iter().map(|m| m[0]).collect();
+        let (slowest, fastest) = spread(&throughput);
+        let (latency_low, latency_high) = spread(&machine.iter().map(|m| m[1]).collect::<Vec<_>>());
+        let quiet = quiet_rounds(&throughput, &ones);
         println!(
-            "  machine check: a fixed arithmetic loop ran at {:.1}-{:.1}M steps/s around the 1-thread runs ({:.2}x spread); 1 thread in the {} round(s) where it ran within {:.0}% of its fastest: {:.0} creature-ticks/s",
+            "  machine check around the 1-thread runs: a high-throughput arithmetic loop ran at {:.1}-{:.1}M steps/s ({:.2}x spread), a latency-bound one at {:.0}-{:.0}M ({:.2}x); 1 thread in the {} round(s) where the first ran within {:.0}% of its fastest: {:.0} creature-ticks/s",
             slowest / 1e6,
             fastest / 1e6,
             fastest / slowest,
+            latency_low / 1e6,
+            latency_high / 1e6,
+            latency_high / latency_low,
             quiet.len(),
             100.0 * QUIET,
             median(quiet)
@@ -477,9 +494,10 @@ mod tests {
     }
 
     #[test]
-    fn the_reference_loop_reports_a_finite_speed() {
-        let speed = reference_speed();
-        assert!(speed.is_finite() && speed > 0.0, "{speed}");
+    fn the_machine_loops_report_finite_speeds() {
+        for speed in machine_speeds() {
+            assert!(speed.is_finite() && speed > 0.0, "{speed}");
+        }
     }
 
     fn bench_world() -> Experiment {
