@@ -74,7 +74,7 @@ fn bench_runs_both_benchmark_worlds() {
     assert!(text.contains("foraging-world.toml:"), "{text}");
     assert!(text.contains("eye-predators-world.toml:"), "{text}");
     assert!(
-        text.contains("machine check: a fixed arithmetic loop ran at"),
+        text.contains("machine check around the 1-thread runs: a high-throughput"),
         "{text}"
     );
     // The scaling series of the performance issue: 40 food and 12 walls in 300 x 300, then
