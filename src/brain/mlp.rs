@@ -636,18 +636,15 @@ mod tests {
                         let x: Vec<f64> = (0..n * inputs)
                             .map(|_| uniform(&mut rng, -3.0, 3.0))
                             .collect();
-                        let expected = single_passes(&mut single, &x, inputs, outputs);
-                        let mut batch = vec![f64::NAN; n * outputs];
-                        mlp.activate_batch(&x, &mut batch);
                         let what = format!(
                             "{precision:?} {inputs} {hidden:?} {outputs} {:?} n={n}",
                             mlp.activation
                         );
-                        assert_eq!(bits(&batch), bits(&expected), "{what}");
-                        portable.grow(n);
-                        let mut by_portable = vec![f64::NAN; n * outputs];
-                        portable.forward(&x, &mut by_portable, n);
-                        assert_eq!(bits(&by_portable), bits(&expected), "portable {what}");
+                        assert_batch_is_single_passes(
+                            [&mut mlp, &mut single, &mut portable],
+                            &x,
+                            &what,
+                        );
                     }
                 }
             }
@@ -780,15 +777,12 @@ mod tests {
                         let k = (uniform(&mut rng, 0.0, 1.0) * x.len() as f64) as usize;
                         x[k.min(last)] = uniform(&mut rng, -1.0, 1.0);
                     }
-                    let expected = single_passes(&mut single, &x, inputs, outputs);
-                    let mut batch = vec![f64::NAN; n * outputs];
-                    mlp.activate_batch(&x, &mut batch);
                     let what = format!("{inputs} {hidden:?} {outputs} case {case} n={n}");
-                    assert_eq!(bits(&batch), bits(&expected), "{what}");
-                    portable.grow(n);
-                    let mut by_portable = vec![f64::NAN; n * outputs];
-                    portable.forward(&x, &mut by_portable, n);
-                    assert_eq!(bits(&by_portable), bits(&expected), "portable {what}");
+                    assert_batch_is_single_passes(
+                        [&mut mlp, &mut single, &mut portable],
+                        &x,
+                        &what,
+                    );
                 }
             }
         }
@@ -835,6 +829,26 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// `x` (a batch of `mlp`'s inputs) through `mlp`'s batch pass and through `portable`'s
+    /// portable pass gives, bit for bit, what `single` gives sample by sample (three clones
+    /// of one network, each keeping its own scratch).
+    fn assert_batch_is_single_passes(
+        [mlp, single, portable]: [&mut Mlp; 3],
+        x: &[f64],
+        what: &str,
+    ) {
+        let (inputs, outputs) = (mlp.inputs, mlp.outputs);
+        let n = x.len() / inputs;
+        let expected = single_passes(single, x, inputs, outputs);
+        let mut batch = vec![f64::NAN; n * outputs];
+        mlp.activate_batch(x, &mut batch);
+        assert_eq!(bits(&batch), bits(&expected), "{what}");
+        portable.grow(n);
+        let mut by_portable = vec![f64::NAN; n * outputs];
+        portable.forward(x, &mut by_portable, n);
+        assert_eq!(bits(&by_portable), bits(&expected), "portable {what}");
     }
 
     /// (activations length, tile length, activations address) of either precision.
