@@ -225,7 +225,11 @@ fn within_box(a: Vec2, b: Vec2, p: Vec2) -> bool {
 /// overlap count. The bounding-box rejection of eq. 5–8 comes first; the slope form of
 /// eq. 9–24 is replaced by orientation tests (SPEC-NOTES), which answer the same question
 /// without special cases for vertical, parallel or identical lines.
-#[inline]
+///
+/// Out of line, as the compiler kept it when the body was written here: with the body in
+/// [`segments_meet`] it would inline it into every caller (whiskers, motion, the general
+/// smell), crowding their loops.
+#[inline(never)]
 pub fn segments_intersect(s0: &Segment, s1: &Segment) -> bool {
     segments_meet(s0, s1, || orientation(s1.a, s1.b, s0.b))
 }
@@ -241,9 +245,9 @@ pub fn side_of(seg: &Segment, p: Vec2) -> f64 {
 }
 
 /// [`segments_intersect`]`(s0, s1)` given `o4 = `[`side_of`]`(s1, s0.b)`: the same answer for
-/// every input (the same code, with that orientation read rather than computed). Kept out of
-/// line, like [`segments_intersect`] in practice: inlined into the smell's loop over walls, its
-/// registers crowded that loop into more spills than the call costs.
+/// every input (the same code, with that orientation read rather than computed). Out of line
+/// like [`segments_intersect`]: inlined into the smell's loop over walls, its registers
+/// crowded that loop into more spills than the call costs.
 #[inline(never)]
 pub fn segments_intersect_beside(s0: &Segment, s1: &Segment, o4: f64) -> bool {
     segments_meet(s0, s1, || o4)

@@ -488,7 +488,7 @@ impl Surroundings<'_> {
         saturate(acc1);
     }
 
-    /// [`Surroundings::smell_pair`] for any world, into `acc` (zeros on entry).
+    /// [`Surroundings::smell_pair`] for any world, into `out`.
     #[inline(never)]
     fn smell_general(
         &self,
@@ -496,9 +496,11 @@ impl Surroundings<'_> {
         body: &Body,
         tips: [Vec2; 2],
         scratch: &mut Scratch,
-        acc: &mut [[f64; 8]; 2],
+        out: &mut [[f64; 8]; 2],
     ) {
         let index = self.index;
+        // Local accumulators: summing through `out` costs more in this large function.
+        let acc = &mut [[0.0; 8]; 2];
         let all = self.opaque;
         let walls = all.split_at(index.fixed_opaque());
         let always = index.smell_always();
@@ -590,6 +592,7 @@ impl Surroundings<'_> {
         }
         saturate(&mut acc[0]);
         saturate(&mut acc[1]);
+        *out = *acc;
     }
 
     /// [`accumulate_listed`] for the food or aversive object of `source` (food first, as in
