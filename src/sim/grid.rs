@@ -612,7 +612,8 @@ impl StaticIndex {
 
     /// Per wall of [`StaticIndex::source_walls`] of `source`, in the same order, the side of
     /// the source's centre from the wall's line ([`side_of`]), the orientation of an
-    /// occlusion test ([`segments_intersect_beside`](crate::geometry::segments_intersect_beside)) that no receptor changes.
+    /// occlusion test that no receptor changes (see
+    /// [`segments_intersect_past_box`](crate::geometry::segments_intersect_past_box)).
     #[inline]
     pub fn source_sides(&self, source: &Source) -> &[f64] {
         &self.smell.sides[source.w0 as usize..source.w1 as usize]

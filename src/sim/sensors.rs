@@ -10,8 +10,8 @@
 //! candidates; see [`crate::sim::smell::Shade`]), so both give the same bits.
 
 use crate::geometry::{
-    circles_touch, segment_touches_circle, segments_intersect, segments_intersect_beside, Segment,
-    Vec2,
+    circles_touch, segment_touches_circle, segments_intersect, segments_intersect_past_box,
+    Segment, Vec2,
 };
 use crate::sim::area::Area;
 use crate::sim::controller::{ObservationLayout, SensorGroup};
@@ -449,13 +449,16 @@ impl Surroundings<'_> {
             let mut seen = [f0 != 0.0, f1 != 0.0];
             if s.has_walls() {
                 // visible_among without doors, both receptors per wall, with the box test
-                // of each settled by the wall's shade.
+                // of each settled by the wall's shade: it holds only for a tip not NaN, and
+                // the centre of a source in reach is not NaN either, so the box test that
+                // segments_intersect would begin with passes; the rest of it takes the
+                // source's side of the wall from the grid.
                 let walls = index.source_walls(s).iter().zip(index.source_shades(s));
                 for ((&w, shade), &side) in walls.zip(index.source_sides(s)) {
                     let wall = &fixed[w as usize].segment;
                     for (i, &tip) in tips.iter().enumerate() {
                         if shade.holds(tip, seen[i])
-                            && segments_intersect_beside(&Segment::new(tip, s.centre), wall, side)
+                            && segments_intersect_past_box(&Segment::new(tip, s.centre), wall, side)
                         {
                             seen[i] = false;
                         }
