@@ -227,7 +227,7 @@ fn within_box(a: Vec2, b: Vec2, p: Vec2) -> bool {
 /// without special cases for vertical, parallel or identical lines.
 ///
 /// Out of line, as the compiler kept it when the body was written here: with the body in
-/// [`segments_meet`] it would inline it into every caller (whiskers, motion, the general
+/// `segments_meet` it would inline it into every caller (whiskers, motion, the general
 /// smell), crowding their loops.
 #[inline(never)]
 pub fn segments_intersect(s0: &Segment, s1: &Segment) -> bool {

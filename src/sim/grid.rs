@@ -26,7 +26,9 @@
 //! wall hides from the whole cell is left out. Since the box is grown by the whisker reach,
 //! the cell holding the midpoint of a creature's two whisker tips serves both tips with one
 //! list. Each listed wall carries its [`WallShade`] from the object's centre (the box test of
-//! a segment from a receptor to the centre, settled when the grid is built), and each object
+//! a segment from a receptor to the centre, settled when the grid is built) and the side of
+//! the centre from the wall's line (the one orientation of that segment's occlusion test that
+//! no receptor changes, see [`crate::geometry::side_of`]), and each object
 //! its [`Odour`] (a copy of its emission), so that summing a listed smell reads the grid alone
 //! unless the smell follows the food's amount. Its cells are half the largest finite θ wide
 //! ([`SMELL_CELLS_PER_RANGE`]), and at most [`CELLS_PER_ITEM`] per listed object (at least
