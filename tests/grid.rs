@@ -507,7 +507,9 @@ count = 25
 /// pair of nearby receptors does so for both.
 #[test]
 fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
-    use berry_evolve::geometry::{segments_intersect, Segment};
+    use berry_evolve::geometry::{
+        segments_intersect, segments_intersect_past_box, side_of, Segment,
+    };
     use berry_evolve::sim::grid::Source;
     use berry_evolve::sim::wall::BoxedSegment;
     let (mut checked, mut listed_in_range) = (0, 0);
@@ -608,6 +610,27 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
                                 let meets = wall.may_meet(r.min(*centre), r.max(*centre));
                                 assert_eq!(shade.holds(r, true), meets, "seed {seed}: {k} {r}");
                                 assert!(!shade.holds(r, false), "seed {seed}");
+                            }
+                        }
+                        // Each wall's stored side of the centre is side_of to the bit, and
+                        // where the wall's shade holds, the occlusion test given it answers
+                        // as segments_intersect does (elsewhere the segments cannot meet).
+                        let sides = index.source_sides(e);
+                        assert_eq!(sides.len(), walls.len(), "seed {seed}");
+                        for ((&j, &side), shade) in walls.iter().zip(sides).zip(shades) {
+                            let wall = &opaque[j as usize];
+                            let exact = side_of(wall, *centre);
+                            assert_eq!(side.to_bits(), exact.to_bits(), "seed {seed}: {k} {j}");
+                            let ends = [wall.a, wall.b, *centre, (wall.a + wall.b) * 0.5];
+                            for r in points.into_iter().chain(ends) {
+                                let line = Segment::new(r, *centre);
+                                let meets = segments_intersect(&line, wall);
+                                if shade.holds(r, true) {
+                                    let past = segments_intersect_past_box(&line, wall, side);
+                                    assert_eq!(past, meets, "seed {seed}: {k} {j} {r}");
+                                } else {
+                                    assert!(!meets, "seed {seed}: {k} {j} {r}");
+                                }
                             }
                         }
                     }

@@ -26,7 +26,9 @@
 //! wall hides from the whole cell is left out. Since the box is grown by the whisker reach,
 //! the cell holding the midpoint of a creature's two whisker tips serves both tips with one
 //! list. Each listed wall carries its [`WallShade`] from the object's centre (the box test of
-//! a segment from a receptor to the centre, settled when the grid is built), and each object
+//! a segment from a receptor to the centre, settled when the grid is built) and the side of
+//! the centre from the wall's line (the one orientation of that segment's occlusion test that
+//! no receptor changes, see [`crate::geometry::side_of`]), and each object
 //! its [`Odour`] (a copy of its emission), so that summing a listed smell reads the grid alone
 //! unless the smell follows the food's amount. Its cells are half the largest finite θ wide
 //! ([`SMELL_CELLS_PER_RANGE`]), and at most [`CELLS_PER_ITEM`] per listed object (at least
@@ -51,7 +53,7 @@
 //! a tenth of a 500-tick trial's instructions). Worlds with at most [`FEW_WALLS`] fixed walls
 //! filter the wall list directly instead of visiting cells, which is cheaper at that size.
 
-use crate::geometry::{point_segment_distance_squared, Segment, Vec2};
+use crate::geometry::{point_segment_distance_squared, side_of, Segment, Vec2};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::smell::{Shade, Smell};
 use crate::sim::wall::{BoxedSegment, Walls};
@@ -610,6 +612,15 @@ impl StaticIndex {
         &self.smell.shades[source.w0 as usize..source.w1 as usize]
     }
 
+    /// Per wall of [`StaticIndex::source_walls`] of `source`, in the same order, the side of
+    /// the source's centre from the wall's line ([`side_of`]), the orientation of an
+    /// occlusion test that no receptor changes (see
+    /// [`segments_intersect_past_box`](crate::geometry::segments_intersect_past_box)).
+    #[inline]
+    pub fn source_sides(&self, source: &Source) -> &[f64] {
+        &self.smell.sides[source.w0 as usize..source.w1 as usize]
+    }
+
     /// The smelly food and aversive objects of unlimited range, as [`Source::id`]s in
     /// increasing order: every receptor may smell them.
     #[inline]
@@ -937,6 +948,8 @@ struct SmellGrid {
     walls: Vec<u32>,
     /// Per entry of `walls`, its [`WallShade`] from the source's centre.
     shades: Vec<WallShade>,
+    /// Per entry of `walls`, the side of the source's centre from the wall's line.
+    sides: Vec<f64>,
     /// The bounds of the columns' grown boxes (infinite on the border sides).
     xs: Vec<(f64, f64)>,
     /// Per cell, its grown box and its range of `sources`, side by side for
@@ -965,6 +978,7 @@ impl SmellGrid {
             odours: Vec::new(),
             walls: Vec::new(),
             shades: Vec::new(),
+            sides: Vec::new(),
             xs: all.clone(),
             ys: all,
             cells: vec![PairCell {
@@ -1200,6 +1214,7 @@ fn smell_grid(
         odours: Vec::new(),
         walls: Vec::new(),
         shades: Vec::new(),
+        sides: Vec::new(),
         xs: Vec::new(),
         ys: Vec::new(),
         cells: Vec::new(),
@@ -1213,6 +1228,7 @@ fn smell_grid(
     let mut pairs: Vec<(u32, Source)> = Vec::with_capacity(sources.len() * per * per);
     let mut walls: Vec<u32> = Vec::with_capacity(2 * pairs.capacity());
     let mut shades: Vec<WallShade> = Vec::with_capacity(walls.capacity());
+    let mut sides: Vec<f64> = Vec::with_capacity(walls.capacity());
     let mut near = Vec::new();
     let mut hiders: Vec<Hider> = Vec::new();
     for template in sources {
@@ -1271,11 +1287,13 @@ fn smell_grid(
                         }
                         walls.push(h.k);
                         shades.push(WallShade::new(p, h.lo, h.hi));
+                        sides.push(side_of(&opaque[h.k as usize].segment, p));
                     }
                 }
                 if hidden {
                     walls.truncate(w0 as usize);
                     shades.truncate(w0 as usize);
+                    sides.truncate(w0 as usize);
                     continue;
                 }
                 let w1 = walls.len() as u32;
@@ -1290,6 +1308,7 @@ fn smell_grid(
     }
     grid.walls = walls;
     grid.shades = shades;
+    grid.sides = sides;
     // A counting sort by cell, stable: each cell's sources keep their increasing id order.
     for &(cell, _) in &pairs {
         grid.start[cell as usize + 1] += 1;

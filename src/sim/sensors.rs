@@ -9,7 +9,10 @@
 //! functions or give provably the same answers (a yes/no test does not depend on extra
 //! candidates; see [`crate::sim::smell::Shade`]), so both give the same bits.
 
-use crate::geometry::{circles_touch, segment_touches_circle, segments_intersect, Segment, Vec2};
+use crate::geometry::{
+    circles_touch, segment_touches_circle, segments_intersect, segments_intersect_past_box,
+    Segment, Vec2,
+};
 use crate::sim::area::Area;
 use crate::sim::controller::{ObservationLayout, SensorGroup};
 use crate::sim::food::{Aversive, Food};
@@ -379,6 +382,10 @@ impl Surroundings<'_> {
     /// In the common case, a world whose only smells are food and aversive objects of
     /// finite range with no closed opaque door, and receptors served by one list,
     /// [`Surroundings::smell_listed`] does the same sums in a small function of its own.
+    ///
+    /// The sums are added into `out`, left and right sensor, which must hold zeros (the
+    /// caller's fresh sensors), and saturated there: the caller copies them on from `out`
+    /// rather than from a returned value's copy of the function's own accumulators.
     #[inline]
     pub fn smell_pair(
         &self,
@@ -386,7 +393,9 @@ impl Surroundings<'_> {
         body: &Body,
         tips: [Vec2; 2],
         scratch: &mut Scratch,
-    ) -> [[f64; 8]; 2] {
+        out: &mut [[f64; 8]; 2],
+    ) {
+        debug_assert!(out.iter().flatten().all(|&v| v.to_bits() == 0));
         let index = self.index;
         let others_smell = !body.smell.silent && self.creatures.len() > 1;
         if index.smell_always().is_empty()
@@ -396,10 +405,10 @@ impl Surroundings<'_> {
             && self.opaque.len() == index.fixed_opaque()
         {
             if let Some(list) = index.smell_pair_sources(tips) {
-                return self.smell_listed(list, tips);
+                return self.smell_listed(list, tips, out);
             }
         }
-        self.smell_general(me, body, tips, scratch)
+        self.smell_general(me, body, tips, scratch, out);
     }
 
     /// [`Surroundings::smell_pair`] when only `list`, the food and aversive objects of finite
@@ -411,13 +420,13 @@ impl Surroundings<'_> {
     /// reads the food object), and for a source with walls, each wall's
     /// [`WallShade`](crate::sim::grid::WallShade), which settles the box test of
     /// [`visible_among`](crate::sim::smell::visible_among) for both receptors without a branch
-    /// per side.
+    /// per side, and each wall's side of the source's centre
+    /// ([`StaticIndex::source_sides`]), one of the four orientations of the occlusion test.
     #[inline(never)]
-    fn smell_listed(&self, list: &[Source], tips: [Vec2; 2]) -> [[f64; 8]; 2] {
+    fn smell_listed(&self, list: &[Source], tips: [Vec2; 2], out: &mut [[f64; 8]; 2]) {
         let index = self.index;
         let (c, fixed) = (self.smell_c, self.opaque);
-        let mut acc0 = [0.0; 8];
-        let mut acc1 = [0.0; 8];
+        let [acc0, acc1] = out;
         for s in list {
             let (d2, reach) = reach_pair(tips, s.centre, s.range_squared);
             if !(reach[0] | reach[1]) {
@@ -440,13 +449,16 @@ impl Surroundings<'_> {
             let mut seen = [f0 != 0.0, f1 != 0.0];
             if s.has_walls() {
                 // visible_among without doors, both receptors per wall, with the box test
-                // of each settled by the wall's shade.
+                // of each settled by the wall's shade: it holds only for a tip not NaN, and
+                // the centre of a source in reach is not NaN either, so the box test that
+                // segments_intersect would begin with passes; the rest of it takes the
+                // source's side of the wall from the grid.
                 let walls = index.source_walls(s).iter().zip(index.source_shades(s));
-                for (&w, shade) in walls {
+                for ((&w, shade), &side) in walls.zip(index.source_sides(s)) {
                     let wall = &fixed[w as usize].segment;
                     for (i, &tip) in tips.iter().enumerate() {
                         if shade.holds(tip, seen[i])
-                            && segments_intersect(&Segment::new(tip, s.centre), wall)
+                            && segments_intersect_past_box(&Segment::new(tip, s.centre), wall, side)
                         {
                             seen[i] = false;
                         }
@@ -467,20 +479,19 @@ impl Surroundings<'_> {
                 }
                 _ => {
                     if seen[0] {
-                        add(&mut acc0, g[0], &odour.emission);
+                        add(acc0, g[0], &odour.emission);
                     }
                     if seen[1] {
-                        add(&mut acc1, g[1], &odour.emission);
+                        add(acc1, g[1], &odour.emission);
                     }
                 }
             }
         }
-        saturate(&mut acc0);
-        saturate(&mut acc1);
-        [acc0, acc1]
+        saturate(acc0);
+        saturate(acc1);
     }
 
-    /// [`Surroundings::smell_pair`] for any world.
+    /// [`Surroundings::smell_pair`] for any world, into `out`.
     #[inline(never)]
     fn smell_general(
         &self,
@@ -488,9 +499,11 @@ impl Surroundings<'_> {
         body: &Body,
         tips: [Vec2; 2],
         scratch: &mut Scratch,
-    ) -> [[f64; 8]; 2] {
+        out: &mut [[f64; 8]; 2],
+    ) {
         let index = self.index;
-        let mut acc = [[0.0; 8]; 2];
+        // Local accumulators: summing through `out` costs more in this large function.
+        let acc = &mut [[0.0; 8]; 2];
         let all = self.opaque;
         let walls = all.split_at(index.fixed_opaque());
         let always = index.smell_always();
@@ -503,7 +516,7 @@ impl Surroundings<'_> {
                     let (d2, reach) = reach_pair(tips, s.centre, s.range_squared);
                     if reach[0] | reach[1] {
                         let w = index.source_walls(s);
-                        self.listed(&mut acc, tips, s, (d2, reach), [w, w], walls);
+                        self.listed(acc, tips, s, (d2, reach), [w, w], walls);
                     }
                 }
             }
@@ -535,7 +548,7 @@ impl Surroundings<'_> {
                             let f = &self.food[x];
                             near.source(
                                 self,
-                                &mut acc,
+                                acc,
                                 f.position,
                                 &f.smell,
                                 || f.smell_scale(),
@@ -543,7 +556,7 @@ impl Surroundings<'_> {
                             );
                         } else {
                             let a = &self.aversives[x - food_count];
-                            near.source(self, &mut acc, a.position, &a.smell, || 1.0, scratch);
+                            near.source(self, acc, a.position, &a.smell, || 1.0, scratch);
                         }
                         continue;
                     }
@@ -559,30 +572,30 @@ impl Surroundings<'_> {
                     let reach = [reach[0] && sa.is_some(), reach[1] && sb.is_some()];
                     if reach[0] | reach[1] {
                         let w = |e: Option<&Source>| e.map_or(&[][..], |e| index.source_walls(e));
-                        self.listed(&mut acc, tips, s, (d2, reach), [w(sa), w(sb)], walls);
+                        self.listed(acc, tips, s, (d2, reach), [w(sa), w(sb)], walls);
                     }
                 }
             }
         }
         for a in self.areas {
-            near.source(self, &mut acc, a.centre(), &a.smell, || 1.0, scratch);
+            near.source(self, acc, a.centre(), &a.smell, || 1.0, scratch);
         }
         for (k, t) in self.things.iter().enumerate() {
             if k != self.skip_thing && !t.smell.silent {
-                near.source(self, &mut acc, t.position, &t.smell, || 1.0, scratch);
+                near.source(self, acc, t.position, &t.smell, || 1.0, scratch);
             }
         }
         if !body.smell.silent {
             for (j, other) in self.creatures.iter().enumerate() {
                 if j != me && other.alive {
                     let p = other.pose.position;
-                    near.source(self, &mut acc, p, &body.smell, || 1.0, scratch);
+                    near.source(self, acc, p, &body.smell, || 1.0, scratch);
                 }
             }
         }
         saturate(&mut acc[0]);
         saturate(&mut acc[1]);
-        acc
+        *out = *acc;
     }
 
     /// [`accumulate_listed`] for the food or aversive object of `source` (food first, as in
@@ -636,11 +649,11 @@ impl Surroundings<'_> {
         let tips = body.whisker_tips(pose.position, pose.heading);
         let (whiskers, food) = self.whiskers_and_food(me, body, pose.position, tips);
         let inhibited = inhibit_smell && (whiskers[0] || whiskers[1]);
-        let smell = if smell && !inhibited {
-            self.smell_pair(me, body, tips, scratch)
-        } else {
-            [[0.0; 8]; 2]
-        };
+        let mut out = [[0.0; 8]; 2];
+        if smell && !inhibited {
+            self.smell_pair(me, body, tips, scratch, &mut out);
+        }
+        let smell = out;
         Senses {
             whiskers,
             smell,

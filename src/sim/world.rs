@@ -721,11 +721,10 @@ impl World {
         let tips = body.whisker_tips(pose.position, pose.heading);
         let (whiskers, food) = surroundings.whiskers_and_food(i, body, pose.position, tips);
         let inhibited = self.inhibit_smell_on_whisker && (whiskers[0] || whiskers[1]);
-        let smell = if (self.full_sensing || self.offsets.has_smell()) && !inhibited {
-            surroundings.smell_pair(i, body, tips, &mut self.scratch)
-        } else {
-            [[0.0; 8]; 2]
-        };
+        let mut smell = [[0.0; 8]; 2];
+        if (self.full_sensing || self.offsets.has_smell()) && !inhibited {
+            surroundings.smell_pair(i, body, tips, &mut self.scratch, &mut smell);
+        }
         self.record_senses(i, out, whiskers, &smell, food);
     }
 
