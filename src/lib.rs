@@ -25,6 +25,7 @@
 //! Experiment, Run.
 
 pub mod brain;
+pub mod cpu;
 pub mod evo;
 pub mod experiment;
 pub mod geometry;

@@ -6,6 +6,11 @@ mod cli;
 use clap::Parser;
 
 fn main() {
+    // First, before any code that may use them: does this CPU have the extensions this
+    // build was compiled for (.cargo/config.toml)?
+    if !berry_evolve::cpu::runs_here() {
+        cpu_exit();
+    }
     let cli = cli::Cli::parse();
     if let Err(error) = cli::dispatch(cli) {
         // A reader that closed the pipe (`berry-evolve inspect x.toml | head`) is not an error.
@@ -29,4 +34,14 @@ fn main() {
         };
         std::process::exit(code);
     }
+}
+
+/// Says that this CPU lacks extensions the build uses, and exits. Nothing computed: this
+/// code runs on such a CPU (see `berry_evolve::cpu::runs_here`).
+#[cold]
+#[inline(never)]
+fn cpu_exit() -> ! {
+    use std::io::Write;
+    let _ = std::io::stderr().write_all(berry_evolve::cpu::MESSAGE.as_bytes());
+    std::process::exit(1);
 }
