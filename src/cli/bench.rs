@@ -113,6 +113,7 @@ fn sim_rate(
     let start = Instant::now();
     let travelled: Vec<f64> = pool.install(|| {
         jobs.par_iter_mut()
+            .with_max_len(berry_evolve::evo::evaluate::JOBS_APART)
             .flat_map_iter(|(worlds, controllers)| {
                 let n = worlds.len();
                 let width = worlds[0].layout().len();

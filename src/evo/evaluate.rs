@@ -21,6 +21,12 @@ use crate::seed::{stream, Generation, IndividualId, Purpose, Rng, TrialIndex};
 use crate::sim::controller::{Controller, MotorCommand};
 use crate::sim::world::{ValidSpecs, World};
 use crate::sim::PlacementError;
+
+/// Jobs per leaf of rayon's split of a generation's job list: 1, so that a thread that runs
+/// out of work can take any job not yet started. With rayon's default split a leaf holds
+/// several jobs that one thread runs in turn, and at the end of a generation the other
+/// thread idles while that leaf finishes. The results are collected in job order either way.
+pub const JOBS_APART: usize = 1;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -407,8 +413,10 @@ pub fn evaluate_population(
         let jobs: Vec<(usize, std::ops::Range<u64>)> = (0..groups)
             .flat_map(|g| chunks.iter().map(move |c| (g, c.clone())))
             .collect();
+        // One job per leaf of rayon's split (see JOBS_APART).
         let per_job: Vec<Vec<Vec<TrialOutcome>>> = jobs
             .par_iter()
+            .with_max_len(JOBS_APART)
             .map(|(g, chunk)| {
                 lockstep::run_trials_in(
                     experiment,
@@ -427,6 +435,7 @@ pub fn evaluate_population(
             .flat_map(|g| (0..trials).map(move |t| (g, t)))
             .collect();
         jobs.par_iter()
+            .with_max_len(JOBS_APART)
             .map(|&(g, t)| {
                 let genomes = &population[g * k..(g + 1) * k];
                 match shared {
