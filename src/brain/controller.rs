@@ -75,6 +75,15 @@ impl BrainController {
         self.brain
     }
 
+    /// True when every command this controller gives is finite, whatever the observation:
+    /// an MLP's outputs are always in [−1, 1] (a NaN output becomes 0, see
+    /// [`crate::brain::activation::tanh_outputs`]), so with a finite `max_rpt` the motor
+    /// signals are at most ±`max_rpt` (|o · max_rpt| ≤ |max_rpt| after rounding too) and
+    /// eat = (o + 1) / 2 is in [0, 1]. The lockstep then skips its per-command check.
+    pub fn commands_always_finite(&self) -> bool {
+        self.brain.is_stateless() && self.max_rpt.is_finite()
+    }
+
     /// The brain outputs of the last [`Controller::act`] (zeros before the first).
     pub fn last_outputs(&self) -> &[f64] {
         &self.outputs
