@@ -212,7 +212,9 @@ impl LiveInputs {
             return None;
         }
         let p = self.seen.len();
-        let c = or_columns::<4>(x, p, (&self.start, &mut self.seen), 0);
+        // 24 inputs (the standard world's) in one pass over the rows, else 16, 8, 4.
+        let c = or_columns::<6>(x, p, (&self.start, &mut self.seen), 0);
+        let c = or_columns::<4>(x, p, (&self.start, &mut self.seen), c);
         let c = or_columns::<2>(x, p, (&self.start, &mut self.seen), c);
         let c = or_columns::<1>(x, p, (&self.start, &mut self.seen), c);
         for (i, (seen, &start)) in self.seen.iter_mut().zip(&self.start).enumerate().skip(c) {
