@@ -723,4 +723,91 @@ mod tests {
             }
         }
     }
+
+    /// [`TanhLanes::apply`] is [`super::super::activation::tanh`] (and, for the outputs,
+    /// `nan_to_zero` of it) bit for bit: on a sweep, the clamps and where the rational
+    /// function crosses 1, ±0, subnormals, ±∞ and NaNs.
+    #[test]
+    fn lane_tanh_is_the_scalar_tanh_bit_for_bit() {
+        use crate::brain::activation::{nan_to_zero, tanh};
+        let mut values: Vec<f64> = (-4000..=4000).map(|k| k as f64 * 0.00371).collect();
+        values.extend((0..400).map(|k| 11.0 + k as f64 * 0.0025));
+        values.extend((0..400).map(|k| -(11.0 + k as f64 * 0.0025)));
+        values.extend([
+            0.0,
+            -0.0,
+            5e-324,
+            -5e-324,
+            1e-300,
+            12.0,
+            -12.0,
+            12.000000000000002,
+            11.0227,
+            f64::MAX,
+            f64::MIN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            -f64::NAN,
+        ]);
+        while values.len() % LANES != 0 {
+            values.push(0.5);
+        }
+        let lanes: Vec<Lanes> = values
+            .chunks_exact(LANES)
+            .map(|c| c.try_into().unwrap())
+            .collect();
+        let tanh_lanes = TanhLanes::default();
+        for output in [false, true] {
+            let mut y = lanes.clone();
+            if output {
+                tanh_lanes.apply::<true>(&mut y);
+            } else {
+                tanh_lanes.apply::<false>(&mut y);
+            }
+            for (&x, &got) in values.iter().zip(y.as_flattened()) {
+                let expected = if output {
+                    nan_to_zero(tanh(x))
+                } else {
+                    tanh(x)
+                };
+                assert_eq!(got.to_bits(), expected.to_bits(), "{x:e} output {output}");
+            }
+        }
+    }
+
+    /// [`load_live_tiles`] fills whole tiles as [`load_live_tile`] does one by one, for odd
+    /// and even numbers of live inputs, and touches no tile beyond the whole ones.
+    #[test]
+    fn whole_tiles_gather_the_live_inputs_as_single_tiles_do() {
+        let p = 13;
+        for live in [
+            vec![0],
+            vec![2, 3],
+            vec![0, 4, 5, 12],
+            vec![1, 2, 6, 7, 9, 11, 12],
+        ] {
+            for tiles in 0..4 {
+                let x: Vec<f64> = (0..tiles * LANES * p).map(value).collect();
+                let width = live.len();
+                let mut xt = vec![[f64::NAN; LANES]; (tiles + 1) * width];
+                load_live_tiles(&x, p, &live, &mut xt);
+                for k in 0..tiles {
+                    let rows = &x[k * LANES * p..(k + 1) * LANES * p];
+                    let mut tile = vec![[0.0; LANES]; width];
+                    load_live_tile(rows, p, LANES, &live, &mut tile);
+                    let got = &xt[k * width..(k + 1) * width];
+                    assert!(got
+                        .as_flattened()
+                        .iter()
+                        .zip(tile.as_flattened())
+                        .all(|(a, b)| a.to_bits() == b.to_bits()));
+                }
+                assert!(xt[tiles * width..]
+                    .as_flattened()
+                    .iter()
+                    .all(|v| v.is_nan()));
+            }
+        }
+    }
 }
