@@ -103,8 +103,9 @@ struct SampleLanes {
     /// Which inputs to leave out of the first layer's sums in a batch (zero in every sample;
     /// `None` when the network is not skip-safe, see [`lanes::LiveInputs`]).
     live: Option<lanes::LiveInputs>,
-    /// tanh's constants for the layers' functions ([`lanes::TanhLanes`]).
-    tanh: lanes::TanhLanes,
+    /// tanh's constants for the layers' functions ([`lanes::TanhLanes`]; boxed, so that a
+    /// brain stays small to move).
+    tanh: Box<lanes::TanhLanes>,
 }
 
 /// The float type of the pass and its buffers.
@@ -196,7 +197,7 @@ impl Mlp {
                             &parameters[first.biases.clone()],
                             first.units,
                         ),
-                        tanh: lanes::TanhLanes::default(),
+                        tanh: Box::default(),
                     }
                 }),
                 buffers: Buffers {
