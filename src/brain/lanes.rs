@@ -18,7 +18,8 @@
 //! reads (unit-major, 4 samples side by side), so the hidden activations need no copy; then
 //! the layer's function over all the tiles in one vectorised loop ([`finish`]). Only the
 //! inputs are copied into tiles ([`load_tile`], a 4 × 4 transpose) and the outputs out of
-//! them.
+//! them. The tanh reads its constants from memory ([`TanhLanes`]), which saves a broadcast
+//! per constant that does not fit in a register.
 //!
 //! The first layer leaves out the inputs that are ±0 in every sample of the batch (in a
 //! world, the smell components no odour uses, the shock without aversive objects):
