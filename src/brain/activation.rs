@@ -99,10 +99,10 @@ pub const LOGISTIC_MAX_ERROR: f64 = 2.8e-10;
 /// [`tanh`] clamps its argument into [-TANH_CLAMP, TANH_CLAMP] (tanh(12) = 1 − 7.6e-11); the
 /// rational function has already reached 1 there (it crosses 1 at x ≈ 11.0227 and keeps
 /// rising), so the output clamp makes every |x| ≥ 11.03 give exactly ±1.
-const TANH_CLAMP: f64 = 12.0;
+pub(crate) const TANH_CLAMP: f64 = 12.0;
 
 /// Numerator coefficients p_0 … p_5 of [`tanh`] (powers of x²).
-const TANH_P: [f64; 6] = [
+pub(crate) const TANH_P: [f64; 6] = [
     0.9999999980137508,
     0.14019297868708977,
     0.00432010491550617,
@@ -112,7 +112,7 @@ const TANH_P: [f64; 6] = [
 ];
 
 /// Denominator coefficients q_1 … q_5 of [`tanh`] (q_0 = 1).
-const TANH_Q: [f64; 5] = [
+pub(crate) const TANH_Q: [f64; 5] = [
     0.47352630350693203,
     0.028828883373201844,
     0.0004806371281892068,

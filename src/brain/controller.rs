@@ -75,6 +75,15 @@ impl BrainController {
         self.brain
     }
 
+    /// True when every command this controller gives is finite, whatever the observation:
+    /// an MLP's outputs are always in [−1, 1] (a NaN output becomes 0, see
+    /// [`crate::brain::activation::tanh_outputs`]), so with a finite `max_rpt` the motor
+    /// signals are at most ±`max_rpt` (|o · max_rpt| ≤ |max_rpt| after rounding too) and
+    /// eat = (o + 1) / 2 is in [0, 1]. The lockstep then skips its per-command check.
+    pub fn commands_always_finite(&self) -> bool {
+        self.brain.is_stateless() && self.max_rpt.is_finite()
+    }
+
     /// The brain outputs of the last [`Controller::act`] (zeros before the first).
     pub fn last_outputs(&self) -> &[f64] {
         &self.outputs
@@ -167,5 +176,37 @@ mod tests {
                 single.act(&observations[..4])
             );
         }
+    }
+
+    /// An MLP controller with a finite `max_rpt` knows its commands are finite, and they
+    /// are, even for parameters and observations that overflow every sum; recurrent brains
+    /// and an infinite `max_rpt` do not claim it.
+    #[test]
+    fn mlp_commands_are_always_finite() {
+        let topology = |text: &str| {
+            let spec: BrainSpec = toml::from_str(text).expect("spec");
+            Topology::new(spec, 4, 3).expect("topology")
+        };
+        let mlp = topology("kind = \"mlp\"\nhidden = [5]");
+        let values = [1e308, -1e308, 0.0, -0.0, 3.5, f64::MAX, f64::MIN];
+        for (round, max_rpt) in [0.5, 1e308, f64::MAX].into_iter().enumerate() {
+            let parameters: Vec<f64> = (0..mlp.parameter_count())
+                .map(|k| values[(k * 3 + round) % values.len()])
+                .collect();
+            let brain = Brain::new(&mlp, &parameters).expect("brain");
+            let mut controller = BrainController::new(brain, max_rpt, true);
+            assert!(controller.commands_always_finite());
+            let observations: Vec<f64> = (0..4 * 9).map(|k| values[k % values.len()]).collect();
+            let mut commands = vec![MotorCommand::default(); 9];
+            controller.act_batch(&observations, &mut commands);
+            for c in commands {
+                assert!(c.left.is_finite() && c.right.is_finite() && c.eat.is_finite());
+            }
+        }
+        let brain = Brain::new(&mlp, &vec![0.5; mlp.parameter_count()]).expect("brain");
+        assert!(!BrainController::new(brain, f64::INFINITY, true).commands_always_finite());
+        let elman = topology("kind = \"recurrent\"\nhidden = [3]");
+        let brain = Brain::new(&elman, &vec![0.5; elman.parameter_count()]).expect("brain");
+        assert!(!BrainController::new(brain, 0.5, true).commands_always_finite());
     }
 }

@@ -18,7 +18,8 @@
 //! reads (unit-major, 4 samples side by side), so the hidden activations need no copy; then
 //! the layer's function over all the tiles in one vectorised loop ([`finish`]). Only the
 //! inputs are copied into tiles ([`load_tile`], a 4 × 4 transpose) and the outputs out of
-//! them.
+//! them. The tanh reads its constants from memory ([`TanhLanes`]), which saves a broadcast
+//! per constant that does not fit in a register.
 //!
 //! The first layer leaves out the inputs that are ±0 in every sample of the batch (in a
 //! world, the smell components no odour uses, the shock without aversive objects):
@@ -33,7 +34,7 @@
 //! last tile of fewer than 4 samples fills its empty lanes with zeros, whose results are
 //! dropped.
 
-use super::activation::{tanh_outputs, Activation};
+use super::activation::Activation;
 
 /// Samples per tile: the f64 values of one AVX2 register.
 pub const LANES: usize = 4;
@@ -212,7 +213,9 @@ impl LiveInputs {
             return None;
         }
         let p = self.seen.len();
-        let c = or_columns::<4>(x, p, (&self.start, &mut self.seen), 0);
+        // 24 inputs (the standard world's) in one pass over the rows, else 16, 8, 4.
+        let c = or_columns::<6>(x, p, (&self.start, &mut self.seen), 0);
+        let c = or_columns::<4>(x, p, (&self.start, &mut self.seen), c);
         let c = or_columns::<2>(x, p, (&self.start, &mut self.seen), c);
         let c = or_columns::<1>(x, p, (&self.start, &mut self.seen), c);
         for (i, (seen, &start)) in self.seen.iter_mut().zip(&self.start).enumerate().skip(c) {
@@ -340,6 +343,34 @@ pub fn load_live_tile(x: &[f64], p: usize, count: usize, live: &[usize], xt: &mu
     }
 }
 
+/// [`load_live_tile`] for whole tiles: `x` holds rows of `p` inputs, 4 rows a tile, and
+/// tile k's `live.len()` [`Lanes`] in `xt` receive its samples' inputs `live` (as many
+/// tiles as both hold). Never inlined: in its own frame the gather keeps its pointers in
+/// registers (inlined into the pass it reloaded spilled ones for every input), and it takes
+/// the live inputs two at a time.
+#[inline(never)]
+pub fn load_live_tiles(x: &[f64], p: usize, live: &[usize], xt: &mut [Lanes]) {
+    let width = live.len();
+    if p == 0 || width == 0 {
+        return;
+    }
+    for (x, xt) in x.chunks_exact(LANES * p).zip(xt.chunks_exact_mut(width)) {
+        let (r0, rest) = x.split_at(p);
+        let (r1, rest) = rest.split_at(p);
+        let (r2, r3) = rest.split_at(p);
+        let pairs = xt.chunks_exact_mut(2).zip(live.chunks_exact(2));
+        for (lanes, pair) in pairs {
+            let (i, j) = (pair[0], pair[1]);
+            lanes[0] = [r0[i], r1[i], r2[i], r3[i]];
+            lanes[1] = [r0[j], r1[j], r2[j], r3[j]];
+        }
+        if width % 2 == 1 {
+            let i = live[width - 1];
+            xt[width - 1] = [r0[i], r1[i], r2[i], r3[i]];
+        }
+    }
+}
+
 /// One layer's sums for every tile: y_j = b_j + w_j0 x_0 + w_j1 x_1 + … in every lane, with
 /// `weights` the layer's weights as [`repeat`] lays them out, `x` the tiles' inputs (p
 /// [`Lanes`] per tile, one per input; p ≥ 1), `y` the tiles' sums (one [`Lanes`] per unit
@@ -407,15 +438,77 @@ fn step<const N: usize>(acc: &mut [Lanes; N], w: &[Lanes], x: &Lanes) {
 }
 
 /// The stage's function on every value of `y` (after the sums are stored: the sums stay in
-/// registers only if nothing indexes them at run time). The same loops as a single pass's
-/// ([`Activation::apply_slice`], [`tanh_outputs`]) on the flattened values: vectorised,
-/// and the same function value by value.
+/// registers only if nothing indexes them at run time). tanh (hidden tanh units and the
+/// outputs) runs [`TanhLanes::apply`]; the other functions the same loops as a single pass's
+/// ([`Activation::apply_slice`]) on the flattened values. Either way the same function
+/// value by value.
 #[inline(always)]
-pub fn finish(y: &mut [Lanes], stage: Stage) {
-    let values = y.as_flattened_mut();
+pub fn finish(y: &mut [Lanes], stage: Stage, tanh: &TanhLanes) {
     match stage {
-        Stage::Hidden(activation) => activation.apply_slice(values),
-        Stage::Output => tanh_outputs(values),
+        Stage::Hidden(Activation::Tanh) => tanh.apply::<false>(y),
+        Stage::Hidden(activation) => activation.apply_slice(y.as_flattened_mut()),
+        Stage::Output => tanh.apply::<true>(y),
+    }
+}
+
+/// The constants of [`super::activation::tanh`] (the clamps, the coefficients, 1 and −1),
+/// kept in the network, so that the lane pass reads them from memory.
+///
+/// # Why
+///
+/// The tanh has 15 constants, and with its temporaries they do not fit in the 16 AVX2
+/// registers. Written as literal constants, the compiler reloads the ones that do not fit
+/// with a broadcast from an 8-byte constant in every iteration (one more instruction each,
+/// five per 4 values); constants it cannot see are broadcast once before the loop, and the
+/// ones that do not fit are read back from the stack as memory operands of the multiplies,
+/// adds and min/max (no extra instruction). Same operations in the same order on the same
+/// values: the same bits as [`super::activation::tanh`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct TanhLanes {
+    /// TANH_CLAMP, −TANH_CLAMP.
+    clamp: [f64; 2],
+    /// p0 … p5.
+    p: [f64; 6],
+    /// q1 … q5.
+    q: [f64; 5],
+    /// 1, −1.
+    unit: [f64; 2],
+}
+
+impl Default for TanhLanes {
+    fn default() -> Self {
+        use super::activation::{TANH_CLAMP, TANH_P, TANH_Q};
+        TanhLanes {
+            clamp: [TANH_CLAMP, -TANH_CLAMP],
+            p: TANH_P,
+            q: TANH_Q,
+            unit: [1.0, -1.0],
+        }
+    }
+}
+
+impl TanhLanes {
+    /// [`super::activation::tanh`] of every value of `y` (then NaN to 0 when `OUTPUT`, as
+    /// [`super::activation::tanh_outputs`]): the same comparisons, Horner steps and
+    /// division, value by value (vectorised over the values).
+    #[inline(always)]
+    pub fn apply<const OUTPUT: bool>(&self, y: &mut [Lanes]) {
+        let [hi, lo] = self.clamp;
+        let [p0, p1, p2, p3, p4, p5] = self.p;
+        let [q1, q2, q3, q4, q5] = self.q;
+        let [one, minus_one] = self.unit;
+        for v in y.as_flattened_mut() {
+            let x = *v;
+            let c = if x > hi { hi } else { x };
+            let c = if c < lo { lo } else { c };
+            let t = c * c;
+            let p = ((((p5 * t + p4) * t + p3) * t + p2) * t + p1) * t + p0;
+            let q = ((((q5 * t + q4) * t + q3) * t + q2) * t + q1) * t + one;
+            let r = c * p / q;
+            let r = if r > one { one } else { r };
+            let r = if r < minus_one { minus_one } else { r };
+            *v = if OUTPUT && r.is_nan() { 0.0 } else { r };
+        }
     }
 }
 
@@ -628,6 +721,93 @@ mod tests {
                         assert_eq!(got.to_bits(), sum.to_bits(), "{units} x {p}, n = {n}");
                     }
                 }
+            }
+        }
+    }
+
+    /// [`TanhLanes::apply`] is [`super::super::activation::tanh`] (and, for the outputs,
+    /// `nan_to_zero` of it) bit for bit: on a sweep, the clamps and where the rational
+    /// function crosses 1, ±0, subnormals, ±∞ and NaNs.
+    #[test]
+    fn lane_tanh_is_the_scalar_tanh_bit_for_bit() {
+        use crate::brain::activation::{nan_to_zero, tanh};
+        let mut values: Vec<f64> = (-4000..=4000).map(|k| k as f64 * 0.00371).collect();
+        values.extend((0..400).map(|k| 11.0 + k as f64 * 0.0025));
+        values.extend((0..400).map(|k| -(11.0 + k as f64 * 0.0025)));
+        values.extend([
+            0.0,
+            -0.0,
+            5e-324,
+            -5e-324,
+            1e-300,
+            12.0,
+            -12.0,
+            12.000000000000002,
+            11.0227,
+            f64::MAX,
+            f64::MIN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            -f64::NAN,
+        ]);
+        while values.len() % LANES != 0 {
+            values.push(0.5);
+        }
+        let lanes: Vec<Lanes> = values
+            .chunks_exact(LANES)
+            .map(|c| c.try_into().unwrap())
+            .collect();
+        let tanh_lanes = TanhLanes::default();
+        for output in [false, true] {
+            let mut y = lanes.clone();
+            if output {
+                tanh_lanes.apply::<true>(&mut y);
+            } else {
+                tanh_lanes.apply::<false>(&mut y);
+            }
+            for (&x, &got) in values.iter().zip(y.as_flattened()) {
+                let expected = if output {
+                    nan_to_zero(tanh(x))
+                } else {
+                    tanh(x)
+                };
+                assert_eq!(got.to_bits(), expected.to_bits(), "{x:e} output {output}");
+            }
+        }
+    }
+
+    /// [`load_live_tiles`] fills whole tiles as [`load_live_tile`] does one by one, for odd
+    /// and even numbers of live inputs, and touches no tile beyond the whole ones.
+    #[test]
+    fn whole_tiles_gather_the_live_inputs_as_single_tiles_do() {
+        let p = 13;
+        for live in [
+            vec![0],
+            vec![2, 3],
+            vec![0, 4, 5, 12],
+            vec![1, 2, 6, 7, 9, 11, 12],
+        ] {
+            for tiles in 0..4 {
+                let x: Vec<f64> = (0..tiles * LANES * p).map(value).collect();
+                let width = live.len();
+                let mut xt = vec![[f64::NAN; LANES]; (tiles + 1) * width];
+                load_live_tiles(&x, p, &live, &mut xt);
+                for k in 0..tiles {
+                    let rows = &x[k * LANES * p..(k + 1) * LANES * p];
+                    let mut tile = vec![[0.0; LANES]; width];
+                    load_live_tile(rows, p, LANES, &live, &mut tile);
+                    let got = &xt[k * width..(k + 1) * width];
+                    assert!(got
+                        .as_flattened()
+                        .iter()
+                        .zip(tile.as_flattened())
+                        .all(|(a, b)| a.to_bits() == b.to_bits()));
+                }
+                assert!(xt[tiles * width..]
+                    .as_flattened()
+                    .iter()
+                    .all(|v| v.is_nan()));
             }
         }
     }

@@ -52,12 +52,24 @@ pub trait BatchController {
     /// Fills `commands[k]` with the command for observation k of `observations`
     /// (`commands.len()` observations back to back).
     fn act_batch(&mut self, observations: &[f64], commands: &mut [MotorCommand]);
+
+    /// True when every command is finite whatever the observations, so that the lockstep
+    /// need not check each one (per creature and tick) for a non-finite value. False
+    /// unless the controller knows.
+    fn commands_always_finite(&self) -> bool {
+        false
+    }
 }
 
 impl BatchController for BrainController {
     #[inline]
     fn act_batch(&mut self, observations: &[f64], commands: &mut [MotorCommand]) {
         BrainController::act_batch(self, observations, commands);
+    }
+
+    #[inline]
+    fn commands_always_finite(&self) -> bool {
+        BrainController::commands_always_finite(self)
     }
 }
 
@@ -139,6 +151,14 @@ impl Lockstep {
             }
             let commands = &mut self.commands[..n];
             controller.act_batch(&self.observations[..n * width], commands);
+            if controller.commands_always_finite() {
+                // Known finite (a brain's commands): nothing to check per world.
+                for (&w, &command) in self.live.iter().zip(commands.iter()) {
+                    debug_assert!(finite_command(command).is_some(), "{command:?}");
+                    worlds[w].apply(i, command);
+                }
+                continue;
+            }
             for (&w, &command) in self.live.iter().zip(commands.iter()) {
                 let command = finite_command(command).unwrap_or_else(|| {
                     invalid[w * k + i] = true;
