@@ -403,8 +403,9 @@ fn wall_blocks(
 
 /// [`wall_blocks`], and when the wall blocks, whether the body touches it at p0
 /// (`circle_touches_segment(p0, r, wall)`, which the test computes anyway): `None` when it
-/// does not block.
-#[inline]
+/// does not block. Inlined: the first test of every move runs it over the walls near the
+/// start, and a call would store the path and its box for each wall.
+#[inline(always)]
 fn wall_block(
     p0: Vec2,
     p1: Vec2,
@@ -1098,19 +1099,25 @@ pub(crate) fn plan_clamped_move_inline(
     }
     // eq. 31.
     let target = start + chord_dir * d.chord;
+    let free = MoveOutcome {
+        pose: Pose {
+            position: target,
+            heading: free_heading,
+        },
+        travelled: d.chord.abs(),
+        ..stay
+    };
+    // Nothing listed near the start (the commonest move): free, as the first test would find,
+    // without setting up its path and box.
+    if blockers.segments.is_empty() && blockers.circles.is_empty() {
+        return free;
+    }
     // The first test goes over every blocker given: the shortlists below would give the same
     // verdict (they leave out only blockers that cannot block any path of the search), and
     // most moves are free, so they are built only for a search.
     let (cause, first_wall) = first_verdict(start, target, radius, blockers);
     if cause == Verdict::Free {
-        return MoveOutcome {
-            pose: Pose {
-                position: target,
-                heading: free_heading,
-            },
-            travelled: d.chord.abs(),
-            ..stay
-        };
+        return free;
     }
     let steps = params.search_steps;
     if first_wall.is_some_and(|f| {

@@ -60,7 +60,7 @@ use crate::sim::gadgets::{Actor, Door, Effect, Flyer, Role, Strategy, Teleporter
 use crate::sim::grid::{Scratch, StaticIndex};
 use crate::sim::metabolism::Decay;
 use crate::sim::motion::{
-    clamp_rpt, plan_clamped_move_inline, plan_move, Blockers, MotionParams, MoveOutcome, Pose,
+    clamp_rpt, plan_clamped_move_inline, plan_move, Blockers, MotionParams, Pose,
 };
 use crate::sim::noise::Noise;
 use crate::sim::placement::{place_creatures, place_objects, PlacementError};
@@ -671,8 +671,7 @@ impl World {
             self.creatures[creature].alive,
             "World::apply on a dead creature"
         );
-        let outcome = self.move_creature(creature, command);
-        self.contacts(creature, &outcome);
+        self.move_and_contact(creature, command);
     }
 
     /// Phase 4 of the tick (see [`World::begin_tick`] for the order): the tick counter
@@ -796,9 +795,11 @@ impl World {
         }
     }
 
-    /// Phase 2.3: clamp the motors and move creature `i`, blocked by walls and by the other
-    /// living creatures.
-    fn move_creature(&mut self, i: usize, command: MotorCommand) -> MoveOutcome {
+    /// Phases 2.3 to 2.5: clamp the motors and move creature `i`, blocked by walls and by the
+    /// other living creatures, then its contacts: eating, shock and metabolism. One function,
+    /// so that the creature is looked up once for its move and its contacts.
+    #[inline(always)]
+    fn move_and_contact(&mut self, i: usize, command: MotorCommand) {
         let rules = &self.rules;
         let command = MotorCommand {
             left: clamp_motor(command.left, rules.motion.max_rpt),
@@ -835,7 +836,81 @@ impl World {
         c.travelled += outcome.travelled;
         c.command = command;
         c.blocked = outcome.blocked;
-        outcome
+        // Phases 2.4 and 2.5: eating, shock and metabolism of the creature after its move.
+        //
+        // The food and aversive objects the body may touch come from the list of its cell in
+        // `mover_cells` when it ends in one (see [`MoverCells::with_contacts`]), else from the
+        // grid: both hold every object it touches, and each is tested as before, in food order.
+        let position = outcome.pose.position;
+        let eats = match rules.eating {
+            Eating::Contact => true,
+            Eating::Action => command.eat > 0.5,
+        };
+        let cell = match &self.mover_cells {
+            Some(cells) if !rules.brute_force => cells.cell_of(position).map(|k| {
+                self.last_cell[i] = (position, k);
+                (cells, cells.lists[k])
+            }),
+            _ => None,
+        };
+        let mut received = [0.0; 4];
+        if eats {
+            // Bites in food list order: `received` adds floats.
+            let near: &[u32] = if let Some((cells, lists)) = cell {
+                cells.food(lists)
+            } else {
+                let (lo, hi) = (position - radius, position + radius);
+                if rules.brute_force {
+                    self.scratch.food.clear();
+                    self.scratch.food.extend(0..self.food.len() as u32);
+                } else {
+                    let food = &self.food;
+                    self.index.food_where(lo, hi, &mut self.scratch, |k| {
+                        circles_touch(position, radius, food[k].position, food[k].radius)
+                    });
+                }
+                &self.scratch.food
+            };
+            for &k in near {
+                let f = &mut self.food[k as usize];
+                if circles_touch(position, radius, f.position, f.radius) {
+                    for (r, g) in received.iter_mut().zip(f.take_bite()) {
+                        *r += g;
+                    }
+                    if !self.listed[k as usize] && f.regrows_now() {
+                        self.listed[k as usize] = true;
+                        self.regrowing.push(k);
+                    }
+                }
+            }
+        }
+        for (e, r) in c.eaten.iter_mut().zip(received) {
+            *e += r;
+        }
+        let touches = |a: &Aversive| circles_touch(position, radius, a.position, a.radius);
+        let aversive = if rules.brute_force {
+            self.aversives.iter().any(touches)
+        } else if let Some((cells, lists)) = cell {
+            cells
+                .aversives(lists)
+                .iter()
+                .any(|&a| touches(&self.aversives[a as usize]))
+        } else {
+            let (lo, hi) = (position - radius, position + radius);
+            self.index
+                .any_aversive(lo, hi, |k| touches(&self.aversives[k]))
+        };
+        c.shocked = aversive || (rules.wall_shock && outcome.blocked_by_wall);
+        rules
+            .decay
+            .apply(&mut c.metabolism, &received, outcome.travelled);
+        c.age += 1;
+        if c.shocked {
+            c.shock_ticks += 1;
+        }
+        if rules.gadgets {
+            self.gadget_contacts(i);
+        }
     }
 
     /// `blockers`: the bodies that may block creature `i`'s move, every other living
@@ -935,87 +1010,6 @@ impl World {
         self.index
             .blocking_near(start, travel, self.body.radius, felt, &mut self.scratch);
         NearWalls::Scratch
-    }
-
-    /// Phases 2.4 and 2.5: eating, shock and metabolism of creature `i` after its move.
-    ///
-    /// The food and aversive objects the body may touch come from the list of its cell in
-    /// `mover_cells` when it ends in one (see [`MoverCells::with_contacts`]), else from the
-    /// grid: both hold every object it touches, and each is tested as before, in food order.
-    fn contacts(&mut self, i: usize, outcome: &MoveOutcome) {
-        let rules = &self.rules;
-        let c = &mut self.creatures[i];
-        let position = c.pose.position;
-        let radius = rules.radius;
-        let eats = match rules.eating {
-            Eating::Contact => true,
-            Eating::Action => c.command.eat > 0.5,
-        };
-        let cell = match &self.mover_cells {
-            Some(cells) if !rules.brute_force => cells.cell_of(position).map(|k| {
-                self.last_cell[i] = (position, k);
-                (cells, cells.lists[k])
-            }),
-            _ => None,
-        };
-        let mut received = [0.0; 4];
-        if eats {
-            // Bites in food list order: `received` adds floats.
-            let near: &[u32] = if let Some((cells, lists)) = cell {
-                cells.food(lists)
-            } else {
-                let (lo, hi) = (position - radius, position + radius);
-                if rules.brute_force {
-                    self.scratch.food.clear();
-                    self.scratch.food.extend(0..self.food.len() as u32);
-                } else {
-                    let food = &self.food;
-                    self.index.food_where(lo, hi, &mut self.scratch, |k| {
-                        circles_touch(position, radius, food[k].position, food[k].radius)
-                    });
-                }
-                &self.scratch.food
-            };
-            for &k in near {
-                let f = &mut self.food[k as usize];
-                if circles_touch(position, radius, f.position, f.radius) {
-                    for (r, g) in received.iter_mut().zip(f.take_bite()) {
-                        *r += g;
-                    }
-                    if !self.listed[k as usize] && f.regrows_now() {
-                        self.listed[k as usize] = true;
-                        self.regrowing.push(k);
-                    }
-                }
-            }
-        }
-        for (e, r) in c.eaten.iter_mut().zip(received) {
-            *e += r;
-        }
-        let touches = |a: &Aversive| circles_touch(position, radius, a.position, a.radius);
-        let aversive = if rules.brute_force {
-            self.aversives.iter().any(touches)
-        } else if let Some((cells, lists)) = cell {
-            cells
-                .aversives(lists)
-                .iter()
-                .any(|&a| touches(&self.aversives[a as usize]))
-        } else {
-            let (lo, hi) = (position - radius, position + radius);
-            self.index
-                .any_aversive(lo, hi, |k| touches(&self.aversives[k]))
-        };
-        c.shocked = aversive || (rules.wall_shock && outcome.blocked_by_wall);
-        rules
-            .decay
-            .apply(&mut c.metabolism, &received, outcome.travelled);
-        c.age += 1;
-        if c.shocked {
-            c.shock_ticks += 1;
-        }
-        if rules.gadgets {
-            self.gadget_contacts(i);
-        }
     }
 
     /// Phase 2.6: teleporters, door triggers and predators meet creature `i`.
@@ -1519,10 +1513,19 @@ fn free_pose(
 /// stays finite, as motion does.
 #[inline]
 fn clamp_motor(x: f64, max_rpt: f64) -> f64 {
+    // `f64::clamp`'s steps without its check that -max_rpt <= max_rpt, which the
+    // specification's validation settles once (max_rpt is a number >= 0): the same bits.
     if x.is_nan() {
         0.0
     } else {
-        x.clamp(-max_rpt, max_rpt)
+        let mut x = x;
+        if x < -max_rpt {
+            x = -max_rpt;
+        }
+        if x > max_rpt {
+            x = max_rpt;
+        }
+        x
     }
 }
 
