@@ -468,8 +468,9 @@ fn verdict(p0: Vec2, p1: Vec2, radius: f64, blockers: &Blockers) -> Verdict {
 
 /// [`verdict`] over every blocker, and for a wall verdict, which wall answered (its index
 /// in `blockers.segments`) and whether the body touches it at p0: the first test of a move,
-/// whose search can then skip that wall's start test.
-#[inline]
+/// whose search can then skip that wall's start test. Inlined into the move: called, it
+/// would set up a frame and take the blockers and its answer through memory.
+#[inline(always)]
 fn first_verdict(
     p0: Vec2,
     p1: Vec2,

@@ -230,6 +230,9 @@ struct CreatureRules {
     bodies: bool,
     /// The world has doors: walls besides the fixed ones may stand.
     doors: bool,
+    /// The world has aversive objects (none is added during a trial): without any, the
+    /// contacts phase does not look for them.
+    aversives: bool,
 }
 
 /// A world and a creature specification validated together: the proof [`World::build`] asks
@@ -498,6 +501,7 @@ impl World {
                 && flyers.is_empty()),
             bodies: creatures > 1 || !things.is_empty(),
             doors: !doors.is_empty(),
+            aversives: !objects.aversives.is_empty(),
         };
         Ok(World {
             tick: 0,
@@ -847,10 +851,18 @@ impl World {
             Eating::Action => command.eat > 0.5,
         };
         let cell = match &self.mover_cells {
-            Some(cells) if !rules.brute_force => cells.cell_of(position).map(|k| {
-                self.last_cell[i] = (position, k);
-                (cells, cells.lists[k])
-            }),
+            Some(cells) if !rules.brute_force => {
+                // A body that ended where it started (most often pushed against a wall) is in
+                // the cell its move's walls came from: that cell is the start's.
+                let k = match near {
+                    NearWalls::Cell(k) if position == start => Some(k),
+                    _ => cells.cell_of(position),
+                };
+                k.map(|k| {
+                    self.last_cell[i] = (position, k);
+                    (cells, cells.lists[k])
+                })
+            }
             _ => None,
         };
         let mut received = [0.0; 4];
@@ -888,7 +900,9 @@ impl World {
             *e += r;
         }
         let touches = |a: &Aversive| circles_touch(position, radius, a.position, a.radius);
-        let aversive = if rules.brute_force {
+        let aversive = if !rules.aversives {
+            false
+        } else if rules.brute_force {
             self.aversives.iter().any(touches)
         } else if let Some((cells, lists)) = cell {
             cells
