@@ -275,13 +275,15 @@ fn k_cos0(x: f64) -> f64 {
     const C4: f64 = f64::from_bits(0xBE927E4F_809C52AD); // -2.75573143513906633035e-7
     const C5: f64 = f64::from_bits(0x3E21EE9E_BDB4B1C4); // 2.08757232129817482790e-9
     const C6: f64 = f64::from_bits(0xBDA8FAE9_BE8838D4); // -1.13596475577881948265e-11
-    let y = 0.0;
     let z = x * x;
     let w = z * z;
     let r = z * (C1 + z * (C2 + z * C3)) + w * w * (C4 + z * (C5 + z * C6));
     let hz = 0.5 * z;
     let w = 1.0 - hz;
-    w + (((1.0 - w) - hz) + (z * r - x * y))
+    // libm subtracts x·y with the tail y = 0: ±0, which leaves z·r as it is unless z·r is
+    // -0. Here 2⁻²⁷·√2 ≤ |x| ≤ π/4, so z ≥ 2⁻⁵³ and r ≈ C1·z are positive normal numbers,
+    // and so is z·r: the term is left out (LLVM, keeping IEEE semantics, cannot).
+    w + (((1.0 - w) - hz) + z * r)
 }
 
 /// 2⁻²⁶: from here on `libm::sincos` and `libm::sin`, `libm::cos` run the same code, and
@@ -304,8 +306,17 @@ fn normalise(v: Vec2) -> Vec2 {
     if len > 0.0 {
         v / len
     } else {
-        v
+        unscaled(v)
     }
+}
+
+/// `normalise` of a vector of length 0 (or NaN): itself. Out of line and cold, so that the
+/// length test stays a branch, which never misses on a heading, instead of a select that
+/// costs a mask built from the comparison on every rotation.
+#[cold]
+#[inline(never)]
+fn unscaled(v: Vec2) -> Vec2 {
+    v
 }
 
 /// sin(x)/x, continuous through 0 (see the module docs), and libm's sin(x) and cos(x) when sin
@@ -1158,7 +1169,7 @@ pub(crate) fn plan_clamped_move_inline(
         free_heading,
         radius,
         params,
-        blockers,
+        *blockers,
         cause,
         first_wall,
     )
@@ -1187,10 +1198,12 @@ fn blocked_move(
     free_heading: Vec2,
     radius: f64,
     params: &MotionParams,
-    blockers: &Blockers,
+    blockers: Blockers<'_>,
     cause: Verdict,
     first_wall: Option<FirstWall>,
 ) -> MoveOutcome {
+    // Taken by value: a move that is not blocked then keeps its blockers in registers.
+    let blockers = &blockers;
     let start = pose.position;
     // Every path the search tests runs from `start` to a point of the box of start → target
     // (a midpoint of two points of the box is in the box), so a blocker that cannot block
