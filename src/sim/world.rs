@@ -147,9 +147,8 @@ pub struct World {
     /// Per-cell lists of the fixed walls a creature's move may reach (see [`MoverCells`]).
     mover_cells: Option<MoverCells>,
     /// Per creature, where its last contacts phase found its body and the cell of
-    /// `mover_cells` it was in: its next move most often starts there, and the cell is a
-    /// function of the position alone. NaN (matching no position) until then.
-    last_cell: Vec<(Vec2, usize)>,
+    /// `mover_cells` it was in (see [`LastCell`]).
+    last_cell: Vec<LastCell>,
     /// Sense, eat and regenerate with plain loops over every object instead of the grid and
     /// the list of regrowing food (the reference the tests compare the grid against).
     brute_force: bool,
@@ -515,7 +514,7 @@ impl World {
             index,
             scratch,
             mover_cells,
-            last_cell: vec![(Vec2::NAN, 0); creatures],
+            last_cell: vec![LastCell::NONE; creatures],
             brute_force: false,
             creatures: poses
                 .into_iter()
@@ -852,16 +851,21 @@ impl World {
         };
         let cell = match &self.mover_cells {
             Some(cells) if !rules.brute_force => {
-                // A body that ended where it started (most often pushed against a wall) is in
-                // the cell its move's walls came from: that cell is the start's.
-                let k = match near {
-                    NearWalls::Cell(k) if position == start => Some(k),
-                    _ => cells.cell_of(position),
+                let last = &mut self.last_cell[i];
+                let f = cells.grid_coordinates(position);
+                // Most moves end in the cell they started in (cells are far wider than a
+                // tick's move): its range settles it without the index computation.
+                let k = if last.holds(f) {
+                    last.at = position;
+                    Some(last.cell)
+                } else {
+                    let k = cells.cell_at(f);
+                    if let Some(k) = k {
+                        *last = LastCell::new(position, k, f);
+                    }
+                    k
                 };
-                k.map(|k| {
-                    self.last_cell[i] = (position, k);
-                    (cells, cells.lists[k])
-                })
+                k.map(|k| (cells, cells.lists[k]))
             }
             _ => None,
         };
@@ -978,9 +982,9 @@ impl World {
                 debug_assert!(
                     self.travel_bound(command.left.abs().max(command.right.abs())) <= cells.travel
                 );
-                let (at, k) = self.last_cell[i];
-                if at == start {
-                    return NearWalls::Cell(k);
+                let last = self.last_cell[i];
+                if last.at == start {
+                    return NearWalls::Cell(last.cell);
                 }
                 if let Some(k) = cells.cell_of(start) {
                     return NearWalls::Cell(k);
@@ -1011,9 +1015,9 @@ impl World {
         }
         if let Some(cells) = &self.mover_cells {
             if felt.len() == self.walls.fixed_count() && travel <= cells.travel {
-                if let Some((at, k)) = creature.map(|i| self.last_cell[i]) {
-                    if at == start {
-                        return NearWalls::Cell(k);
+                if let Some(last) = creature.map(|i| self.last_cell[i]) {
+                    if last.at == start {
+                        return NearWalls::Cell(last.cell);
                     }
                 }
                 if let Some(k) = cells.cell_of(start) {
@@ -1574,6 +1578,50 @@ impl NearWalls {
     }
 }
 
+/// Where a creature's last contacts phase found its body: its position and the cell of
+/// `mover_cells` it was in. Its next move most often starts there (the cell is a function of
+/// the position alone), and most often ends in the same cell.
+#[derive(Debug, Clone, Copy)]
+struct LastCell {
+    /// The position; NaN (matching no position) until the first contacts in the grid.
+    at: Vec2,
+    /// Its cell.
+    cell: usize,
+    /// The cell's grid coordinates (see [`MoverCells::grid_coordinates`]): the points of
+    /// the cell are those with coordinates in [lo, hi), hi = lo + 1. NaN (holding none)
+    /// until then.
+    lo: Vec2,
+    hi: Vec2,
+}
+
+impl LastCell {
+    const NONE: LastCell = LastCell {
+        at: Vec2::NAN,
+        cell: 0,
+        lo: Vec2::NAN,
+        hi: Vec2::NAN,
+    };
+
+    /// Do grid coordinates `f` lie in the cell? Then [`MoverCells::cell_at`] gives it: its
+    /// conversions truncate each coordinate to `lo`'s (small integers, exact as floats).
+    #[inline]
+    fn holds(&self, f: Vec2) -> bool {
+        (f.x >= self.lo.x) & (f.y >= self.lo.y) & (f.x < self.hi.x) & (f.y < self.hi.y)
+    }
+
+    /// A body at `at`, in cell `cell` (of [`MoverCells::cell_at`]) at grid coordinates `f`.
+    #[inline]
+    fn new(at: Vec2, cell: usize, f: Vec2) -> LastCell {
+        let lo = Vec2::new(f.x as u32 as f64, f.y as u32 as f64);
+        LastCell {
+            at,
+            cell,
+            lo,
+            hi: lo + 1.0,
+        }
+    }
+}
+
 /// Most cells of [`MoverCells`] along each axis. Finer cells list fewer walls per move but
 /// cost more to build, once per trial world: on `experiments/foraging.toml` without common
 /// random numbers (a world built per trial), 16 cells a side cost 1,377M instructions a
@@ -1778,8 +1826,24 @@ impl MoverCells {
     /// The cell `p` lies in, `None` outside the grid (or not finite).
     #[inline]
     fn cell_of(&self, p: Vec2) -> Option<usize> {
-        let fx = (p.x - self.origin.x) * self.inv_cell;
-        let fy = (p.y - self.origin.y) * self.inv_cell;
+        self.cell_at(self.grid_coordinates(p))
+    }
+
+    /// `p` in cell units from the grid's origin: cell (x, y) holds the points whose
+    /// coordinates lie in [x, x + 1) × [y, y + 1).
+    #[inline]
+    fn grid_coordinates(&self, p: Vec2) -> Vec2 {
+        Vec2::new(
+            (p.x - self.origin.x) * self.inv_cell,
+            (p.y - self.origin.y) * self.inv_cell,
+        )
+    }
+
+    /// The cell at grid coordinates `f` ([`MoverCells::grid_coordinates`]), `None` outside
+    /// the grid (or not finite).
+    #[inline]
+    fn cell_at(&self, f: Vec2) -> Option<usize> {
+        let (fx, fy) = (f.x, f.y);
         if fx >= 0.0 && fy >= 0.0 && fx < self.nx_f && fy < self.ny_f {
             // Both are below MOVER_CELLS: the conversion to u32 truncates as the one to
             // usize would, in fewer instructions.
