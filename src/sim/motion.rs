@@ -1266,6 +1266,46 @@ mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};
 
+    /// `normalise` (its zero-length case out of line) gives the plain select's bits: zero
+    /// and NaN vectors unchanged, every other one divided by its length.
+    #[test]
+    fn normalise_is_the_plain_select() {
+        let plain = |v: Vec2| {
+            let len = v.length();
+            if len > 0.0 {
+                v / len
+            } else {
+                v
+            }
+        };
+        let same =
+            |a: Vec2, b: Vec2| a.x.to_bits() == b.x.to_bits() && a.y.to_bits() == b.y.to_bits();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        let mut vs = vec![
+            Vec2::ZERO,
+            Vec2::new(-0.0, 0.0),
+            Vec2::new(0.0, -0.0),
+            Vec2::NAN,
+            Vec2::new(f64::NAN, 1.0),
+            Vec2::new(f64::INFINITY, 1.0),
+            Vec2::new(5e-324, 0.0),
+            Vec2::new(1e300, 1e300),
+        ];
+        for _ in 0..10_000 {
+            vs.push(Vec2::new(
+                rng.gen_range(-2.0..2.0),
+                rng.gen_range(-2.0..2.0),
+            ));
+            vs.push(Vec2::new(
+                f64::from_bits(rng.gen::<u64>()),
+                f64::from_bits(rng.gen::<u64>()),
+            ));
+        }
+        for v in vs {
+            assert!(same(normalise(v), plain(v)), "{v:?}");
+        }
+    }
+
     /// The inlined kernels give `libm::sincos`'s bits, and `libm::sin`'s and `libm::cos`'s,
     /// on random arguments of every magnitude a turn can have, at the thresholds of the
     /// shortcut (2⁻²⁷·√2 and π/4, as libm's high words see them) and on special values.

@@ -1872,3 +1872,110 @@ impl MoverCells {
         &self.aversives[lists.aversives.0 as usize..lists.aversives.1 as usize]
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng as _, SeedableRng};
+
+    /// A float next to `x` (`d` = ±1 step of its bits, finite nonzero `x`).
+    fn step(x: f64, d: i64) -> f64 {
+        let up = (x > 0.0) == (d > 0);
+        let bits = x.to_bits();
+        f64::from_bits(if up { bits + 1 } else { bits - 1 })
+    }
+
+    /// The range kept in [`LastCell`] agrees with [`MoverCells::cell_of`]: every point it
+    /// holds is in its cell, on random points near and on the cells' edges (as computed),
+    /// inside and outside the grid.
+    #[test]
+    fn last_cell_range_agrees_with_cell_of() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        for _ in 0..50 {
+            let mut walls = Vec::new();
+            for _ in 0..rng.gen_range(1..8) {
+                let p = |rng: &mut rand_chacha::ChaCha8Rng| {
+                    Vec2::new(rng.gen_range(-50.0..350.0), rng.gen_range(-50.0..350.0))
+                };
+                walls.push(BoxedSegment::new(Segment::new(p(&mut rng), p(&mut rng))));
+            }
+            let travel = rng.gen_range(0.5..8.0);
+            let radius = rng.gen_range(0.5..10.0);
+            let cells = MoverCells::build(&walls, travel, radius).expect("finite walls");
+            let cell = 1.0 / cells.inv_cell;
+            let mut last = LastCell::NONE;
+            assert!(!last.holds(Vec2::ZERO));
+            for _ in 0..2_000 {
+                // A point near a cell corner of the grid (or beyond it), or anywhere.
+                let mut p = if rng.gen_bool(0.5) {
+                    let cx = rng.gen_range(-2..cells.nx as i64 + 2) as f64;
+                    let cy = rng.gen_range(-2..cells.ny_f as i64 + 2) as f64;
+                    cells.origin + Vec2::new(cx, cy) * cell
+                } else {
+                    Vec2::new(rng.gen_range(-400.0..700.0), rng.gen_range(-400.0..700.0))
+                };
+                if rng.gen_bool(0.5) && p.x != 0.0 {
+                    p.x = step(p.x, if rng.gen_bool(0.5) { 1 } else { -1 });
+                }
+                if rng.gen_bool(0.5) && p.y != 0.0 {
+                    p.y = step(p.y, if rng.gen_bool(0.5) { 1 } else { -1 });
+                }
+                let f = cells.grid_coordinates(p);
+                let k = cells.cell_of(p);
+                assert_eq!(cells.cell_at(f), k);
+                if last.holds(f) {
+                    assert_eq!(k, Some(last.cell), "{p:?} held by the range of {last:?}");
+                }
+                if let Some(k) = k {
+                    last = LastCell::new(p, k, f);
+                    assert!(last.holds(f), "{p:?} not held by its own cell's range");
+                }
+            }
+        }
+    }
+
+    /// Motor clamping gives `f64::clamp`'s bits (NaN as 0) for every bound the
+    /// specification allows (a number ≥ 0, ±0 included) and every kind of signal.
+    #[test]
+    fn clamp_motor_is_f64_clamp() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let bounds = [0.0, 0.25, 1.0, 1e300, f64::INFINITY, f64::MIN_POSITIVE];
+        let special = [
+            0.0,
+            -0.0,
+            0.25,
+            -0.25,
+            1.0,
+            -1.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            5e-324,
+        ];
+        let check = |x: f64, m: f64| {
+            let want = if x.is_nan() { 0.0 } else { x.clamp(-m, m) };
+            assert_eq!(
+                clamp_motor(x, m).to_bits(),
+                want.to_bits(),
+                "{x:e} to ±{m:e}"
+            );
+        };
+        for &m in &bounds {
+            for &x in &special {
+                check(x, m);
+            }
+            if m > 0.0 && m.is_finite() {
+                check(step(m, 1), m);
+                check(step(m, -1), m);
+                check(-step(m, 1), m);
+                check(-step(m, -1), m);
+            }
+            for _ in 0..10_000 {
+                check(rng.gen_range(-2.0..2.0), m);
+                check(f64::from_bits(rng.gen::<u64>()), m);
+            }
+        }
+    }
+}
