@@ -1162,7 +1162,7 @@ pub(crate) fn plan_clamped_move_inline(
             blocked_by_wall: true,
         };
     }
-    blocked_move(
+    let searched = blocked_move(
         pose,
         target,
         d,
@@ -1172,7 +1172,15 @@ pub(crate) fn plan_clamped_move_inline(
         *blockers,
         cause,
         first_wall,
-    )
+    );
+    // Rebuilt (a blocked move is blocked): returned whole, the search's outcome would be
+    // written straight into the caller's, which would then live in memory on every path,
+    // the free move's too.
+    debug_assert!(searched.blocked);
+    MoveOutcome {
+        blocked: true,
+        ..searched
+    }
 }
 
 /// The search's box test of [`blocked_move`]: the box of start → target lies within ±1e300
