@@ -855,17 +855,16 @@ impl World {
                 let f = cells.grid_coordinates(position);
                 // Most moves end in the cell they started in (cells are far wider than a
                 // tick's move): its range settles it without the index computation.
-                let k = if last.holds(f) {
+                let lists = if last.holds(f) {
                     last.at = position;
-                    Some(last.cell)
+                    Some(last.lists)
                 } else {
-                    let k = cells.cell_at(f);
-                    if let Some(k) = k {
-                        *last = LastCell::new(position, k, f);
-                    }
-                    k
+                    cells.cell_at(f).map(|k| {
+                        *last = LastCell::new(position, cells.lists[k], f);
+                        last.lists
+                    })
                 };
-                k.map(|k| (cells, cells.lists[k]))
+                lists.map(|lists| (cells, lists))
             }
             _ => None,
         };
@@ -984,10 +983,10 @@ impl World {
                 );
                 let last = self.last_cell[i];
                 if last.at == start {
-                    return NearWalls::Cell(last.cell);
+                    return NearWalls::Cell(last.lists);
                 }
                 if let Some(k) = cells.cell_of(start) {
-                    return NearWalls::Cell(k);
+                    return NearWalls::Cell(cells.lists[k]);
                 }
             }
         }
@@ -1017,11 +1016,11 @@ impl World {
             if felt.len() == self.walls.fixed_count() && travel <= cells.travel {
                 if let Some(last) = creature.map(|i| self.last_cell[i]) {
                     if last.at == start {
-                        return NearWalls::Cell(last.cell);
+                        return NearWalls::Cell(last.lists);
                     }
                 }
                 if let Some(k) = cells.cell_of(start) {
-                    return NearWalls::Cell(k);
+                    return NearWalls::Cell(cells.lists[k]);
                 }
             }
         }
@@ -1561,8 +1560,8 @@ fn travel_bound(wheel: f64, rpt: f64) -> f64 {
 /// Where [`World::walls_near`] put the walls of one move.
 #[derive(Clone, Copy)]
 enum NearWalls {
-    /// The list of this cell of `mover_cells`.
-    Cell(usize),
+    /// The list of the cell of `mover_cells` with these lists.
+    Cell(CellLists),
     /// `scratch.blocking`.
     Scratch,
 }
@@ -1572,7 +1571,7 @@ impl NearWalls {
     #[inline]
     fn walls<'a>(self, cells: &'a Option<MoverCells>, scratch: &'a Scratch) -> &'a [Segment] {
         match (self, cells) {
-            (NearWalls::Cell(k), Some(cells)) => cells.walls(k),
+            (NearWalls::Cell(lists), Some(cells)) => cells.walls(lists),
             _ => &scratch.blocking,
         }
     }
@@ -1585,8 +1584,9 @@ impl NearWalls {
 struct LastCell {
     /// The position; NaN (matching no position) until the first contacts in the grid.
     at: Vec2,
-    /// Its cell.
-    cell: usize,
+    /// A copy of its cell's `MoverCells::lists` record, which the move and the contacts
+    /// read: no lookup (and no bounds check) in the grid's records.
+    lists: CellLists,
     /// The cell's grid coordinates (see [`MoverCells::grid_coordinates`]): the points of
     /// the cell are those with coordinates in [lo, hi), hi = lo + 1. NaN (holding none)
     /// until then.
@@ -1597,7 +1597,11 @@ struct LastCell {
 impl LastCell {
     const NONE: LastCell = LastCell {
         at: Vec2::NAN,
-        cell: 0,
+        lists: CellLists {
+            walls: (0, 0),
+            food: (0, 0),
+            aversives: (0, 0),
+        },
         lo: Vec2::NAN,
         hi: Vec2::NAN,
     };
@@ -1609,13 +1613,14 @@ impl LastCell {
         (f.x >= self.lo.x) & (f.y >= self.lo.y) & (f.x < self.hi.x) & (f.y < self.hi.y)
     }
 
-    /// A body at `at`, in cell `cell` (of [`MoverCells::cell_at`]) at grid coordinates `f`.
+    /// A body at `at`, in the cell (of [`MoverCells::cell_at`]) with lists `lists`, at grid
+    /// coordinates `f`.
     #[inline]
-    fn new(at: Vec2, cell: usize, f: Vec2) -> LastCell {
+    fn new(at: Vec2, lists: CellLists, f: Vec2) -> LastCell {
         let lo = Vec2::new(f.x as u32 as f64, f.y as u32 as f64);
         LastCell {
             at,
-            cell,
+            lists,
             lo,
             hi: lo + 1.0,
         }
@@ -1853,11 +1858,10 @@ impl MoverCells {
         }
     }
 
-    /// Cell `k`'s walls.
+    /// The walls of the cell of `lists`.
     #[inline]
-    fn walls(&self, k: usize) -> &[Segment] {
-        let (a, b) = self.lists[k].walls;
-        &self.walls[a as usize..b as usize]
+    fn walls(&self, lists: CellLists) -> &[Segment] {
+        &self.walls[lists.walls.0 as usize..lists.walls.1 as usize]
     }
 
     /// The food objects a body centred in the cell of `lists` may touch, in food order.
@@ -1924,11 +1928,15 @@ mod tests {
                 let k = cells.cell_of(p);
                 assert_eq!(cells.cell_at(f), k);
                 if last.holds(f) {
-                    assert_eq!(k, Some(last.cell), "{p:?} held by the range of {last:?}");
+                    // The cell whose range it is: cells are numbered row by row.
+                    let cell = last.lo.y as usize * cells.nx + last.lo.x as usize;
+                    assert_eq!(k, Some(cell), "{p:?} held by the range of {last:?}");
                 }
                 if let Some(k) = k {
-                    last = LastCell::new(p, k, f);
+                    last = LastCell::new(p, cells.lists[k], f);
                     assert!(last.holds(f), "{p:?} not held by its own cell's range");
+                    let cell = last.lo.y as usize * cells.nx + last.lo.x as usize;
+                    assert_eq!(k, cell, "{p:?}: {last:?}");
                 }
             }
         }
