@@ -1163,9 +1163,11 @@ pub(crate) fn plan_clamped_move_inline(
         };
     }
     let searched = blocked_move(
-        pose,
+        start,
+        pose.heading,
         target,
-        d,
+        d.phi,
+        d.chord,
         free_heading,
         radius,
         params,
@@ -1194,15 +1196,20 @@ fn box_is_safe(start: Vec2, target: Vec2) -> bool {
 /// Coordinates beyond which the search's midpoints could overflow.
 const SAFE: f64 = 1e300;
 
-/// The rest of [`plan_clamped_move`] for a move whose planned path from `pose.position` to
-/// `target` is not admissible (`cause`, and `first_wall` from [`first_verdict`]): the search
-/// of eq. 37 and the heading of eq. 34–35 (`free_heading` with slippery walls).
+/// The rest of [`plan_clamped_move`] for a move from `start`, facing `heading`, whose planned
+/// path to `target` is not admissible (`cause`, and `first_wall` from [`first_verdict`]): the
+/// search of eq. 37 and the heading of eq. 34–35 for the drive's turn `phi` and chord `chord`
+/// (`free_heading` with slippery walls). The pose and drive come as vectors and numbers,
+/// which the call passes in registers: as structs they would be copied to memory on every
+/// move, blocked or not.
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn blocked_move(
-    pose: Pose,
+    start: Vec2,
+    heading: Vec2,
     target: Vec2,
-    d: Drive,
+    phi: f64,
+    chord: f64,
     free_heading: Vec2,
     radius: f64,
     params: &MotionParams,
@@ -1212,7 +1219,6 @@ fn blocked_move(
 ) -> MoveOutcome {
     // Taken by value: a move that is not blocked then keeps its blockers in registers.
     let blockers = &blockers;
-    let start = pose.position;
     // Every path the search tests runs from `start` to a point of the box of start → target
     // (a midpoint of two points of the box is in the box), so a blocker that cannot block
     // any path within that box is left out of every test. The box must be finite and far from
@@ -1255,8 +1261,8 @@ fn blocked_move(
         free_heading
     } else {
         // eq. 34 with |M| (d_I is a distance), then eq. 35–36.
-        let fraction = (travelled / d.chord.abs()).min(1.0);
-        normalise(rotate(pose.heading, fraction * d.phi))
+        let fraction = (travelled / chord.abs()).min(1.0);
+        normalise(rotate(heading, fraction * phi))
     };
     MoveOutcome {
         pose: Pose {
