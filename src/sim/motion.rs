@@ -275,13 +275,15 @@ fn k_cos0(x: f64) -> f64 {
     const C4: f64 = f64::from_bits(0xBE927E4F_809C52AD); // -2.75573143513906633035e-7
     const C5: f64 = f64::from_bits(0x3E21EE9E_BDB4B1C4); // 2.08757232129817482790e-9
     const C6: f64 = f64::from_bits(0xBDA8FAE9_BE8838D4); // -1.13596475577881948265e-11
-    let y = 0.0;
     let z = x * x;
     let w = z * z;
     let r = z * (C1 + z * (C2 + z * C3)) + w * w * (C4 + z * (C5 + z * C6));
     let hz = 0.5 * z;
     let w = 1.0 - hz;
-    w + (((1.0 - w) - hz) + (z * r - x * y))
+    // libm subtracts x·y with the tail y = 0: ±0, which leaves z·r as it is unless z·r is
+    // -0. Here 2⁻²⁷·√2 ≤ |x| ≤ π/4, so z ≥ 2⁻⁵³ and r ≈ C1·z are positive normal numbers,
+    // and so is z·r: the term is left out (LLVM, keeping IEEE semantics, cannot).
+    w + (((1.0 - w) - hz) + z * r)
 }
 
 /// 2⁻²⁶: from here on `libm::sincos` and `libm::sin`, `libm::cos` run the same code, and
@@ -304,8 +306,17 @@ fn normalise(v: Vec2) -> Vec2 {
     if len > 0.0 {
         v / len
     } else {
-        v
+        unscaled(v)
     }
+}
+
+/// `normalise` of a vector of length 0 (or NaN): itself. Out of line and cold, so that the
+/// length test stays a branch, which never misses on a heading, instead of a select that
+/// costs a mask built from the comparison on every rotation.
+#[cold]
+#[inline(never)]
+fn unscaled(v: Vec2) -> Vec2 {
+    v
 }
 
 /// sin(x)/x, continuous through 0 (see the module docs), and libm's sin(x) and cos(x) when sin
@@ -403,8 +414,9 @@ fn wall_blocks(
 
 /// [`wall_blocks`], and when the wall blocks, whether the body touches it at p0
 /// (`circle_touches_segment(p0, r, wall)`, which the test computes anyway): `None` when it
-/// does not block.
-#[inline]
+/// does not block. Inlined: the first test of every move runs it over the walls near the
+/// start, and a call would store the path and its box for each wall.
+#[inline(always)]
 fn wall_block(
     p0: Vec2,
     p1: Vec2,
@@ -467,8 +479,9 @@ fn verdict(p0: Vec2, p1: Vec2, radius: f64, blockers: &Blockers) -> Verdict {
 
 /// [`verdict`] over every blocker, and for a wall verdict, which wall answered (its index
 /// in `blockers.segments`) and whether the body touches it at p0: the first test of a move,
-/// whose search can then skip that wall's start test.
-#[inline]
+/// whose search can then skip that wall's start test. Inlined into the move: called, it
+/// would set up a frame and take the blockers and its answer through memory.
+#[inline(always)]
 fn first_verdict(
     p0: Vec2,
     p1: Vec2,
@@ -1098,19 +1111,25 @@ pub(crate) fn plan_clamped_move_inline(
     }
     // eq. 31.
     let target = start + chord_dir * d.chord;
+    let free = MoveOutcome {
+        pose: Pose {
+            position: target,
+            heading: free_heading,
+        },
+        travelled: d.chord.abs(),
+        ..stay
+    };
+    // Nothing listed near the start (the commonest move): free, as the first test would find,
+    // without setting up its path and box.
+    if blockers.segments.is_empty() && blockers.circles.is_empty() {
+        return free;
+    }
     // The first test goes over every blocker given: the shortlists below would give the same
     // verdict (they leave out only blockers that cannot block any path of the search), and
     // most moves are free, so they are built only for a search.
     let (cause, first_wall) = first_verdict(start, target, radius, blockers);
     if cause == Verdict::Free {
-        return MoveOutcome {
-            pose: Pose {
-                position: target,
-                heading: free_heading,
-            },
-            travelled: d.chord.abs(),
-            ..stay
-        };
+        return free;
     }
     let steps = params.search_steps;
     if first_wall.is_some_and(|f| {
@@ -1143,17 +1162,27 @@ pub(crate) fn plan_clamped_move_inline(
             blocked_by_wall: true,
         };
     }
-    blocked_move(
-        pose,
+    let searched = blocked_move(
+        start,
+        pose.heading,
         target,
-        d,
+        d.phi,
+        d.chord,
         free_heading,
         radius,
         params,
-        blockers,
+        *blockers,
         cause,
         first_wall,
-    )
+    );
+    // Rebuilt (a blocked move is blocked): returned whole, the search's outcome would be
+    // written straight into the caller's, which would then live in memory on every path,
+    // the free move's too.
+    debug_assert!(searched.blocked);
+    MoveOutcome {
+        blocked: true,
+        ..searched
+    }
 }
 
 /// The search's box test of [`blocked_move`]: the box of start → target lies within ±1e300
@@ -1167,23 +1196,29 @@ fn box_is_safe(start: Vec2, target: Vec2) -> bool {
 /// Coordinates beyond which the search's midpoints could overflow.
 const SAFE: f64 = 1e300;
 
-/// The rest of [`plan_clamped_move`] for a move whose planned path from `pose.position` to
-/// `target` is not admissible (`cause`, and `first_wall` from [`first_verdict`]): the search
-/// of eq. 37 and the heading of eq. 34–35 (`free_heading` with slippery walls).
+/// The rest of [`plan_clamped_move`] for a move from `start`, facing `heading`, whose planned
+/// path to `target` is not admissible (`cause`, and `first_wall` from [`first_verdict`]): the
+/// search of eq. 37 and the heading of eq. 34–35 for the drive's turn `phi` and chord `chord`
+/// (`free_heading` with slippery walls). The pose and drive come as vectors and numbers,
+/// which the call passes in registers: as structs they would be copied to memory on every
+/// move, blocked or not.
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
 fn blocked_move(
-    pose: Pose,
+    start: Vec2,
+    heading: Vec2,
     target: Vec2,
-    d: Drive,
+    phi: f64,
+    chord: f64,
     free_heading: Vec2,
     radius: f64,
     params: &MotionParams,
-    blockers: &Blockers,
+    blockers: Blockers<'_>,
     cause: Verdict,
     first_wall: Option<FirstWall>,
 ) -> MoveOutcome {
-    let start = pose.position;
+    // Taken by value: a move that is not blocked then keeps its blockers in registers.
+    let blockers = &blockers;
     // Every path the search tests runs from `start` to a point of the box of start → target
     // (a midpoint of two points of the box is in the box), so a blocker that cannot block
     // any path within that box is left out of every test. The box must be finite and far from
@@ -1226,8 +1261,8 @@ fn blocked_move(
         free_heading
     } else {
         // eq. 34 with |M| (d_I is a distance), then eq. 35–36.
-        let fraction = (travelled / d.chord.abs()).min(1.0);
-        normalise(rotate(pose.heading, fraction * d.phi))
+        let fraction = (travelled / chord.abs()).min(1.0);
+        normalise(rotate(heading, fraction * phi))
     };
     MoveOutcome {
         pose: Pose {
@@ -1244,6 +1279,46 @@ fn blocked_move(
 mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};
+
+    /// `normalise` (its zero-length case out of line) gives the plain select's bits: zero
+    /// and NaN vectors unchanged, every other one divided by its length.
+    #[test]
+    fn normalise_is_the_plain_select() {
+        let plain = |v: Vec2| {
+            let len = v.length();
+            if len > 0.0 {
+                v / len
+            } else {
+                v
+            }
+        };
+        let same =
+            |a: Vec2, b: Vec2| a.x.to_bits() == b.x.to_bits() && a.y.to_bits() == b.y.to_bits();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        let mut vs = vec![
+            Vec2::ZERO,
+            Vec2::new(-0.0, 0.0),
+            Vec2::new(0.0, -0.0),
+            Vec2::NAN,
+            Vec2::new(f64::NAN, 1.0),
+            Vec2::new(f64::INFINITY, 1.0),
+            Vec2::new(5e-324, 0.0),
+            Vec2::new(1e300, 1e300),
+        ];
+        for _ in 0..10_000 {
+            vs.push(Vec2::new(
+                rng.gen_range(-2.0..2.0),
+                rng.gen_range(-2.0..2.0),
+            ));
+            vs.push(Vec2::new(
+                f64::from_bits(rng.gen::<u64>()),
+                f64::from_bits(rng.gen::<u64>()),
+            ));
+        }
+        for v in vs {
+            assert!(same(normalise(v), plain(v)), "{v:?}");
+        }
+    }
 
     /// The inlined kernels give `libm::sincos`'s bits, and `libm::sin`'s and `libm::cos`'s,
     /// on random arguments of every magnitude a turn can have, at the thresholds of the

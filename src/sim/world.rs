@@ -60,7 +60,7 @@ use crate::sim::gadgets::{Actor, Door, Effect, Flyer, Role, Strategy, Teleporter
 use crate::sim::grid::{Scratch, StaticIndex};
 use crate::sim::metabolism::Decay;
 use crate::sim::motion::{
-    clamp_rpt, plan_clamped_move_inline, plan_move, Blockers, MotionParams, MoveOutcome, Pose,
+    clamp_rpt, plan_clamped_move_inline, plan_move, Blockers, MotionParams, Pose,
 };
 use crate::sim::noise::Noise;
 use crate::sim::placement::{place_creatures, place_objects, PlacementError};
@@ -147,9 +147,8 @@ pub struct World {
     /// Per-cell lists of the fixed walls a creature's move may reach (see [`MoverCells`]).
     mover_cells: Option<MoverCells>,
     /// Per creature, where its last contacts phase found its body and the cell of
-    /// `mover_cells` it was in: its next move most often starts there, and the cell is a
-    /// function of the position alone. NaN (matching no position) until then.
-    last_cell: Vec<(Vec2, usize)>,
+    /// `mover_cells` it was in (see [`LastCell`]).
+    last_cell: Vec<LastCell>,
     /// Sense, eat and regenerate with plain loops over every object instead of the grid and
     /// the list of regrowing food (the reference the tests compare the grid against).
     brute_force: bool,
@@ -230,6 +229,9 @@ struct CreatureRules {
     bodies: bool,
     /// The world has doors: walls besides the fixed ones may stand.
     doors: bool,
+    /// The world has aversive objects (none is added during a trial): without any, the
+    /// contacts phase does not look for them.
+    aversives: bool,
 }
 
 /// A world and a creature specification validated together: the proof [`World::build`] asks
@@ -498,6 +500,7 @@ impl World {
                 && flyers.is_empty()),
             bodies: creatures > 1 || !things.is_empty(),
             doors: !doors.is_empty(),
+            aversives: !objects.aversives.is_empty(),
         };
         Ok(World {
             tick: 0,
@@ -511,7 +514,7 @@ impl World {
             index,
             scratch,
             mover_cells,
-            last_cell: vec![(Vec2::NAN, 0); creatures],
+            last_cell: vec![LastCell::NONE; creatures],
             brute_force: false,
             creatures: poses
                 .into_iter()
@@ -671,8 +674,7 @@ impl World {
             self.creatures[creature].alive,
             "World::apply on a dead creature"
         );
-        let outcome = self.move_creature(creature, command);
-        self.contacts(creature, &outcome);
+        self.move_and_contact(creature, command);
     }
 
     /// Phase 4 of the tick (see [`World::begin_tick`] for the order): the tick counter
@@ -796,9 +798,11 @@ impl World {
         }
     }
 
-    /// Phase 2.3: clamp the motors and move creature `i`, blocked by walls and by the other
-    /// living creatures.
-    fn move_creature(&mut self, i: usize, command: MotorCommand) -> MoveOutcome {
+    /// Phases 2.3 to 2.5: clamp the motors and move creature `i`, blocked by walls and by the
+    /// other living creatures, then its contacts: eating, shock and metabolism. One function,
+    /// so that the creature is looked up once for its move and its contacts.
+    #[inline(always)]
+    fn move_and_contact(&mut self, i: usize, command: MotorCommand) {
         let rules = &self.rules;
         let command = MotorCommand {
             left: clamp_motor(command.left, rules.motion.max_rpt),
@@ -835,7 +839,95 @@ impl World {
         c.travelled += outcome.travelled;
         c.command = command;
         c.blocked = outcome.blocked;
-        outcome
+        // Phases 2.4 and 2.5: eating, shock and metabolism of the creature after its move.
+        //
+        // The food and aversive objects the body may touch come from the list of its cell in
+        // `mover_cells` when it ends in one (see [`MoverCells::with_contacts`]), else from the
+        // grid: both hold every object it touches, and each is tested as before, in food order.
+        let position = outcome.pose.position;
+        let eats = match rules.eating {
+            Eating::Contact => true,
+            Eating::Action => command.eat > 0.5,
+        };
+        let cell = match &self.mover_cells {
+            Some(cells) if !rules.brute_force => {
+                let last = &mut self.last_cell[i];
+                let f = cells.grid_coordinates(position);
+                // Most moves end in the cell they started in (cells are far wider than a
+                // tick's move): its range settles it without the index computation.
+                let lists = if last.holds(f) {
+                    last.at = position;
+                    Some(last.lists)
+                } else {
+                    cells.cell_at(f).map(|k| {
+                        *last = LastCell::new(position, cells.lists[k], f);
+                        last.lists
+                    })
+                };
+                lists.map(|lists| (cells, lists))
+            }
+            _ => None,
+        };
+        let mut received = [0.0; 4];
+        if eats {
+            // Bites in food list order: `received` adds floats.
+            let near: &[u32] = if let Some((cells, lists)) = cell {
+                cells.food(lists)
+            } else {
+                let (lo, hi) = (position - radius, position + radius);
+                if rules.brute_force {
+                    self.scratch.food.clear();
+                    self.scratch.food.extend(0..self.food.len() as u32);
+                } else {
+                    let food = &self.food;
+                    self.index.food_where(lo, hi, &mut self.scratch, |k| {
+                        circles_touch(position, radius, food[k].position, food[k].radius)
+                    });
+                }
+                &self.scratch.food
+            };
+            for &k in near {
+                let f = &mut self.food[k as usize];
+                if circles_touch(position, radius, f.position, f.radius) {
+                    for (r, g) in received.iter_mut().zip(f.take_bite()) {
+                        *r += g;
+                    }
+                    if !self.listed[k as usize] && f.regrows_now() {
+                        self.listed[k as usize] = true;
+                        self.regrowing.push(k);
+                    }
+                }
+            }
+        }
+        for (e, r) in c.eaten.iter_mut().zip(received) {
+            *e += r;
+        }
+        let touches = |a: &Aversive| circles_touch(position, radius, a.position, a.radius);
+        let aversive = if !rules.aversives {
+            false
+        } else if rules.brute_force {
+            self.aversives.iter().any(touches)
+        } else if let Some((cells, lists)) = cell {
+            cells
+                .aversives(lists)
+                .iter()
+                .any(|&a| touches(&self.aversives[a as usize]))
+        } else {
+            let (lo, hi) = (position - radius, position + radius);
+            self.index
+                .any_aversive(lo, hi, |k| touches(&self.aversives[k]))
+        };
+        c.shocked = aversive || (rules.wall_shock && outcome.blocked_by_wall);
+        rules
+            .decay
+            .apply(&mut c.metabolism, &received, outcome.travelled);
+        c.age += 1;
+        if c.shocked {
+            c.shock_ticks += 1;
+        }
+        if rules.gadgets {
+            self.gadget_contacts(i);
+        }
     }
 
     /// `blockers`: the bodies that may block creature `i`'s move, every other living
@@ -889,12 +981,12 @@ impl World {
                 debug_assert!(
                     self.travel_bound(command.left.abs().max(command.right.abs())) <= cells.travel
                 );
-                let (at, k) = self.last_cell[i];
-                if at == start {
-                    return NearWalls::Cell(k);
+                let last = self.last_cell[i];
+                if last.at == start {
+                    return NearWalls::Cell(last.lists);
                 }
                 if let Some(k) = cells.cell_of(start) {
-                    return NearWalls::Cell(k);
+                    return NearWalls::Cell(cells.lists[k]);
                 }
             }
         }
@@ -922,100 +1014,19 @@ impl World {
         }
         if let Some(cells) = &self.mover_cells {
             if felt.len() == self.walls.fixed_count() && travel <= cells.travel {
-                if let Some((at, k)) = creature.map(|i| self.last_cell[i]) {
-                    if at == start {
-                        return NearWalls::Cell(k);
+                if let Some(last) = creature.map(|i| self.last_cell[i]) {
+                    if last.at == start {
+                        return NearWalls::Cell(last.lists);
                     }
                 }
                 if let Some(k) = cells.cell_of(start) {
-                    return NearWalls::Cell(k);
+                    return NearWalls::Cell(cells.lists[k]);
                 }
             }
         }
         self.index
             .blocking_near(start, travel, self.body.radius, felt, &mut self.scratch);
         NearWalls::Scratch
-    }
-
-    /// Phases 2.4 and 2.5: eating, shock and metabolism of creature `i` after its move.
-    ///
-    /// The food and aversive objects the body may touch come from the list of its cell in
-    /// `mover_cells` when it ends in one (see [`MoverCells::with_contacts`]), else from the
-    /// grid: both hold every object it touches, and each is tested as before, in food order.
-    fn contacts(&mut self, i: usize, outcome: &MoveOutcome) {
-        let rules = &self.rules;
-        let c = &mut self.creatures[i];
-        let position = c.pose.position;
-        let radius = rules.radius;
-        let eats = match rules.eating {
-            Eating::Contact => true,
-            Eating::Action => c.command.eat > 0.5,
-        };
-        let cell = match &self.mover_cells {
-            Some(cells) if !rules.brute_force => cells.cell_of(position).map(|k| {
-                self.last_cell[i] = (position, k);
-                (cells, cells.lists[k])
-            }),
-            _ => None,
-        };
-        let mut received = [0.0; 4];
-        if eats {
-            // Bites in food list order: `received` adds floats.
-            let near: &[u32] = if let Some((cells, lists)) = cell {
-                cells.food(lists)
-            } else {
-                let (lo, hi) = (position - radius, position + radius);
-                if rules.brute_force {
-                    self.scratch.food.clear();
-                    self.scratch.food.extend(0..self.food.len() as u32);
-                } else {
-                    let food = &self.food;
-                    self.index.food_where(lo, hi, &mut self.scratch, |k| {
-                        circles_touch(position, radius, food[k].position, food[k].radius)
-                    });
-                }
-                &self.scratch.food
-            };
-            for &k in near {
-                let f = &mut self.food[k as usize];
-                if circles_touch(position, radius, f.position, f.radius) {
-                    for (r, g) in received.iter_mut().zip(f.take_bite()) {
-                        *r += g;
-                    }
-                    if !self.listed[k as usize] && f.regrows_now() {
-                        self.listed[k as usize] = true;
-                        self.regrowing.push(k);
-                    }
-                }
-            }
-        }
-        for (e, r) in c.eaten.iter_mut().zip(received) {
-            *e += r;
-        }
-        let touches = |a: &Aversive| circles_touch(position, radius, a.position, a.radius);
-        let aversive = if rules.brute_force {
-            self.aversives.iter().any(touches)
-        } else if let Some((cells, lists)) = cell {
-            cells
-                .aversives(lists)
-                .iter()
-                .any(|&a| touches(&self.aversives[a as usize]))
-        } else {
-            let (lo, hi) = (position - radius, position + radius);
-            self.index
-                .any_aversive(lo, hi, |k| touches(&self.aversives[k]))
-        };
-        c.shocked = aversive || (rules.wall_shock && outcome.blocked_by_wall);
-        rules
-            .decay
-            .apply(&mut c.metabolism, &received, outcome.travelled);
-        c.age += 1;
-        if c.shocked {
-            c.shock_ticks += 1;
-        }
-        if rules.gadgets {
-            self.gadget_contacts(i);
-        }
     }
 
     /// Phase 2.6: teleporters, door triggers and predators meet creature `i`.
@@ -1519,10 +1530,19 @@ fn free_pose(
 /// stays finite, as motion does.
 #[inline]
 fn clamp_motor(x: f64, max_rpt: f64) -> f64 {
+    // `f64::clamp`'s steps without its check that -max_rpt <= max_rpt, which the
+    // specification's validation settles once (max_rpt is a number >= 0): the same bits.
     if x.is_nan() {
         0.0
     } else {
-        x.clamp(-max_rpt, max_rpt)
+        let mut x = x;
+        if x < -max_rpt {
+            x = -max_rpt;
+        }
+        if x > max_rpt {
+            x = max_rpt;
+        }
+        x
     }
 }
 
@@ -1540,8 +1560,8 @@ fn travel_bound(wheel: f64, rpt: f64) -> f64 {
 /// Where [`World::walls_near`] put the walls of one move.
 #[derive(Clone, Copy)]
 enum NearWalls {
-    /// The list of this cell of `mover_cells`.
-    Cell(usize),
+    /// The list of the cell of `mover_cells` with these lists.
+    Cell(CellLists),
     /// `scratch.blocking`.
     Scratch,
 }
@@ -1551,8 +1571,58 @@ impl NearWalls {
     #[inline]
     fn walls<'a>(self, cells: &'a Option<MoverCells>, scratch: &'a Scratch) -> &'a [Segment] {
         match (self, cells) {
-            (NearWalls::Cell(k), Some(cells)) => cells.walls(k),
+            (NearWalls::Cell(lists), Some(cells)) => cells.walls(lists),
             _ => &scratch.blocking,
+        }
+    }
+}
+
+/// Where a creature's last contacts phase found its body: its position and the cell of
+/// `mover_cells` it was in. Its next move most often starts there (the cell is a function of
+/// the position alone), and most often ends in the same cell.
+#[derive(Debug, Clone, Copy)]
+struct LastCell {
+    /// The position; NaN (matching no position) until the first contacts in the grid.
+    at: Vec2,
+    /// A copy of its cell's `MoverCells::lists` record, which the move and the contacts
+    /// read: no lookup (and no bounds check) in the grid's records.
+    lists: CellLists,
+    /// The cell's grid coordinates (see [`MoverCells::grid_coordinates`]): the points of
+    /// the cell are those with coordinates in [lo, hi), hi = lo + 1. NaN (holding none)
+    /// until then.
+    lo: Vec2,
+    hi: Vec2,
+}
+
+impl LastCell {
+    const NONE: LastCell = LastCell {
+        at: Vec2::NAN,
+        lists: CellLists {
+            walls: (0, 0),
+            food: (0, 0),
+            aversives: (0, 0),
+        },
+        lo: Vec2::NAN,
+        hi: Vec2::NAN,
+    };
+
+    /// Do grid coordinates `f` lie in the cell? Then [`MoverCells::cell_at`] gives it: its
+    /// conversions truncate each coordinate to `lo`'s (small integers, exact as floats).
+    #[inline]
+    fn holds(&self, f: Vec2) -> bool {
+        (f.x >= self.lo.x) & (f.y >= self.lo.y) & (f.x < self.hi.x) & (f.y < self.hi.y)
+    }
+
+    /// A body at `at`, in the cell (of [`MoverCells::cell_at`]) with lists `lists`, at grid
+    /// coordinates `f`.
+    #[inline]
+    fn new(at: Vec2, lists: CellLists, f: Vec2) -> LastCell {
+        let lo = Vec2::new(f.x as u32 as f64, f.y as u32 as f64);
+        LastCell {
+            at,
+            lists,
+            lo,
+            hi: lo + 1.0,
         }
     }
 }
@@ -1761,8 +1831,24 @@ impl MoverCells {
     /// The cell `p` lies in, `None` outside the grid (or not finite).
     #[inline]
     fn cell_of(&self, p: Vec2) -> Option<usize> {
-        let fx = (p.x - self.origin.x) * self.inv_cell;
-        let fy = (p.y - self.origin.y) * self.inv_cell;
+        self.cell_at(self.grid_coordinates(p))
+    }
+
+    /// `p` in cell units from the grid's origin: cell (x, y) holds the points whose
+    /// coordinates lie in [x, x + 1) × [y, y + 1).
+    #[inline]
+    fn grid_coordinates(&self, p: Vec2) -> Vec2 {
+        Vec2::new(
+            (p.x - self.origin.x) * self.inv_cell,
+            (p.y - self.origin.y) * self.inv_cell,
+        )
+    }
+
+    /// The cell at grid coordinates `f` ([`MoverCells::grid_coordinates`]), `None` outside
+    /// the grid (or not finite).
+    #[inline]
+    fn cell_at(&self, f: Vec2) -> Option<usize> {
+        let (fx, fy) = (f.x, f.y);
         if fx >= 0.0 && fy >= 0.0 && fx < self.nx_f && fy < self.ny_f {
             // Both are below MOVER_CELLS: the conversion to u32 truncates as the one to
             // usize would, in fewer instructions.
@@ -1772,11 +1858,10 @@ impl MoverCells {
         }
     }
 
-    /// Cell `k`'s walls.
+    /// The walls of the cell of `lists`.
     #[inline]
-    fn walls(&self, k: usize) -> &[Segment] {
-        let (a, b) = self.lists[k].walls;
-        &self.walls[a as usize..b as usize]
+    fn walls(&self, lists: CellLists) -> &[Segment] {
+        &self.walls[lists.walls.0 as usize..lists.walls.1 as usize]
     }
 
     /// The food objects a body centred in the cell of `lists` may touch, in food order.
@@ -1789,5 +1874,116 @@ impl MoverCells {
     #[inline]
     fn aversives(&self, lists: CellLists) -> &[u32] {
         &self.aversives[lists.aversives.0 as usize..lists.aversives.1 as usize]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng as _, SeedableRng};
+
+    /// A float next to `x` (`d` = ±1 step of its bits, finite nonzero `x`).
+    fn step(x: f64, d: i64) -> f64 {
+        let up = (x > 0.0) == (d > 0);
+        let bits = x.to_bits();
+        f64::from_bits(if up { bits + 1 } else { bits - 1 })
+    }
+
+    /// The range kept in [`LastCell`] agrees with [`MoverCells::cell_of`]: every point it
+    /// holds is in its cell, on random points near and on the cells' edges (as computed),
+    /// inside and outside the grid.
+    #[test]
+    fn last_cell_range_agrees_with_cell_of() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        for _ in 0..50 {
+            let mut walls = Vec::new();
+            for _ in 0..rng.gen_range(1..8) {
+                let p = |rng: &mut rand_chacha::ChaCha8Rng| {
+                    Vec2::new(rng.gen_range(-50.0..350.0), rng.gen_range(-50.0..350.0))
+                };
+                walls.push(BoxedSegment::new(Segment::new(p(&mut rng), p(&mut rng))));
+            }
+            let travel = rng.gen_range(0.5..8.0);
+            let radius = rng.gen_range(0.5..10.0);
+            let cells = MoverCells::build(&walls, travel, radius).expect("finite walls");
+            let cell = 1.0 / cells.inv_cell;
+            let mut last = LastCell::NONE;
+            assert!(!last.holds(Vec2::ZERO));
+            for _ in 0..2_000 {
+                // A point near a cell corner of the grid (or beyond it), or anywhere.
+                let mut p = if rng.gen_bool(0.5) {
+                    let cx = rng.gen_range(-2..cells.nx as i64 + 2) as f64;
+                    let cy = rng.gen_range(-2..cells.ny_f as i64 + 2) as f64;
+                    cells.origin + Vec2::new(cx, cy) * cell
+                } else {
+                    Vec2::new(rng.gen_range(-400.0..700.0), rng.gen_range(-400.0..700.0))
+                };
+                if rng.gen_bool(0.5) && p.x != 0.0 {
+                    p.x = step(p.x, if rng.gen_bool(0.5) { 1 } else { -1 });
+                }
+                if rng.gen_bool(0.5) && p.y != 0.0 {
+                    p.y = step(p.y, if rng.gen_bool(0.5) { 1 } else { -1 });
+                }
+                let f = cells.grid_coordinates(p);
+                let k = cells.cell_of(p);
+                assert_eq!(cells.cell_at(f), k);
+                if last.holds(f) {
+                    // The cell whose range it is: cells are numbered row by row.
+                    let cell = last.lo.y as usize * cells.nx + last.lo.x as usize;
+                    assert_eq!(k, Some(cell), "{p:?} held by the range of {last:?}");
+                }
+                if let Some(k) = k {
+                    last = LastCell::new(p, cells.lists[k], f);
+                    assert!(last.holds(f), "{p:?} not held by its own cell's range");
+                    let cell = last.lo.y as usize * cells.nx + last.lo.x as usize;
+                    assert_eq!(k, cell, "{p:?}: {last:?}");
+                }
+            }
+        }
+    }
+
+    /// Motor clamping gives `f64::clamp`'s bits (NaN as 0) for every bound the
+    /// specification allows (a number ≥ 0, ±0 included) and every kind of signal.
+    #[test]
+    fn clamp_motor_is_f64_clamp() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        let bounds = [0.0, 0.25, 1.0, 1e300, f64::INFINITY, f64::MIN_POSITIVE];
+        let special = [
+            0.0,
+            -0.0,
+            0.25,
+            -0.25,
+            1.0,
+            -1.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            5e-324,
+        ];
+        let check = |x: f64, m: f64| {
+            let want = if x.is_nan() { 0.0 } else { x.clamp(-m, m) };
+            assert_eq!(
+                clamp_motor(x, m).to_bits(),
+                want.to_bits(),
+                "{x:e} to ±{m:e}"
+            );
+        };
+        for &m in &bounds {
+            for &x in &special {
+                check(x, m);
+            }
+            if m > 0.0 && m.is_finite() {
+                check(step(m, 1), m);
+                check(step(m, -1), m);
+                check(-step(m, 1), m);
+                check(-step(m, -1), m);
+            }
+            for _ in 0..10_000 {
+                check(rng.gen_range(-2.0..2.0), m);
+                check(f64::from_bits(rng.gen::<u64>()), m);
+            }
+        }
     }
 }
