@@ -594,8 +594,16 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
                         // Each wall's shade answers the box test of the segment from any
                         // receptor (infinite ones too) to the centre.
                         let walls = index.source_walls(e);
-                        let shades = index.source_shades(e);
-                        assert_eq!(walls.len(), shades.len(), "seed {seed}");
+                        let shaded = index.source_shaded_walls(e);
+                        assert_eq!(walls.len(), shaded.len(), "seed {seed}");
+                        // Each entry carries a copy of its wall, to the bit.
+                        for (&j, w) in walls.iter().zip(shaded) {
+                            let (a, b) = (opaque[j as usize].a, opaque[j as usize].b);
+                            let bits = |v: Vec2| [v.x.to_bits(), v.y.to_bits()];
+                            assert_eq!(bits(w.segment.a), bits(a), "seed {seed}: {k} {j}");
+                            assert_eq!(bits(w.segment.b), bits(b), "seed {seed}: {k} {j}");
+                        }
+                        let shades = shaded.iter().map(|w| &w.shade);
                         assert_eq!(e.has_walls(), !walls.is_empty(), "seed {seed}");
                         let inf = f64::INFINITY;
                         let points = [
@@ -615,9 +623,9 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
                         // Each wall's stored side of the centre is side_of to the bit, and
                         // where the wall's shade holds, the occlusion test given it answers
                         // as segments_intersect does (elsewhere the segments cannot meet).
-                        let sides = index.source_sides(e);
-                        assert_eq!(sides.len(), walls.len(), "seed {seed}");
-                        for ((&j, &side), shade) in walls.iter().zip(sides).zip(shades) {
+                        let sides = shaded.iter().map(|w| w.side);
+                        let shades = shaded.iter().map(|w| &w.shade);
+                        for ((&j, side), shade) in walls.iter().zip(sides).zip(shades) {
                             let wall = &opaque[j as usize];
                             let exact = side_of(wall, *centre);
                             assert_eq!(side.to_bits(), exact.to_bits(), "seed {seed}: {k} {j}");

@@ -605,20 +605,13 @@ impl StaticIndex {
         &self.smell.odours[source.odour as usize]
     }
 
-    /// Per wall of [`StaticIndex::source_walls`] of `source`, in the same order, its
-    /// [`WallShade`] from the source's centre.
+    /// Per wall of [`StaticIndex::source_walls`] of `source`, in the same order, what the
+    /// occlusion test of a receptor's segment to the source's centre reads of it (a
+    /// [`ShadedWall`]): one slice, so that the smell's loop over a source's walls walks one
+    /// array with no index into the walls.
     #[inline]
-    pub fn source_shades(&self, source: &Source) -> &[WallShade] {
-        &self.smell.shades[source.w0 as usize..source.w1 as usize]
-    }
-
-    /// Per wall of [`StaticIndex::source_walls`] of `source`, in the same order, the side of
-    /// the source's centre from the wall's line ([`side_of`]), the orientation of an
-    /// occlusion test that no receptor changes (see
-    /// [`segments_intersect_past_box`](crate::geometry::segments_intersect_past_box)).
-    #[inline]
-    pub fn source_sides(&self, source: &Source) -> &[f64] {
-        &self.smell.sides[source.w0 as usize..source.w1 as usize]
+    pub fn source_shaded_walls(&self, source: &Source) -> &[ShadedWall] {
+        &self.smell.shaded[source.w0 as usize..source.w1 as usize]
     }
 
     /// The smelly food and aversive objects of unlimited range, as [`Source::id`]s in
@@ -929,6 +922,20 @@ impl WallShade {
     }
 }
 
+/// A fixed opaque wall listed with a smell source, as the occlusion test of a segment from a
+/// receptor to the source's centre reads it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShadedWall {
+    /// Its [`WallShade`] from the source's centre.
+    pub shade: WallShade,
+    /// The wall (a copy of the opaque wall's segment).
+    pub segment: Segment,
+    /// The side of the source's centre from the wall's line ([`side_of`]), the orientation
+    /// of the occlusion test that no receptor changes (see
+    /// [`segments_intersect_past_box`](crate::geometry::segments_intersect_past_box)).
+    pub side: f64,
+}
+
 /// Per cell, the food and aversive objects of finite range whose smell may reach a receptor
 /// in the cell, in increasing id order, each with the fixed opaque walls that may hide it
 /// from there (see the module docs). Each cell is taken as its box grown by `grow` (the
@@ -946,10 +953,8 @@ struct SmellGrid {
     odours: Vec<Odour>,
     /// Indices into the fixed opaque walls, referenced by [`Source`] ranges.
     walls: Vec<u32>,
-    /// Per entry of `walls`, its [`WallShade`] from the source's centre.
-    shades: Vec<WallShade>,
-    /// Per entry of `walls`, the side of the source's centre from the wall's line.
-    sides: Vec<f64>,
+    /// Per entry of `walls`, its shade, segment and side of the source's centre.
+    shaded: Vec<ShadedWall>,
     /// The bounds of the columns' grown boxes (infinite on the border sides).
     xs: Vec<(f64, f64)>,
     /// Per cell, its grown box and its range of `sources`, side by side for
@@ -977,8 +982,7 @@ impl SmellGrid {
             sources: Vec::new(),
             odours: Vec::new(),
             walls: Vec::new(),
-            shades: Vec::new(),
-            sides: Vec::new(),
+            shaded: Vec::new(),
             xs: all.clone(),
             ys: all,
             cells: vec![PairCell {
@@ -1213,8 +1217,7 @@ fn smell_grid(
         sources: Vec::new(),
         odours: Vec::new(),
         walls: Vec::new(),
-        shades: Vec::new(),
-        sides: Vec::new(),
+        shaded: Vec::new(),
         xs: Vec::new(),
         ys: Vec::new(),
         cells: Vec::new(),
@@ -1227,8 +1230,7 @@ fn smell_grid(
     let per = (2.0 * SMELL_CELLS_PER_RANGE + 2.0) as usize;
     let mut pairs: Vec<(u32, Source)> = Vec::with_capacity(sources.len() * per * per);
     let mut walls: Vec<u32> = Vec::with_capacity(2 * pairs.capacity());
-    let mut shades: Vec<WallShade> = Vec::with_capacity(walls.capacity());
-    let mut sides: Vec<f64> = Vec::with_capacity(walls.capacity());
+    let mut shaded: Vec<ShadedWall> = Vec::with_capacity(walls.capacity());
     let mut near = Vec::new();
     let mut hiders: Vec<Hider> = Vec::new();
     for template in sources {
@@ -1286,14 +1288,17 @@ fn smell_grid(
                             break;
                         }
                         walls.push(h.k);
-                        shades.push(WallShade::new(p, h.lo, h.hi));
-                        sides.push(side_of(&opaque[h.k as usize].segment, p));
+                        let segment = opaque[h.k as usize].segment;
+                        shaded.push(ShadedWall {
+                            shade: WallShade::new(p, h.lo, h.hi),
+                            segment,
+                            side: side_of(&segment, p),
+                        });
                     }
                 }
                 if hidden {
                     walls.truncate(w0 as usize);
-                    shades.truncate(w0 as usize);
-                    sides.truncate(w0 as usize);
+                    shaded.truncate(w0 as usize);
                     continue;
                 }
                 let w1 = walls.len() as u32;
@@ -1307,8 +1312,7 @@ fn smell_grid(
         }
     }
     grid.walls = walls;
-    grid.shades = shades;
-    grid.sides = sides;
+    grid.shaded = shaded;
     // A counting sort by cell, stable: each cell's sources keep their increasing id order.
     for &(cell, _) in &pairs {
         grid.start[cell as usize + 1] += 1;

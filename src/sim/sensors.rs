@@ -420,12 +420,13 @@ impl Surroundings<'_> {
     /// reads the food object), and for a source with walls, each wall's
     /// [`WallShade`](crate::sim::grid::WallShade), which settles the box test of
     /// [`visible_among`](crate::sim::smell::visible_among) for both receptors without a branch
-    /// per side, and each wall's side of the source's centre
-    /// ([`StaticIndex::source_sides`]), one of the four orientations of the occlusion test.
+    /// per side, and each wall's side of the source's centre, one of the four orientations
+    /// of the occlusion test, with a copy of the wall
+    /// ([`StaticIndex::source_shaded_walls`]).
     #[inline(never)]
     fn smell_listed(&self, list: &[Source], tips: [Vec2; 2], out: &mut [[f64; 8]; 2]) {
         let index = self.index;
-        let (c, fixed) = (self.smell_c, self.opaque);
+        let c = self.smell_c;
         let [acc0, acc1] = out;
         for s in list {
             let (d2, reach) = reach_pair(tips, s.centre, s.range_squared);
@@ -453,12 +454,14 @@ impl Surroundings<'_> {
                 // the centre of a source in reach is not NaN either, so the box test that
                 // segments_intersect would begin with passes; the rest of it takes the
                 // source's side of the wall from the grid.
-                let walls = index.source_walls(s).iter().zip(index.source_shades(s));
-                for ((&w, shade), &side) in walls.zip(index.source_sides(s)) {
-                    let wall = &fixed[w as usize].segment;
+                for w in index.source_shaded_walls(s) {
                     for (i, &tip) in tips.iter().enumerate() {
-                        if shade.holds(tip, seen[i])
-                            && segments_intersect_past_box(&Segment::new(tip, s.centre), wall, side)
+                        if w.shade.holds(tip, seen[i])
+                            && segments_intersect_past_box(
+                                &Segment::new(tip, s.centre),
+                                &w.segment,
+                                w.side,
+                            )
                         {
                             seen[i] = false;
                         }
