@@ -510,7 +510,7 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
     use berry_evolve::geometry::{
         segments_intersect, segments_intersect_past_box, side_of, Segment,
     };
-    use berry_evolve::sim::grid::Source;
+    use berry_evolve::sim::grid::{FacedShade, Source};
     use berry_evolve::sim::wall::BoxedSegment;
     let (mut checked, mut listed_in_range) = (0, 0);
     let (mut pairs, mut pairs_served, mut hidden_unlisted) = (0, 0, 0);
@@ -616,8 +616,9 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
                             let wall = BoxedSegment::new(opaque[j as usize]);
                             for r in points {
                                 let meets = wall.may_meet(r.min(*centre), r.max(*centre));
-                                assert_eq!(shade.holds(r, true), meets, "seed {seed}: {k} {r}");
-                                assert!(!shade.holds(r, false), "seed {seed}");
+                                let key = FacedShade::key(r);
+                                assert_eq!(shade.holds(&key, true), meets, "seed {seed}: {k} {r}");
+                                assert!(!shade.holds(&key, false), "seed {seed}");
                             }
                         }
                         // Each wall's stored side of the centre is side_of to the bit, and
@@ -633,7 +634,7 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
                             for r in points.into_iter().chain(ends) {
                                 let line = Segment::new(r, *centre);
                                 let meets = segments_intersect(&line, wall);
-                                if shade.holds(r, true) {
+                                if shade.holds(&FacedShade::key(r), true) {
                                     let past = segments_intersect_past_box(&line, wall, side);
                                     assert_eq!(past, meets, "seed {seed}: {k} {j} {r}");
                                 } else {
@@ -693,4 +694,36 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
         2 * pairs_served > pairs,
         "{pairs_served} of {pairs} pairs served by one list"
     );
+}
+
+/// A listed wall's shade as four lower bounds answers as the [`WallShade`] it comes from, for
+/// every receptor: infinite ones, NaN and both zeros included, on bounds of the same kinds.
+#[test]
+fn a_faced_shade_answers_as_its_wall_shade() {
+    use berry_evolve::sim::grid::{FacedShade, WallShade};
+    let inf = f64::INFINITY;
+    let values = [-inf, -2.5, -1.0, -0.0, 0.0, 1.0, 2.5, inf, f64::NAN];
+    for x0 in values {
+        for x1 in values {
+            for y0 in values {
+                for y1 in values {
+                    let shade = WallShade { x0, x1, y0, y1 };
+                    let faced = FacedShade::new(shade);
+                    for x in values {
+                        for y in values {
+                            let r = Vec2::new(x, y);
+                            let key = FacedShade::key(r);
+                            for ask in [false, true] {
+                                assert_eq!(
+                                    faced.holds(&key, ask),
+                                    shade.holds(r, ask),
+                                    "{shade:?} {r} {ask}"
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
 }

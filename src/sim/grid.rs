@@ -922,12 +922,48 @@ impl WallShade {
     }
 }
 
+/// A [`WallShade`] as four lower bounds, `[x0, y0, −x1, −y1]`, for a receptor given as
+/// `[x, y, −x, −y]` ([`FacedShade::key`]): its four tests are then the same comparison,
+/// which the compiler makes one vector comparison. `x ≤ x1` is `−x ≥ −x1` exactly (a
+/// negation is exact, and a NaN fails both), so the answers are those of
+/// [`WallShade::holds`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FacedShade {
+    /// `[x0, y0, −x1, −y1]`.
+    pub low: [f64; 4],
+}
+
+impl FacedShade {
+    /// `shade` as lower bounds.
+    pub fn new(shade: WallShade) -> FacedShade {
+        FacedShade {
+            low: [shade.x0, shade.y0, -shade.x1, -shade.y1],
+        }
+    }
+
+    /// A receptor at `r` as [`FacedShade::holds`] reads it.
+    #[inline(always)]
+    pub fn key(r: Vec2) -> [f64; 4] {
+        [r.x, r.y, -r.x, -r.y]
+    }
+
+    /// [`WallShade::holds`] for the receptor of `key` ([`FacedShade::key`]).
+    #[inline(always)]
+    pub fn holds(&self, key: &[f64; 4], ask: bool) -> bool {
+        let mut n = u8::from(ask);
+        for (k, low) in key.iter().zip(&self.low) {
+            n += u8::from(k >= low);
+        }
+        n == 5
+    }
+}
+
 /// A fixed opaque wall listed with a smell source, as the occlusion test of a segment from a
 /// receptor to the source's centre reads it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ShadedWall {
     /// Its [`WallShade`] from the source's centre.
-    pub shade: WallShade,
+    pub shade: FacedShade,
     /// The wall (a copy of the opaque wall's segment).
     pub segment: Segment,
     /// The side of the source's centre from the wall's line ([`side_of`]), the orientation
@@ -1290,7 +1326,7 @@ fn smell_grid(
                         walls.push(h.k);
                         let segment = opaque[h.k as usize].segment;
                         shaded.push(ShadedWall {
-                            shade: WallShade::new(p, h.lo, h.hi),
+                            shade: FacedShade::new(WallShade::new(p, h.lo, h.hi)),
                             segment,
                             side: side_of(&segment, p),
                         });

@@ -17,7 +17,7 @@ use crate::sim::area::Area;
 use crate::sim::controller::{ObservationLayout, SensorGroup};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::Thing;
-use crate::sim::grid::{Scratch, SmellBox, Source, StaticIndex};
+use crate::sim::grid::{FacedShade, Scratch, SmellBox, Source, StaticIndex};
 use crate::sim::smell::{
     accumulate, accumulate_listed, add, add_pair, falloff_pair, reach_pair, saturate, Shade, Smell,
 };
@@ -428,6 +428,8 @@ impl Surroundings<'_> {
         let index = self.index;
         let c = self.smell_c;
         let [acc0, acc1] = out;
+        // The receptors as the walls' shades read them.
+        let keys = tips.map(FacedShade::key);
         for s in list {
             let (d2, reach) = reach_pair(tips, s.centre, s.range_squared);
             if !(reach[0] | reach[1]) {
@@ -456,7 +458,7 @@ impl Surroundings<'_> {
                 // source's side of the wall from the grid.
                 for w in index.source_shaded_walls(s) {
                     for (i, &tip) in tips.iter().enumerate() {
-                        if w.shade.holds(tip, seen[i])
+                        if w.shade.holds(&keys[i], seen[i])
                             && segments_intersect_past_box(
                                 &Segment::new(tip, s.centre),
                                 &w.segment,
@@ -472,7 +474,9 @@ impl Surroundings<'_> {
             match odour.lone {
                 // One term instead of eight (see Odour::lone), when its factors are finite.
                 Some(k) if g[0].is_finite() & g[1].is_finite() => {
-                    let (k, e) = (k as usize, odour.emission[k as usize]);
+                    // k < 8 (Odour::lone): the mask only spares the bounds checks.
+                    let k = usize::from(k) & 7;
+                    let e = odour.emission[k];
                     if seen[0] {
                         acc0[k] += g[0] * e;
                     }
