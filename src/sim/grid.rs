@@ -26,9 +26,11 @@
 //! wall hides from the whole cell is left out. Since the box is grown by the whisker reach,
 //! the cell holding the midpoint of a creature's two whisker tips serves both tips with one
 //! list. Each listed wall carries its [`WallShade`] from the object's centre (the box test of
-//! a segment from a receptor to the centre, settled when the grid is built) and the side of
-//! the centre from the wall's line (the one orientation of that segment's occlusion test that
-//! no receptor changes, see [`crate::geometry::side_of`]), and each object
+//! a segment from a receptor to the centre, settled when the grid is built; kept as a
+//! [`FacedShade`], one vector comparison per receptor), the side of the centre from the
+//! wall's line (the one orientation of that segment's occlusion test that no receptor
+//! changes, see [`crate::geometry::side_of`]) and a copy of the wall ([`ShadedWall`], one
+//! entry read in order rather than three arrays and the walls), and each object
 //! its [`Odour`] (a copy of its emission), so that summing a listed smell reads the grid alone
 //! unless the smell follows the food's amount. Its cells are half the largest finite θ wide
 //! ([`SMELL_CELLS_PER_RANGE`]), and at most [`CELLS_PER_ITEM`] per listed object (at least
@@ -566,8 +568,17 @@ impl StaticIndex {
     /// [`SmellGrid`]), so that one list holds every source that may reach either tip, with
     /// every wall that may hide it from either. The whisker tips are at most the whisker
     /// length from their midpoint, so only tips far from the arena or not finite miss.
-    #[inline]
+    #[inline(never)]
     pub fn smell_pair_sources(&self, tips: [Vec2; 2]) -> Option<&[Source]> {
+        self.smell_pair_sources_inlined(tips)
+    }
+
+    /// [`StaticIndex::smell_pair_sources`], always inlined: for the common case of a
+    /// creature's smell, where a call would cost about a fifth of the lookup. The general
+    /// smell keeps the call (out of line above): inlined there, it crowds that function's
+    /// registers (more instructions in the eye world).
+    #[inline(always)]
+    pub fn smell_pair_sources_inlined(&self, tips: [Vec2; 2]) -> Option<&[Source]> {
         let s = &self.smell;
         let g = &s.geometry;
         let mid = (tips[0] + tips[1]) * 0.5;

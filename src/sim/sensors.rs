@@ -404,7 +404,7 @@ impl Surroundings<'_> {
             && !others_smell
             && self.opaque.len() == index.fixed_opaque()
         {
-            if let Some(list) = index.smell_pair_sources(tips) {
+            if let Some(list) = index.smell_pair_sources_inlined(tips) {
                 return self.smell_listed(list, tips, out);
             }
         }
