@@ -510,7 +510,7 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
     use berry_evolve::geometry::{
         segments_intersect, segments_intersect_past_box, side_of, Segment,
     };
-    use berry_evolve::sim::grid::Source;
+    use berry_evolve::sim::grid::{FacedShade, Source};
     use berry_evolve::sim::wall::BoxedSegment;
     let (mut checked, mut listed_in_range) = (0, 0);
     let (mut pairs, mut pairs_served, mut hidden_unlisted) = (0, 0, 0);
@@ -594,8 +594,16 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
                         // Each wall's shade answers the box test of the segment from any
                         // receptor (infinite ones too) to the centre.
                         let walls = index.source_walls(e);
-                        let shades = index.source_shades(e);
-                        assert_eq!(walls.len(), shades.len(), "seed {seed}");
+                        let shaded = index.source_shaded_walls(e);
+                        assert_eq!(walls.len(), shaded.len(), "seed {seed}");
+                        // Each entry carries a copy of its wall, to the bit.
+                        for (&j, w) in walls.iter().zip(shaded) {
+                            let (a, b) = (opaque[j as usize].a, opaque[j as usize].b);
+                            let bits = |v: Vec2| [v.x.to_bits(), v.y.to_bits()];
+                            assert_eq!(bits(w.segment.a), bits(a), "seed {seed}: {k} {j}");
+                            assert_eq!(bits(w.segment.b), bits(b), "seed {seed}: {k} {j}");
+                        }
+                        let shades = shaded.iter().map(|w| &w.shade);
                         assert_eq!(e.has_walls(), !walls.is_empty(), "seed {seed}");
                         let inf = f64::INFINITY;
                         let points = [
@@ -608,16 +616,17 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
                             let wall = BoxedSegment::new(opaque[j as usize]);
                             for r in points {
                                 let meets = wall.may_meet(r.min(*centre), r.max(*centre));
-                                assert_eq!(shade.holds(r, true), meets, "seed {seed}: {k} {r}");
-                                assert!(!shade.holds(r, false), "seed {seed}");
+                                let key = FacedShade::key(r);
+                                assert_eq!(shade.holds(&key, true), meets, "seed {seed}: {k} {r}");
+                                assert!(!shade.holds(&key, false), "seed {seed}");
                             }
                         }
                         // Each wall's stored side of the centre is side_of to the bit, and
                         // where the wall's shade holds, the occlusion test given it answers
                         // as segments_intersect does (elsewhere the segments cannot meet).
-                        let sides = index.source_sides(e);
-                        assert_eq!(sides.len(), walls.len(), "seed {seed}");
-                        for ((&j, &side), shade) in walls.iter().zip(sides).zip(shades) {
+                        let sides = shaded.iter().map(|w| w.side);
+                        let shades = shaded.iter().map(|w| &w.shade);
+                        for ((&j, side), shade) in walls.iter().zip(sides).zip(shades) {
                             let wall = &opaque[j as usize];
                             let exact = side_of(wall, *centre);
                             assert_eq!(side.to_bits(), exact.to_bits(), "seed {seed}: {k} {j}");
@@ -625,7 +634,7 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
                             for r in points.into_iter().chain(ends) {
                                 let line = Segment::new(r, *centre);
                                 let meets = segments_intersect(&line, wall);
-                                if shade.holds(r, true) {
+                                if shade.holds(&FacedShade::key(r), true) {
                                     let past = segments_intersect_past_box(&line, wall, side);
                                     assert_eq!(past, meets, "seed {seed}: {k} {j} {r}");
                                 } else {
@@ -685,4 +694,36 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
         2 * pairs_served > pairs,
         "{pairs_served} of {pairs} pairs served by one list"
     );
+}
+
+/// A listed wall's shade as four lower bounds answers as the [`WallShade`] it comes from, for
+/// every receptor: infinite ones, NaN and both zeros included, on bounds of the same kinds.
+#[test]
+fn a_faced_shade_answers_as_its_wall_shade() {
+    use berry_evolve::sim::grid::{FacedShade, WallShade};
+    let inf = f64::INFINITY;
+    let values = [-inf, -2.5, -1.0, -0.0, 0.0, 1.0, 2.5, inf, f64::NAN];
+    for x0 in values {
+        for x1 in values {
+            for y0 in values {
+                for y1 in values {
+                    let shade = WallShade { x0, x1, y0, y1 };
+                    let faced = FacedShade::new(shade);
+                    for x in values {
+                        for y in values {
+                            let r = Vec2::new(x, y);
+                            let key = FacedShade::key(r);
+                            for ask in [false, true] {
+                                assert_eq!(
+                                    faced.holds(&key, ask),
+                                    shade.holds(r, ask),
+                                    "{shade:?} {r} {ask}"
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
 }

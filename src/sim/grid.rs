@@ -26,9 +26,11 @@
 //! wall hides from the whole cell is left out. Since the box is grown by the whisker reach,
 //! the cell holding the midpoint of a creature's two whisker tips serves both tips with one
 //! list. Each listed wall carries its [`WallShade`] from the object's centre (the box test of
-//! a segment from a receptor to the centre, settled when the grid is built) and the side of
-//! the centre from the wall's line (the one orientation of that segment's occlusion test that
-//! no receptor changes, see [`crate::geometry::side_of`]), and each object
+//! a segment from a receptor to the centre, settled when the grid is built; kept as a
+//! [`FacedShade`], one vector comparison per receptor), the side of the centre from the
+//! wall's line (the one orientation of that segment's occlusion test that no receptor
+//! changes, see [`crate::geometry::side_of`]) and a copy of the wall ([`ShadedWall`], one
+//! entry read in order rather than three arrays and the walls), and each object
 //! its [`Odour`] (a copy of its emission), so that summing a listed smell reads the grid alone
 //! unless the smell follows the food's amount. Its cells are half the largest finite θ wide
 //! ([`SMELL_CELLS_PER_RANGE`]), and at most [`CELLS_PER_ITEM`] per listed object (at least
@@ -566,8 +568,17 @@ impl StaticIndex {
     /// [`SmellGrid`]), so that one list holds every source that may reach either tip, with
     /// every wall that may hide it from either. The whisker tips are at most the whisker
     /// length from their midpoint, so only tips far from the arena or not finite miss.
-    #[inline]
+    #[inline(never)]
     pub fn smell_pair_sources(&self, tips: [Vec2; 2]) -> Option<&[Source]> {
+        self.smell_pair_sources_inlined(tips)
+    }
+
+    /// [`StaticIndex::smell_pair_sources`], always inlined: for the common case of a
+    /// creature's smell, where a call would cost about a fifth of the lookup. The general
+    /// smell keeps the call (out of line above): inlined there, it crowds that function's
+    /// registers (more instructions in the eye world).
+    #[inline(always)]
+    pub fn smell_pair_sources_inlined(&self, tips: [Vec2; 2]) -> Option<&[Source]> {
         let s = &self.smell;
         let g = &s.geometry;
         let mid = (tips[0] + tips[1]) * 0.5;
@@ -605,20 +616,13 @@ impl StaticIndex {
         &self.smell.odours[source.odour as usize]
     }
 
-    /// Per wall of [`StaticIndex::source_walls`] of `source`, in the same order, its
-    /// [`WallShade`] from the source's centre.
+    /// Per wall of [`StaticIndex::source_walls`] of `source`, in the same order, what the
+    /// occlusion test of a receptor's segment to the source's centre reads of it (a
+    /// [`ShadedWall`]): one slice, so that the smell's loop over a source's walls walks one
+    /// array with no index into the walls.
     #[inline]
-    pub fn source_shades(&self, source: &Source) -> &[WallShade] {
-        &self.smell.shades[source.w0 as usize..source.w1 as usize]
-    }
-
-    /// Per wall of [`StaticIndex::source_walls`] of `source`, in the same order, the side of
-    /// the source's centre from the wall's line ([`side_of`]), the orientation of an
-    /// occlusion test that no receptor changes (see
-    /// [`segments_intersect_past_box`](crate::geometry::segments_intersect_past_box)).
-    #[inline]
-    pub fn source_sides(&self, source: &Source) -> &[f64] {
-        &self.smell.sides[source.w0 as usize..source.w1 as usize]
+    pub fn source_shaded_walls(&self, source: &Source) -> &[ShadedWall] {
+        &self.smell.shaded[source.w0 as usize..source.w1 as usize]
     }
 
     /// The smelly food and aversive objects of unlimited range, as [`Source::id`]s in
@@ -929,6 +933,56 @@ impl WallShade {
     }
 }
 
+/// A [`WallShade`] as four lower bounds, `[x0, y0, −x1, −y1]`, for a receptor given as
+/// `[x, y, −x, −y]` ([`FacedShade::key`]): its four tests are then the same comparison,
+/// which the compiler makes one vector comparison. `x ≤ x1` is `−x ≥ −x1` exactly (a
+/// negation is exact, and a NaN fails both), so the answers are those of
+/// [`WallShade::holds`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FacedShade {
+    /// `[x0, y0, −x1, −y1]`.
+    pub low: [f64; 4],
+}
+
+impl FacedShade {
+    /// `shade` as lower bounds.
+    pub fn new(shade: WallShade) -> FacedShade {
+        FacedShade {
+            low: [shade.x0, shade.y0, -shade.x1, -shade.y1],
+        }
+    }
+
+    /// A receptor at `r` as [`FacedShade::holds`] reads it.
+    #[inline(always)]
+    pub fn key(r: Vec2) -> [f64; 4] {
+        [r.x, r.y, -r.x, -r.y]
+    }
+
+    /// [`WallShade::holds`] for the receptor of `key` ([`FacedShade::key`]).
+    #[inline(always)]
+    pub fn holds(&self, key: &[f64; 4], ask: bool) -> bool {
+        let mut n = u8::from(ask);
+        for (k, low) in key.iter().zip(&self.low) {
+            n += u8::from(k >= low);
+        }
+        n == 5
+    }
+}
+
+/// A fixed opaque wall listed with a smell source, as the occlusion test of a segment from a
+/// receptor to the source's centre reads it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShadedWall {
+    /// Its [`WallShade`] from the source's centre.
+    pub shade: FacedShade,
+    /// The wall (a copy of the opaque wall's segment).
+    pub segment: Segment,
+    /// The side of the source's centre from the wall's line ([`side_of`]), the orientation
+    /// of the occlusion test that no receptor changes (see
+    /// [`segments_intersect_past_box`](crate::geometry::segments_intersect_past_box)).
+    pub side: f64,
+}
+
 /// Per cell, the food and aversive objects of finite range whose smell may reach a receptor
 /// in the cell, in increasing id order, each with the fixed opaque walls that may hide it
 /// from there (see the module docs). Each cell is taken as its box grown by `grow` (the
@@ -946,10 +1000,8 @@ struct SmellGrid {
     odours: Vec<Odour>,
     /// Indices into the fixed opaque walls, referenced by [`Source`] ranges.
     walls: Vec<u32>,
-    /// Per entry of `walls`, its [`WallShade`] from the source's centre.
-    shades: Vec<WallShade>,
-    /// Per entry of `walls`, the side of the source's centre from the wall's line.
-    sides: Vec<f64>,
+    /// Per entry of `walls`, its shade, segment and side of the source's centre.
+    shaded: Vec<ShadedWall>,
     /// The bounds of the columns' grown boxes (infinite on the border sides).
     xs: Vec<(f64, f64)>,
     /// Per cell, its grown box and its range of `sources`, side by side for
@@ -977,8 +1029,7 @@ impl SmellGrid {
             sources: Vec::new(),
             odours: Vec::new(),
             walls: Vec::new(),
-            shades: Vec::new(),
-            sides: Vec::new(),
+            shaded: Vec::new(),
             xs: all.clone(),
             ys: all,
             cells: vec![PairCell {
@@ -1213,8 +1264,7 @@ fn smell_grid(
         sources: Vec::new(),
         odours: Vec::new(),
         walls: Vec::new(),
-        shades: Vec::new(),
-        sides: Vec::new(),
+        shaded: Vec::new(),
         xs: Vec::new(),
         ys: Vec::new(),
         cells: Vec::new(),
@@ -1227,8 +1277,7 @@ fn smell_grid(
     let per = (2.0 * SMELL_CELLS_PER_RANGE + 2.0) as usize;
     let mut pairs: Vec<(u32, Source)> = Vec::with_capacity(sources.len() * per * per);
     let mut walls: Vec<u32> = Vec::with_capacity(2 * pairs.capacity());
-    let mut shades: Vec<WallShade> = Vec::with_capacity(walls.capacity());
-    let mut sides: Vec<f64> = Vec::with_capacity(walls.capacity());
+    let mut shaded: Vec<ShadedWall> = Vec::with_capacity(walls.capacity());
     let mut near = Vec::new();
     let mut hiders: Vec<Hider> = Vec::new();
     for template in sources {
@@ -1286,14 +1335,17 @@ fn smell_grid(
                             break;
                         }
                         walls.push(h.k);
-                        shades.push(WallShade::new(p, h.lo, h.hi));
-                        sides.push(side_of(&opaque[h.k as usize].segment, p));
+                        let segment = opaque[h.k as usize].segment;
+                        shaded.push(ShadedWall {
+                            shade: FacedShade::new(WallShade::new(p, h.lo, h.hi)),
+                            segment,
+                            side: side_of(&segment, p),
+                        });
                     }
                 }
                 if hidden {
                     walls.truncate(w0 as usize);
-                    shades.truncate(w0 as usize);
-                    sides.truncate(w0 as usize);
+                    shaded.truncate(w0 as usize);
                     continue;
                 }
                 let w1 = walls.len() as u32;
@@ -1307,8 +1359,7 @@ fn smell_grid(
         }
     }
     grid.walls = walls;
-    grid.shades = shades;
-    grid.sides = sides;
+    grid.shaded = shaded;
     // A counting sort by cell, stable: each cell's sources keep their increasing id order.
     for &(cell, _) in &pairs {
         grid.start[cell as usize + 1] += 1;

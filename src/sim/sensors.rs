@@ -17,7 +17,7 @@ use crate::sim::area::Area;
 use crate::sim::controller::{ObservationLayout, SensorGroup};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::Thing;
-use crate::sim::grid::{Scratch, SmellBox, Source, StaticIndex};
+use crate::sim::grid::{FacedShade, Scratch, SmellBox, Source, StaticIndex};
 use crate::sim::smell::{
     accumulate, accumulate_listed, add, add_pair, falloff_pair, reach_pair, saturate, Shade, Smell,
 };
@@ -404,7 +404,7 @@ impl Surroundings<'_> {
             && !others_smell
             && self.opaque.len() == index.fixed_opaque()
         {
-            if let Some(list) = index.smell_pair_sources(tips) {
+            if let Some(list) = index.smell_pair_sources_inlined(tips) {
                 return self.smell_listed(list, tips, out);
             }
         }
@@ -420,13 +420,16 @@ impl Surroundings<'_> {
     /// reads the food object), and for a source with walls, each wall's
     /// [`WallShade`](crate::sim::grid::WallShade), which settles the box test of
     /// [`visible_among`](crate::sim::smell::visible_among) for both receptors without a branch
-    /// per side, and each wall's side of the source's centre
-    /// ([`StaticIndex::source_sides`]), one of the four orientations of the occlusion test.
+    /// per side, and each wall's side of the source's centre, one of the four orientations
+    /// of the occlusion test, with a copy of the wall
+    /// ([`StaticIndex::source_shaded_walls`]).
     #[inline(never)]
     fn smell_listed(&self, list: &[Source], tips: [Vec2; 2], out: &mut [[f64; 8]; 2]) {
         let index = self.index;
-        let (c, fixed) = (self.smell_c, self.opaque);
+        let c = self.smell_c;
         let [acc0, acc1] = out;
+        // The receptors as the walls' shades read them.
+        let keys = tips.map(FacedShade::key);
         for s in list {
             let (d2, reach) = reach_pair(tips, s.centre, s.range_squared);
             if !(reach[0] | reach[1]) {
@@ -453,12 +456,14 @@ impl Surroundings<'_> {
                 // the centre of a source in reach is not NaN either, so the box test that
                 // segments_intersect would begin with passes; the rest of it takes the
                 // source's side of the wall from the grid.
-                let walls = index.source_walls(s).iter().zip(index.source_shades(s));
-                for ((&w, shade), &side) in walls.zip(index.source_sides(s)) {
-                    let wall = &fixed[w as usize].segment;
+                for w in index.source_shaded_walls(s) {
                     for (i, &tip) in tips.iter().enumerate() {
-                        if shade.holds(tip, seen[i])
-                            && segments_intersect_past_box(&Segment::new(tip, s.centre), wall, side)
+                        if w.shade.holds(&keys[i], seen[i])
+                            && segments_intersect_past_box(
+                                &Segment::new(tip, s.centre),
+                                &w.segment,
+                                w.side,
+                            )
                         {
                             seen[i] = false;
                         }
@@ -469,7 +474,9 @@ impl Surroundings<'_> {
             match odour.lone {
                 // One term instead of eight (see Odour::lone), when its factors are finite.
                 Some(k) if g[0].is_finite() & g[1].is_finite() => {
-                    let (k, e) = (k as usize, odour.emission[k as usize]);
+                    // k < 8 (Odour::lone): the mask only spares the bounds checks.
+                    let k = usize::from(k) & 7;
+                    let e = odour.emission[k];
                     if seen[0] {
                         acc0[k] += g[0] * e;
                     }
