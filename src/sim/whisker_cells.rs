@@ -216,8 +216,10 @@ impl WhiskerCells {
         // where the saturating `as` conversion takes five.
         let cell = |f: f64| (f.floor() + TWO_52).to_bits() as u32 as usize;
         let k = cell(fy) * self.nx + cell(fx);
-        let [a, b, c] = self.cells[k];
-        Some(self.items[a as usize..c as usize].split_at((b - a) as usize))
+        // Three bounds checks (c ≤ len, b ≤ c, a ≤ b) without the differences of a range.
+        let [a, b, c] = self.cells[k].map(|v| v as usize);
+        let (walls, food) = self.items[..c].split_at(b);
+        Some((&walls[a..], food))
     }
 
     /// Columns and rows of the grid, and the side of its cells.
