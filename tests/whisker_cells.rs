@@ -430,3 +430,44 @@ fn tips_that_are_not_finite_give_the_plain_loops_answers() {
     }
     assert!(asked > 20_000, "{asked} queries");
 }
+
+/// The cell lookup (a floor, read from the bits of the floor plus 2⁵²) on cell edges, just
+/// below them, at the origin and near the far sides: each list still holds every wall in
+/// reach.
+#[test]
+fn queries_on_cell_edges_and_far_sides_get_every_wall_in_reach() {
+    let wall = |a: Vec2, b: Vec2| BoxedSegment::new(Segment::new(a, b));
+    // Short walls every 2.5 LU, each cell side (5 LU, the reach) holding two.
+    let mut walls = Vec::new();
+    for i in 0..=40 {
+        for j in 0..=40 {
+            let a = Vec2::new(i as f64 * 2.5, j as f64 * 2.5);
+            walls.push(wall(a, a + Vec2::new(0.1, 0.05)));
+        }
+    }
+    let cells = WhiskerCells::build([100.0, 100.0], 5.0, &walls, &[]).unwrap();
+    let ([nx, ny], cell) = cells.dimensions();
+    assert_eq!(([nx, ny], cell), ([20, 20], 5.0));
+    let below = |v: f64| f64::from_bits(v.to_bits() - 1);
+    let mut coordinates: Vec<f64> = (0..20).map(|k| k as f64 * cell).collect();
+    coordinates.extend([99.9, below(95.0), below(5.0), 1e-300, 2.5]);
+    for &x in &coordinates {
+        for &y in &coordinates {
+            let p = Vec2::new(x, y);
+            // Whiskers a little shorter than the reach, whatever the rounding of p ± 4.5.
+            let (lo, hi) = (p - 4.5, p + 4.5);
+            let (wall_list, food_list) = cells
+                .lists(p, lo, hi, 4.5)
+                .unwrap_or_else(|| panic!("{p:?} on the grid"));
+            assert!(food_list.is_empty());
+            for (k, w) in walls.iter().enumerate() {
+                if w.may_meet(lo, hi) {
+                    assert!(wall_list.contains(&(k as u32)), "wall {k} at {p:?}");
+                }
+            }
+        }
+    }
+    // On the far sides themselves the query is off the grid.
+    let p = Vec2::new(100.0, 50.0);
+    assert!(cells.lists(p, p - 5.0, p + 5.0, 5.0).is_none());
+}
