@@ -32,67 +32,46 @@ pub struct Extension {
     bit: u32,
 }
 
-const fn ext(name: &'static str, compiled: bool, word: Word, bit: u32) -> Extension {
-    Extension {
-        name,
-        compiled,
-        word,
-        bit,
-    }
+/// An [`Extension`] row: its `target_feature` name, the CPUID word and bit; whether this
+/// build uses it is `cfg!(target_feature = name)`.
+macro_rules! ext {
+    ($name:literal, $word:ident, $bit:literal) => {
+        Extension {
+            name: $name,
+            compiled: cfg!(target_feature = $name),
+            word: Word::$word,
+            bit: $bit,
+        }
+    };
 }
 
 /// The extensions of x86-64-v2 and v3 (beyond the x86-64 baseline every x86-64 CPU has), each
 /// marked with whether this build uses it.
 pub const EXTENSIONS: [Extension; 17] = [
-    ext("sse3", cfg!(target_feature = "sse3"), Word::Leaf1Ecx, 0),
-    ext("ssse3", cfg!(target_feature = "ssse3"), Word::Leaf1Ecx, 9),
-    ext("fma", cfg!(target_feature = "fma"), Word::Leaf1Ecx, 12),
-    ext(
-        "cmpxchg16b",
-        cfg!(target_feature = "cmpxchg16b"),
-        Word::Leaf1Ecx,
-        13,
-    ),
-    ext(
-        "sse4.1",
-        cfg!(target_feature = "sse4.1"),
-        Word::Leaf1Ecx,
-        19,
-    ),
-    ext(
-        "sse4.2",
-        cfg!(target_feature = "sse4.2"),
-        Word::Leaf1Ecx,
-        20,
-    ),
-    ext("movbe", cfg!(target_feature = "movbe"), Word::Leaf1Ecx, 22),
-    ext(
-        "popcnt",
-        cfg!(target_feature = "popcnt"),
-        Word::Leaf1Ecx,
-        23,
-    ),
-    ext("xsave", cfg!(target_feature = "xsave"), Word::Leaf1Ecx, 26),
-    ext("avx", cfg!(target_feature = "avx"), Word::Leaf1Ecx, 28),
-    ext("f16c", cfg!(target_feature = "f16c"), Word::Leaf1Ecx, 29),
-    ext("bmi1", cfg!(target_feature = "bmi1"), Word::Leaf7Ebx, 3),
-    ext("avx2", cfg!(target_feature = "avx2"), Word::Leaf7Ebx, 5),
-    ext("bmi2", cfg!(target_feature = "bmi2"), Word::Leaf7Ebx, 8),
-    ext("lzcnt", cfg!(target_feature = "lzcnt"), Word::Ext1Ecx, 5),
-    ext(
-        "operating-system support for AVX registers",
-        cfg!(target_feature = "avx"),
-        Word::OsAvxState,
-        0,
-    ),
+    ext!("sse3", Leaf1Ecx, 0),
+    ext!("ssse3", Leaf1Ecx, 9),
+    ext!("fma", Leaf1Ecx, 12),
+    ext!("cmpxchg16b", Leaf1Ecx, 13),
+    ext!("sse4.1", Leaf1Ecx, 19),
+    ext!("sse4.2", Leaf1Ecx, 20),
+    ext!("movbe", Leaf1Ecx, 22),
+    ext!("popcnt", Leaf1Ecx, 23),
+    ext!("xsave", Leaf1Ecx, 26),
+    ext!("avx", Leaf1Ecx, 28),
+    ext!("f16c", Leaf1Ecx, 29),
+    ext!("bmi1", Leaf7Ebx, 3),
+    ext!("avx2", Leaf7Ebx, 5),
+    ext!("bmi2", Leaf7Ebx, 8),
+    ext!("lzcnt", Ext1Ecx, 5),
+    Extension {
+        name: "operating-system support for AVX registers",
+        compiled: cfg!(target_feature = "avx"),
+        word: Word::OsAvxState,
+        bit: 0,
+    },
     // Listed so that a build for a still newer level names its first missing extension
     // rather than passing; x86-64-v3 does not use it.
-    ext(
-        "avx512f",
-        cfg!(target_feature = "avx512f"),
-        Word::Leaf7Ebx,
-        16,
-    ),
+    ext!("avx512f", Leaf7Ebx, 16),
 ];
 
 /// The CPUID bits this build needs, per word, gathered from [`EXTENSIONS`] at compile time.
