@@ -99,10 +99,10 @@ pub const LOGISTIC_MAX_ERROR: f64 = 2.8e-10;
 /// [`tanh`] clamps its argument into [-TANH_CLAMP, TANH_CLAMP] (tanh(12) = 1 − 7.6e-11); the
 /// rational function has already reached 1 there (it crosses 1 at x ≈ 11.0227 and keeps
 /// rising), so the output clamp makes every |x| ≥ 11.03 give exactly ±1.
-pub(crate) const TANH_CLAMP: f64 = 12.0;
+const TANH_CLAMP: f64 = 12.0;
 
 /// Numerator coefficients p_0 … p_5 of [`tanh`] (powers of x²).
-pub(crate) const TANH_P: [f64; 6] = [
+const TANH_P: [f64; 6] = [
     0.9999999980137508,
     0.14019297868708977,
     0.00432010491550617,
@@ -112,7 +112,7 @@ pub(crate) const TANH_P: [f64; 6] = [
 ];
 
 /// Denominator coefficients q_1 … q_5 of [`tanh`] (q_0 = 1).
-pub(crate) const TANH_Q: [f64; 5] = [
+const TANH_Q: [f64; 5] = [
     0.47352630350693203,
     0.028828883373201844,
     0.0004806371281892068,
@@ -139,17 +139,51 @@ pub(crate) const TANH_Q: [f64; 5] = [
 /// clamps become min/max instructions), so loops over slices vectorise.
 #[inline(always)]
 pub fn tanh(x: f64) -> f64 {
-    let c = if x > TANH_CLAMP { TANH_CLAMP } else { x };
-    let c = if c < -TANH_CLAMP { -TANH_CLAMP } else { c };
+    tanh_with(&TANH, x)
+}
+
+/// The constants of [`tanh`]: the clamps, the coefficients, 1 and −1.
+///
+/// [`tanh`] passes them as compile-time constants; the brains' sample-lane pass passes a copy
+/// kept in the network (`lanes::TanhLanes`), so that the compiler reads the ones that do not
+/// fit in registers from memory instead of re-broadcasting them. One formula either way.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TanhConstants {
+    /// TANH_CLAMP, −TANH_CLAMP.
+    clamp: [f64; 2],
+    /// p0 … p5.
+    p: [f64; 6],
+    /// q1 … q5.
+    q: [f64; 5],
+    /// 1, −1.
+    unit: [f64; 2],
+}
+
+/// [`tanh`]'s constants.
+pub const TANH: TanhConstants = TanhConstants {
+    clamp: [TANH_CLAMP, -TANH_CLAMP],
+    p: TANH_P,
+    q: TANH_Q,
+    unit: [1.0, -1.0],
+};
+
+/// [`tanh`] computed with the constants `k` (which are [`TANH`]'s, wherever they are read
+/// from): the same comparisons, Horner steps and division.
+#[inline(always)]
+pub fn tanh_with(k: &TanhConstants, x: f64) -> f64 {
+    let [hi, lo] = k.clamp;
+    let [p0, p1, p2, p3, p4, p5] = k.p;
+    let [q1, q2, q3, q4, q5] = k.q;
+    let [one, minus_one] = k.unit;
+    let c = if x > hi { hi } else { x };
+    let c = if c < lo { lo } else { c };
     let t = c * c;
-    let [p0, p1, p2, p3, p4, p5] = TANH_P;
-    let [q1, q2, q3, q4, q5] = TANH_Q;
     let p = ((((p5 * t + p4) * t + p3) * t + p2) * t + p1) * t + p0;
-    let q = ((((q5 * t + q4) * t + q3) * t + q2) * t + q1) * t + 1.0;
+    let q = ((((q5 * t + q4) * t + q3) * t + q2) * t + q1) * t + one;
     let y = c * p / q;
-    let y = if y > 1.0 { 1.0 } else { y };
-    if y < -1.0 {
-        -1.0
+    let y = if y > one { one } else { y };
+    if y < minus_one {
+        minus_one
     } else {
         y
     }

@@ -34,7 +34,7 @@
 //! last tile of fewer than 4 samples fills its empty lanes with zeros, whose results are
 //! dropped.
 
-use super::activation::Activation;
+use super::activation::{tanh_with, Activation, TanhConstants};
 
 /// Samples per tile: the f64 values of one AVX2 register.
 pub const LANES: usize = 4;
@@ -451,8 +451,8 @@ pub fn finish(y: &mut [Lanes], stage: Stage, tanh: &TanhLanes) {
     }
 }
 
-/// The constants of [`super::activation::tanh`] (the clamps, the coefficients, 1 and −1),
-/// kept in the network, so that the lane pass reads them from memory.
+/// The constants of [`super::activation::tanh`], kept in the network, so that the lane pass
+/// reads them from memory.
 ///
 /// # Why
 ///
@@ -461,52 +461,24 @@ pub fn finish(y: &mut [Lanes], stage: Stage, tanh: &TanhLanes) {
 /// with a broadcast from an 8-byte constant in every iteration (one more instruction each,
 /// five per 4 values); constants it cannot see are broadcast once before the loop, and the
 /// ones that do not fit are read back from the stack as memory operands of the multiplies,
-/// adds and min/max (no extra instruction). Same operations in the same order on the same
-/// values: the same bits as [`super::activation::tanh`].
+/// adds and min/max (no extra instruction). The formula is [`tanh_with`]'s, so the bits are
+/// [`super::activation::tanh`]'s.
 #[derive(Debug, Clone, PartialEq)]
-pub struct TanhLanes {
-    /// TANH_CLAMP, −TANH_CLAMP.
-    clamp: [f64; 2],
-    /// p0 … p5.
-    p: [f64; 6],
-    /// q1 … q5.
-    q: [f64; 5],
-    /// 1, −1.
-    unit: [f64; 2],
-}
+pub struct TanhLanes(TanhConstants);
 
 impl Default for TanhLanes {
     fn default() -> Self {
-        use super::activation::{TANH_CLAMP, TANH_P, TANH_Q};
-        TanhLanes {
-            clamp: [TANH_CLAMP, -TANH_CLAMP],
-            p: TANH_P,
-            q: TANH_Q,
-            unit: [1.0, -1.0],
-        }
+        TanhLanes(super::activation::TANH)
     }
 }
 
 impl TanhLanes {
     /// [`super::activation::tanh`] of every value of `y` (then NaN to 0 when `OUTPUT`, as
-    /// [`super::activation::tanh_outputs`]): the same comparisons, Horner steps and
-    /// division, value by value (vectorised over the values).
+    /// [`super::activation::tanh_outputs`]), vectorised over the values.
     #[inline(always)]
     pub fn apply<const OUTPUT: bool>(&self, y: &mut [Lanes]) {
-        let [hi, lo] = self.clamp;
-        let [p0, p1, p2, p3, p4, p5] = self.p;
-        let [q1, q2, q3, q4, q5] = self.q;
-        let [one, minus_one] = self.unit;
         for v in y.as_flattened_mut() {
-            let x = *v;
-            let c = if x > hi { hi } else { x };
-            let c = if c < lo { lo } else { c };
-            let t = c * c;
-            let p = ((((p5 * t + p4) * t + p3) * t + p2) * t + p1) * t + p0;
-            let q = ((((q5 * t + q4) * t + q3) * t + q2) * t + q1) * t + one;
-            let r = c * p / q;
-            let r = if r > one { one } else { r };
-            let r = if r < minus_one { minus_one } else { r };
+            let r = tanh_with(&self.0, *v);
             *v = if OUTPUT && r.is_nan() { 0.0 } else { r };
         }
     }
