@@ -1,6 +1,8 @@
 //! The `berry-evolve` command: parses the command line, runs it, and prints errors as a cause
 //! chain with a non-zero exit code (never a panic or a backtrace for bad input).
 
+use cli::console::errln;
+
 mod cli;
 
 use clap::Parser;
@@ -20,9 +22,9 @@ fn main() {
         }) {
             std::process::exit(0);
         }
-        eprintln!("error: {error}");
+        errln!("error: {error}");
         for cause in error.chain().skip(1) {
-            eprintln!("  caused by: {cause}");
+            errln!("  caused by: {cause}");
         }
         let code = if error
             .downcast_ref::<berry_evolve::run::RunError>()

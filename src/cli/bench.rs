@@ -1,6 +1,8 @@
 //! `berry-evolve bench`: speed of the simulator (creature-ticks per second) and of whole
 //! generations, with 1 and 2 threads. Timing lives here and in scripts, never in tests.
 
+use crate::cli::console::outln;
+
 use berry_evolve::brain::{Brain, BrainController};
 use berry_evolve::evo::lockstep::{self, Lockstep};
 use berry_evolve::evo::state::{evaluate, first_population, offspring};
@@ -354,7 +356,7 @@ fn time_evolution(
 pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let repeat = args.repeat.max(1);
-    println!(
+    outln!(
         "berry-evolve {} bench; {cores} cores available; every figure is the median of {repeat} run(s), 1 and 2 threads measured in alternating rounds",
         env!("CARGO_PKG_VERSION")
     );
@@ -379,7 +381,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         }
         let ones: Vec<f64> = rounds.iter().map(|r| r.0).collect();
         let (low, high) = spread(&ones);
-        println!(
+        outln!(
             "simulator {}: {:.0} creature-ticks/s on 1 thread, {:.0} on 2 threads ({:.2}x); 1-thread runs {:.0}-{:.0}",
             path.display(),
             median(ones.clone()),
@@ -392,7 +394,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         let (slowest, fastest) = spread(&throughput);
         let (latency_low, latency_high) = spread(&machine.iter().map(|m| m[1]).collect::<Vec<_>>());
         let quiet = quiet_rounds(&throughput, &ones);
-        println!(
+        outln!(
             "  machine check around the 1-thread runs: a high-throughput arithmetic loop ran at {:.1}-{:.1}M steps/s ({:.2}x spread), a latency-bound one at {:.0}-{:.0}M ({:.2}x); 1 thread in the {} round(s) where the first ran within {:.0}% of its fastest: {:.0} creature-ticks/s",
             slowest / 1e6,
             fastest / 1e6,
@@ -417,7 +419,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
                 sim_rate(&experiment, &spec, worlds, args.ticks, 1)
             })?;
             let base = *first.get_or_insert(rate);
-            println!(
+            outln!(
                 "scaling {} x{k}: {:.0} x {:.0} arena, {} walls, {} objects: {:.0} creature-ticks/s on 1 thread, cost per creature-tick {:.2}x the first",
                 args.scaling_world.display(),
                 spec.arena[0],
@@ -450,7 +452,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
                     .collect(),
             );
             let rate = median(runs.iter().map(rate).collect());
-            println!(
+            outln!(
                 "evolution {} on {threads} thread(s): {:.3} generations/s, {:.0} creature-ticks/s (agent-steps/s), GA share {:.2}%",
                 args.evolution.display(),
                 rate,
@@ -467,7 +469,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         );
         let mut bests = timings.iter().flatten().map(|t| &t.bests);
         let first = bests.next();
-        println!(
+        outln!(
             "evolution speed-up 2 vs 1 thread: {:.2}x; best fitness per generation identical in every run: {}",
             speed_up,
             if bests.all(|b| Some(b) == first) {

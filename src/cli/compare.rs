@@ -2,6 +2,8 @@
 //! same trial worlds of an experiment, so evolved and hand-designed controllers can be compared
 //! fairly. By default the worlds are a held-out set that evolution never saw.
 
+use crate::cli::console::outln;
+
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::brain::spec::Topology;
 use berry_evolve::evo::evaluate::{aggregate, run_trial, Evaluation};
@@ -79,15 +81,18 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     experiment.evaluation.common_random_numbers = true;
     experiment.validate()?;
     let generation = Generation(args.generation.unwrap_or(HELD_OUT_GENERATION));
-    println!(
+    outln!(
         "experiment `{}`: {} trials x {} ticks of generation {}'s worlds",
-        experiment.name, experiment.evaluation.trials, experiment.evaluation.ticks, generation.0
+        experiment.name,
+        experiment.evaluation.trials,
+        experiment.evaluation.ticks,
+        generation.0
     );
     for path in &args.genomes {
         let file = GenomeFile::load(path)?;
         let topology = file.topology_for(&experiment, path)?;
         let e = evaluate(&experiment, &topology, &file.genome(), generation)?;
-        println!("{}: fitness {}", path.display(), fmt(&e));
+        outln!("{}: fitness {}", path.display(), fmt(&e));
     }
     if args.random > 0 {
         let topology = experiment.topology();
@@ -107,9 +112,13 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
             .collect::<anyhow::Result<Vec<_>>>()?;
         let fitness: Vec<f64> = evaluations.iter().filter_map(|e| e.fitness).collect();
         let stats = FitnessStats::of(&fitness);
-        println!(
+        outln!(
             "{} random genomes: fitness mean {:.4}, std {:.4}, best {:.4}, median {:.4}",
-            args.random, stats.mean, stats.std, stats.best, stats.median
+            args.random,
+            stats.mean,
+            stats.std,
+            stats.best,
+            stats.median
         );
     }
     Ok(())

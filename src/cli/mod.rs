@@ -3,6 +3,7 @@
 
 pub mod bench;
 pub mod compare;
+pub mod console;
 pub mod export;
 pub mod inspect;
 pub mod progress;

@@ -1,6 +1,8 @@
 //! Progress reports on stderr: an indicatif bar on a terminal, plain log lines otherwise,
 //! nothing under `--quiet`. Timings live here only, never in the run's files.
 
+use crate::cli::console::errln;
+
 use berry_evolve::record::fitness_csv::FitnessRow;
 use berry_evolve::run::Progress;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -55,7 +57,7 @@ impl Progress for Bar {
     fn note(&mut self, message: &str) {
         match &self.bar {
             Some(bar) => bar.println(format!("note: {message}")),
-            None => eprintln!("note: {message}"),
+            None => errln!("note: {message}"),
         }
     }
 }
@@ -72,7 +74,7 @@ impl Progress for Lines {
         let (elapsed, total) = self
             .started
             .map_or((0.0, 0), |(t, _, total)| (t.elapsed().as_secs_f64(), total));
-        eprintln!(
+        errln!(
             "generation {:>4}/{total}: best {:.4} mean {:.4} median {:.4} best ever {:.4} ({elapsed:.1} s)",
             row.generation + 1,
             row.best,
@@ -82,10 +84,10 @@ impl Progress for Lines {
         );
     }
     fn checkpoint(&mut self, path: &Path) {
-        eprintln!("checkpoint {}", path.display());
+        errln!("checkpoint {}", path.display());
     }
     fn end(&mut self) {}
     fn note(&mut self, message: &str) {
-        eprintln!("note: {message}");
+        errln!("note: {message}");
     }
 }

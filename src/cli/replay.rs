@@ -1,6 +1,8 @@
 //! `berry-evolve replay`: evaluate one genome in an experiment's trial worlds, exactly as
 //! evolution evaluated it, and print its fitness and metabolic vector.
 
+use crate::cli::console::{errln, outln};
+
 use anyhow::Context;
 use berry_evolve::brain::{Brain, BrainController};
 use berry_evolve::evo::evaluate::{aggregate, run_trial, trial_stream};
@@ -46,7 +48,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
     if let Some(recorded) = &file.origin.config_hash {
         let here = experiment.config_hash();
         if *recorded != here {
-            eprintln!(
+            errln!(
                 "note: {} was evolved under config hash {}, this experiment's is {} (another seed \
                  or other settings), so its worlds and fitness differ from the recorded ones; \
                  replay with the run folder's experiment.toml (or the right --seed) to reproduce them",
@@ -86,7 +88,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
             TrialIndex(t),
         )?;
         let o = outcome[0];
-        println!(
+        outln!(
             "trial {t}: score {:.6}  metabolism [{:.4}, {:.4}, {:.4}, {:.4}]  shocked ticks {}{}",
             o.score,
             o.metabolism[0],
@@ -104,15 +106,15 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
     }
     let evaluation = aggregate(&experiment, &outcomes);
     match evaluation.fitness {
-        Some(f) => println!(
+        Some(f) => outln!(
             "fitness {f:.6} ({:?} over {} trial(s) of generation {})",
             experiment.evaluation.aggregate,
             trials.len(),
             generation.0
         ),
-        None => println!("fitness: none (the brain produced a non-finite output)"),
+        None => outln!("fitness: none (the brain produced a non-finite output)"),
     }
-    println!("metabolism {:?}", evaluation.metabolism);
+    outln!("metabolism {:?}", evaluation.metabolism);
     if let Some(trace_path) = &args.trace {
         let file_out = std::fs::File::create(trace_path)
             .with_context(|| format!("cannot create {}", trace_path.display()))?;
@@ -135,7 +137,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
             }
         }
         trace.flush()?;
-        eprintln!("trace written to {}", trace_path.display());
+        errln!("trace written to {}", trace_path.display());
     }
     Ok(())
 }

@@ -1,5 +1,7 @@
 //! `berry-evolve run`: start a new run of an experiment.
 
+use crate::cli::console::errln;
+
 use super::progress::reporter;
 use anyhow::Context;
 use berry_evolve::experiment::Experiment;
@@ -54,10 +56,10 @@ pub fn stop_flag() -> anyhow::Result<Arc<AtomicBool>> {
     let handler_flag = flag.clone();
     ctrlc::set_handler(move || {
         if handler_flag.swap(true, Ordering::SeqCst) {
-            eprintln!("\nstopping now; the last checkpoint is intact");
+            errln!("\nstopping now; the last checkpoint is intact");
             std::process::exit(130);
         }
-        eprintln!("\nstopping after this generation (press Ctrl-C again to stop at once)");
+        errln!("\nstopping after this generation (press Ctrl-C again to stop at once)");
     })
     .context("cannot install the Ctrl-C handler")?;
     Ok(flag)
@@ -100,12 +102,16 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
 /// Prints where a finished run's results are.
 pub fn report(summary: &berry_evolve::run::RunSummary) {
     if let Some(best) = &summary.best_ever {
-        eprintln!(
+        errln!(
             "done: {} generations; best ever {:.4} (generation {}, individual {}), metabolism {:?}",
-            summary.generations, best.fitness, best.generation, best.individual, best.metabolism
+            summary.generations,
+            best.fitness,
+            best.generation,
+            best.individual,
+            best.metabolism
         );
     }
-    eprintln!(
+    errln!(
         "results in {}: fitness.csv, best.json, checkpoints/",
         summary.dir.display()
     );

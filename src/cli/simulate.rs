@@ -1,6 +1,8 @@
 //! `berry-evolve simulate`: scripted creatures (the experiment's `[demo]` table) in the
 //! experiment's world, with an optional per-tick trace CSV.
 
+use crate::cli::console::{errln, outln};
+
 use anyhow::Context;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::trace::TraceWriter;
@@ -69,7 +71,7 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
         t.flush()?;
     }
     for (i, c) in world.creatures().iter().enumerate() {
-        println!(
+        outln!(
             "creature {i}: position ({:.2}, {:.2}), travelled {:.1} LU, eaten {:?}, metabolism {:?}{}",
             c.pose.position.x,
             c.pose.position.y,
@@ -80,7 +82,7 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
         );
     }
     if let Some(path) = &args.trace {
-        eprintln!("trace written to {}", path.display());
+        errln!("trace written to {}", path.display());
     }
     Ok(())
 }
