@@ -14,7 +14,11 @@ fn main() {
         cpu_exit();
     }
     let cli = cli::Cli::parse();
-    if let Err(error) = cli::dispatch(cli) {
+    let result = cli::dispatch(cli).and_then(|()| match cli::console::stdout_error() {
+        Some(e) => Err(anyhow::anyhow!("cannot write to standard output: {e}")),
+        None => Ok(()),
+    });
+    if let Err(error) = result {
         // A reader that closed the pipe (`berry-evolve inspect x.toml | head`) is not an error.
         if error.chain().any(|c| {
             c.downcast_ref::<std::io::Error>()

@@ -1,11 +1,13 @@
 //! `berry-evolve export-csv`: the fitness curve (or the last population) held in a checkpoint.
 
 use anyhow::Context;
+use berry_evolve::record::atomic::{refuse_output_over_input, write_atomic};
+use berry_evolve::record::checkpoint::{list_checkpoints, parse_checkpoint_file_name};
 use berry_evolve::record::fitness_csv::to_bytes;
 use berry_evolve::run::load_checkpoint;
 use clap::Args;
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `export-csv`.
 #[derive(Debug, Args)]
@@ -23,7 +25,10 @@ pub struct ExportArgs {
 
 /// Runs the subcommand.
 pub fn run(args: ExportArgs) -> anyhow::Result<()> {
-    let (_, path, payload, _) = load_checkpoint(&args.target)?;
+    let (dir, path, payload, _) = load_checkpoint(&args.target)?;
+    if let Some(out) = &args.output {
+        refuse_over_run_files(out, &dir, &path)?;
+    }
     let mut bytes = Vec::new();
     if args.population {
         let mut w = csv::Writer::from_writer(&mut bytes);
@@ -44,9 +49,53 @@ pub fn run(args: ExportArgs) -> anyhow::Result<()> {
             .with_context(|| format!("formatting the history of {}", path.display()))?;
     }
     match &args.output {
-        Some(out) => std::fs::write(out, &bytes)
-            .with_context(|| format!("cannot write {}", out.display()))?,
-        None => std::io::stdout().write_all(&bytes)?,
+        // Atomic: a kill, `ulimit -f` or a full disk leaves the earlier export whole.
+        Some(out) => {
+            write_atomic(out, &bytes).with_context(|| format!("cannot write {}", out.display()))?
+        }
+        None => {
+            let mut stdout = std::io::stdout().lock();
+            stdout
+                .write_all(&bytes)
+                .and_then(|()| stdout.flush())
+                .context("cannot write the CSV to standard output")?
+        }
     }
+    Ok(())
+}
+
+/// `-o` must not name the checkpoint read, nor any file of its run folder that resume reads
+/// (other checkpoints, fitness.csv, best.json, experiment.toml), nor look like a checkpoint.
+fn refuse_over_run_files(out: &Path, dir: &Path, checkpoint: &Path) -> anyhow::Result<()> {
+    use berry_evolve::run::{BEST_FILE, CHECKPOINT_DIR, EXPERIMENT_FILE, FITNESS_FILE};
+    if out
+        .file_name()
+        .and_then(|n| n.to_str())
+        .and_then(parse_checkpoint_file_name)
+        .is_some()
+    {
+        anyhow::bail!(
+            "-o {}: a gen-NNNNNN.json name is a checkpoint's, and a CSV there would pass for a \
+             damaged checkpoint; choose another output file (e.g. fitness-export.csv)",
+            out.display()
+        );
+    }
+    let mut inputs: Vec<PathBuf> = vec![checkpoint.to_path_buf()];
+    for f in [FITNESS_FILE, BEST_FILE, EXPERIMENT_FILE] {
+        inputs.push(dir.join(f));
+    }
+    for d in [
+        dir.join(CHECKPOINT_DIR),
+        checkpoint.parent().unwrap_or(Path::new(".")).to_path_buf(),
+    ] {
+        inputs.extend(
+            list_checkpoints(&d)
+                .unwrap_or_default()
+                .into_iter()
+                .map(|(_, p)| p),
+        );
+    }
+    let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+    refuse_output_over_input("-o", out, &inputs)?;
     Ok(())
 }

@@ -38,6 +38,13 @@ pub struct ReplayArgs {
 
 /// Runs the subcommand.
 pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
+    if let Some(trace) = &args.trace {
+        berry_evolve::record::atomic::refuse_output_over_input(
+            "--trace",
+            trace,
+            &[&args.genome, &args.experiment],
+        )?;
+    }
     let mut experiment = Experiment::load(&args.experiment)?;
     if let Some(seed) = args.seed {
         experiment.seed = seed;
@@ -116,9 +123,10 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
     }
     outln!("metabolism {:?}", evaluation.metabolism);
     if let Some(trace_path) = &args.trace {
-        let file_out = std::fs::File::create(trace_path)
+        // Atomic: until the trace is complete, an earlier trace file keeps its content.
+        let file_out = berry_evolve::record::atomic::AtomicFile::create(trace_path)
             .with_context(|| format!("cannot create {}", trace_path.display()))?;
-        let mut trace = TraceWriter::new(std::io::BufWriter::new(file_out));
+        let mut trace = TraceWriter::new(file_out);
         for &t in &trials {
             let brain = Brain::new(&topology, &genome.parameters)?;
             let mut controllers = [BrainController::new(
@@ -136,7 +144,11 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
                 }
             }
         }
-        trace.flush()?;
+        trace
+            .into_inner()
+            .map_err(anyhow::Error::from)
+            .and_then(|f| f.commit().map_err(anyhow::Error::from))
+            .with_context(|| format!("cannot write {}", trace_path.display()))?;
         errln!("trace written to {}", trace_path.display());
     }
     Ok(())

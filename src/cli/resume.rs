@@ -1,8 +1,9 @@
 //! `berry-evolve resume`: continue a run from its newest good checkpoint (or a given one).
 
 use super::progress::reporter;
+use super::run::Interrupting;
 use super::run::{report, stop_flag, ExecutionArgs};
-use berry_evolve::run::{resume, RunOptions};
+use berry_evolve::run::{resume_target, resume_with, ResumeRequest, RunOptions};
 use clap::Args;
 use std::path::PathBuf;
 
@@ -18,18 +19,39 @@ pub struct ResumeArgs {
     /// change is recorded in config-changes.log.
     #[arg(long)]
     pub allow_config_change: bool,
+    /// Resume the checkpoint given although the run folder holds newer ones: they are moved
+    /// to discarded-checkpoints/ and the move recorded in config-changes.log.
+    #[arg(long)]
+    pub discard_newer: bool,
+    /// Accept a --generations below what the run plans (recorded in config-changes.log).
+    #[arg(long)]
+    pub shorten: bool,
     #[command(flatten)]
     pub execution: ExecutionArgs,
 }
 
 /// Runs the subcommand.
 pub fn run(args: ResumeArgs) -> anyhow::Result<()> {
-    let stop = stop_flag()?;
+    let at = resume_target(&args.target)
+        .ok()
+        .map(|(dir, _)| Interrupting {
+            start_over: format!(
+                "berry-evolve run {}/experiment.toml --out {} --force",
+                dir.display(),
+                dir.display()
+            ),
+            dir,
+        });
+    let stop = stop_flag(at)?;
     let mut progress = reporter(args.execution.quiet);
-    let summary = resume(
+    let summary = resume_with(
         &args.target,
-        args.generations,
-        args.allow_config_change,
+        ResumeRequest {
+            generations: args.generations,
+            allow_config_change: args.allow_config_change,
+            discard_newer: args.discard_newer,
+            shorten: args.shorten,
+        },
         RunOptions {
             jobs: args.execution.jobs.unwrap_or(0),
             stop: Some(&stop),

@@ -27,13 +27,14 @@ pub struct RunArgs {
     pub generations: Option<u64>,
     // Not `#[command(flatten)] ExecutionArgs`: clap leaves the top-level `Option<RunArgs>`
     // (the bare `berry-evolve FILE` form) as None when it holds a nested flatten.
-    /// Worker threads (default: one per core). Results do not depend on it.
-    #[arg(long)]
+    /// Worker threads, 1 to 1024 (default: one per core). Results do not depend on it.
+    #[arg(long, value_parser = parse_jobs)]
     pub jobs: Option<usize>,
     /// Print nothing but errors.
     #[arg(long, short)]
     pub quiet: bool,
-    /// Replace a run already in the run folder.
+    /// Replace a run already in the run folder: removes only the run's own files (its
+    /// experiment.toml, fitness.csv, best.json, checkpoints, config-changes.log) and says which.
     #[arg(long)]
     pub force: bool,
 }
@@ -41,22 +42,70 @@ pub struct RunArgs {
 /// How a resumed run executes; none of it changes the results.
 #[derive(Debug, Args)]
 pub struct ExecutionArgs {
-    /// Worker threads (default: one per core). Results do not depend on it.
-    #[arg(long)]
+    /// Worker threads, 1 to 1024 (default: one per core). Results do not depend on it.
+    #[arg(long, value_parser = parse_jobs)]
     pub jobs: Option<usize>,
     /// Print nothing but errors.
     #[arg(long, short)]
     pub quiet: bool,
 }
 
+/// The most worker threads `--jobs` accepts (a thread per core is the useful most; far more
+/// only costs start-up time and memory).
+pub const MAX_JOBS: usize = 1024;
+
+/// `--jobs`: 1 to [`MAX_JOBS`].
+fn parse_jobs(text: &str) -> Result<usize, String> {
+    let jobs: usize = text
+        .parse()
+        .map_err(|_| format!("`{text}` is not a whole number of threads"))?;
+    if !(1..=MAX_JOBS).contains(&jobs) {
+        return Err(format!(
+            "must be between 1 and {MAX_JOBS} worker threads (leave it out for one per core)"
+        ));
+    }
+    Ok(jobs)
+}
+
+/// What the handler of a second signal tells the user about the run folder.
+pub struct Interrupting {
+    /// The run folder.
+    pub dir: PathBuf,
+    /// How to start the run over when it has no checkpoint yet.
+    pub start_over: String,
+}
+
+/// What stopping at once leaves: the newest checkpoint to resume, or nothing.
+fn stopping_now(at: Option<&Interrupting>) -> String {
+    let Some(at) = at else {
+        return "stopping now".to_string();
+    };
+    let newest = berry_evolve::record::checkpoint::list_checkpoints(
+        &at.dir.join(berry_evolve::run::CHECKPOINT_DIR),
+    )
+    .ok()
+    .and_then(|mut v| v.pop());
+    match newest {
+        Some((_, path)) => format!(
+            "stopping now; the last checkpoint, {}, is intact. Continue with: berry-evolve resume {}",
+            path.display(),
+            at.dir.display()
+        ),
+        None => format!(
+            "stopping now, before the first checkpoint: there is nothing to resume. Start again with: {}",
+            at.start_over
+        ),
+    }
+}
+
 /// Installs a Ctrl-C / SIGTERM handler: the first signal asks the run to stop after the
 /// current generation (with a checkpoint); the second stops at once.
-pub fn stop_flag() -> anyhow::Result<Arc<AtomicBool>> {
+pub fn stop_flag(at: Option<Interrupting>) -> anyhow::Result<Arc<AtomicBool>> {
     let flag = Arc::new(AtomicBool::new(false));
     let handler_flag = flag.clone();
     ctrlc::set_handler(move || {
         if handler_flag.swap(true, Ordering::SeqCst) {
-            errln!("\nstopping now; the last checkpoint is intact");
+            errln!("\n{}", stopping_now(at.as_ref()));
             std::process::exit(130);
         }
         errln!("\nstopping after this generation (press Ctrl-C again to stop at once)");
@@ -81,7 +130,14 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         )
     })?;
     let dir = args.out.unwrap_or_else(|| experiment.default_run_dir());
-    let stop = stop_flag()?;
+    let stop = stop_flag(Some(Interrupting {
+        dir: dir.clone(),
+        start_over: format!(
+            "berry-evolve run {} --out {} --force",
+            args.experiment.display(),
+            dir.display()
+        ),
+    }))?;
     let mut progress = reporter(args.quiet);
     let summary = start(
         experiment,

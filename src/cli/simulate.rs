@@ -29,6 +29,9 @@ pub struct SimulateArgs {
 
 /// Runs the subcommand.
 pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
+    if let Some(trace) = &args.trace {
+        berry_evolve::record::atomic::refuse_output_over_input("--trace", trace, &[&args.file])?;
+    }
     let mut experiment = Experiment::load(&args.file)?;
     if let Some(seed) = args.seed {
         experiment.seed = seed;
@@ -55,10 +58,11 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
     let mut world = World::new(&experiment.world, &experiment.creature, demo.creatures, rng)
         .with_context(|| format!("{}: cannot build the world", args.file.display()))?;
     let mut trace = match &args.trace {
-        Some(path) => Some(TraceWriter::new(std::io::BufWriter::new(
-            std::fs::File::create(path)
+        // Atomic: until the trace is complete, an earlier trace file keeps its content.
+        Some(path) => Some(TraceWriter::new(
+            berry_evolve::record::atomic::AtomicFile::create(path)
                 .with_context(|| format!("cannot create {}", path.display()))?,
-        ))),
+        )),
         None => None,
     };
     for _ in 0..args.ticks {
@@ -67,8 +71,11 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
             t.write_tick(&world)?;
         }
     }
-    if let Some(t) = &mut trace {
-        t.flush()?;
+    if let (Some(t), Some(path)) = (trace, &args.trace) {
+        t.into_inner()
+            .map_err(anyhow::Error::from)
+            .and_then(|f| f.commit().map_err(anyhow::Error::from))
+            .with_context(|| format!("cannot write {}", path.display()))?;
     }
     for (i, c) in world.creatures().iter().enumerate() {
         outln!(

@@ -95,7 +95,11 @@ pub enum ExperimentError {
 impl Experiment {
     /// Reads and validates an experiment file.
     pub fn load(path: &Path) -> Result<Experiment, ExperimentError> {
-        let text = std::fs::read_to_string(path).map_err(|error| ExperimentError::Read {
+        let text = crate::record::input::read_regular_text(
+            path,
+            crate::record::input::MAX_EXPERIMENT_BYTES,
+        )
+        .map_err(|error| ExperimentError::Read {
             path: path.to_path_buf(),
             error,
         })?;
@@ -104,9 +108,35 @@ impl Experiment {
 
     /// Parses and validates experiment text; `origin` only names the error in errors.
     pub fn from_toml(text: &str, origin: &Path) -> Result<Experiment, ExperimentError> {
+        // Parsing costs about 75 bytes of memory per byte of TOML, so an absurd world is
+        // refused before it is parsed: every wall (and gadget) has a `from` key, so counting
+        // the word bounds their number from above (comments only add a few).
+        let froms = text.matches("from").count() as u64;
+        let most = crate::sim::spec::MAX_WALLS + crate::sim::gadgets::MAX_ACTORS + 1000;
+        if froms > most {
+            return Err(ExperimentError::Invalid {
+                path: origin.to_path_buf(),
+                error: InvalidValue::new(
+                    "world.walls",
+                    format!(
+                        "the file holds {froms} `from` keys, more walls than the limit of {} \
+                         (the largest world this simulator supports); refused before parsing",
+                        crate::sim::spec::MAX_WALLS
+                    ),
+                ),
+            });
+        }
         let experiment: Experiment = toml::from_str(text).map_err(|e| ExperimentError::Parse {
             path: origin.to_path_buf(),
-            message: e.to_string().trim_end().to_string(),
+            // toml quotes the offending line and key: cut each line so that a huge value
+            // (a 1 MB name) is not echoed back whole.
+            message: e
+                .to_string()
+                .trim_end()
+                .lines()
+                .map(|line| crate::record::input::cut(line, 300))
+                .collect::<Vec<_>>()
+                .join("\n"),
         })?;
         experiment
             .validate()
@@ -121,6 +151,16 @@ impl Experiment {
     pub fn validate(&self) -> Valid {
         if self.name.trim().is_empty() {
             return Err(InvalidValue::new("name", "must not be empty"));
+        }
+        if self.name.chars().all(|c| c == '.') {
+            return Err(InvalidValue::new(
+                "name",
+                format!(
+                    "`{}` is not a plain folder name (it names the run folder results/<name>/); \
+                     use letters, digits, '-', '_' and '.', not only dots",
+                    crate::record::input::cut(&self.name, 40)
+                ),
+            ));
         }
         if self
             .name

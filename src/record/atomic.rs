@@ -16,7 +16,14 @@
 //!
 //! Temporary files are named `.<file name>.tmp-<pid>-<n>` (hidden, next to their destination;
 //! `<n>` counts writes within one process). A process killed between steps 1 and 3 leaves such
-//! a file behind; [`remove_stale_temp_files`] deletes them when a run starts.
+//! a file behind; [`remove_stale_temp_files`] deletes them, but only a process that holds the
+//! run folder's lock (`run::lock`) may call it: it cannot tell a dead writer's file from a
+//! live one's.
+//!
+//! [`AtomicFile`] is the same sequence for output streamed over a long time (traces): the
+//! destination keeps its previous content until [`AtomicFile::commit`], and a dropped (failed,
+//! killed) one leaves no temporary file, or one that the next lock holder removes.
+//! [`refuse_output_over_input`] keeps a command from writing over one of its own inputs.
 //!
 //! Folder `fsync` is done on Unix (Linux is the target). Other platforms have no portable way
 //! to sync a folder (on Windows, opening a folder as a file fails with "access denied"), so
@@ -89,11 +96,124 @@ where
     sync_dir(dir)
 }
 
+/// A file being written that replaces `path` only when [`AtomicFile::commit`] succeeds; until
+/// then `path` keeps its previous content (or stays absent). Dropped without a commit (an
+/// error, a panic), the temporary file is removed.
+pub struct AtomicFile {
+    dest: PathBuf,
+    temp: PathBuf,
+    writer: Option<BufWriter<File>>,
+}
+
+impl AtomicFile {
+    /// Starts replacing `path`: creates the temporary file beside it.
+    pub fn create(path: &Path) -> io::Result<AtomicFile> {
+        let file_name = path.file_name().ok_or_else(|| {
+            io::Error::new(
+                io::ErrorKind::InvalidInput,
+                format!("cannot write {}: the path has no file name", path.display()),
+            )
+        })?;
+        let (temp, file) = create_temp(parent_dir(path), &file_name.to_string_lossy())?;
+        Ok(AtomicFile {
+            dest: path.to_path_buf(),
+            temp,
+            writer: Some(BufWriter::with_capacity(1 << 16, file)),
+        })
+    }
+
+    /// Syncs the content and renames it over the destination (see the module docs).
+    pub fn commit(mut self) -> io::Result<()> {
+        let Some(writer) = self.writer.take() else {
+            return Err(io::Error::other("atomic file already finished"));
+        };
+        let result = writer
+            .into_inner()
+            .map_err(|e| e.into_error())
+            .and_then(|f| f.sync_all())
+            .map_err(|e| context(e, "cannot write temporary file", &self.temp))
+            .and_then(|()| {
+                fs::rename(&self.temp, &self.dest).map_err(|e| {
+                    context(
+                        e,
+                        &format!("cannot rename {} over", self.temp.display()),
+                        &self.dest,
+                    )
+                })
+            });
+        if let Err(error) = result {
+            let _ = fs::remove_file(&self.temp);
+            return Err(error);
+        }
+        sync_dir(parent_dir(&self.dest))
+    }
+}
+
+impl Write for AtomicFile {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        match &mut self.writer {
+            Some(w) => w.write(buf),
+            None => Err(io::Error::other("atomic file already finished")),
+        }
+    }
+    fn flush(&mut self) -> io::Result<()> {
+        match &mut self.writer {
+            Some(w) => w.flush(),
+            None => Ok(()),
+        }
+    }
+}
+
+impl Drop for AtomicFile {
+    fn drop(&mut self) {
+        if self.writer.take().is_some() {
+            let _ = fs::remove_file(&self.temp);
+        }
+    }
+}
+
+/// Refuses to write `output` when it is (or, through a link, names) one of `inputs`: the
+/// command would destroy what it reads. Files are compared by device and inode when both
+/// exist, and by canonical path otherwise (a not-yet-existing output cannot be an input).
+/// `flag` names the option in the message (e.g. `--trace`).
+pub fn refuse_output_over_input(flag: &str, output: &Path, inputs: &[&Path]) -> io::Result<()> {
+    for input in inputs {
+        if same_file(output, input) {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidInput,
+                format!(
+                    "{flag} {} is the same file as {}, an input of this command: writing it \
+                     would destroy it; choose another output file",
+                    output.display(),
+                    input.display()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Whether `a` and `b` name the same existing file (after following links).
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        if let (Ok(x), Ok(y)) = (fs::metadata(a), fs::metadata(b)) {
+            return x.dev() == y.dev() && x.ino() == y.ino();
+        }
+    }
+    match (fs::canonicalize(a), fs::canonicalize(b)) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => false,
+    }
+}
+
 /// Removes the temporary files that killed writes left in `dir` (names of the form
 /// `.<name>.tmp-<pid>-<n>`), and returns how many were removed. Other files are not touched.
 ///
-/// Call it when a run starts, before any writer is active in `dir`: it cannot tell a dead
-/// writer's file from a live one's (process ids are reused, e.g. in containers).
+/// Call it only while holding the run folder's lock (`run::lock::RunLock`), so that no other
+/// writer is active in `dir`: it cannot tell a dead writer's file from a live one's (process
+/// ids are reused, e.g. in containers). Read-only commands never call it.
 pub fn remove_stale_temp_files(dir: &Path) -> io::Result<usize> {
     let entries = fs::read_dir(dir).map_err(|e| context(e, "cannot list folder", dir))?;
     let mut removed = 0;

@@ -195,7 +195,8 @@ impl FitnessCsv {
         path: &Path,
         last_generation: u64,
     ) -> Result<Reopened, FitnessCsvError> {
-        let bytes = std::fs::read(path).map_err(|e| io_error(path, "read", e))?;
+        let bytes = super::input::read_regular(path, super::input::MAX_CSV_BYTES)
+            .map_err(|e| io_error(path, "read", e))?;
         let parsed = parse(path, &bytes, Some(last_generation))?;
         let last_row = parsed.rows.last().map(|r| r.generation);
         if last_row != Some(last_generation) {
@@ -282,7 +283,8 @@ impl FitnessCsv {
 /// every line a complete row, generations increasing. A partial last line (a killed run) is
 /// reported as [`FitnessCsvError::PartialLine`].
 pub fn read_rows(path: &Path) -> Result<Vec<FitnessRow>, FitnessCsvError> {
-    let bytes = std::fs::read(path).map_err(|e| io_error(path, "read", e))?;
+    let bytes = super::input::read_regular(path, super::input::MAX_CSV_BYTES)
+        .map_err(|e| io_error(path, "read", e))?;
     let parsed = parse(path, &bytes, None)?;
     if let Some(line) = parsed.partial_line {
         return Err(FitnessCsvError::PartialLine {

@@ -122,10 +122,12 @@ impl GenomeFile {
 
     /// Reads and checks a genome file (format, finite values, parameter count).
     pub fn load(path: &Path) -> Result<GenomeFile, GenomeFileError> {
-        let bytes = std::fs::read(path).map_err(|error| GenomeFileError::Io {
-            path: path.to_path_buf(),
-            error,
-        })?;
+        let bytes =
+            crate::record::input::read_regular(path, crate::record::input::MAX_GENOME_BYTES)
+                .map_err(|error| GenomeFileError::Io {
+                    path: path.to_path_buf(),
+                    error,
+                })?;
         GenomeFile::from_slice(&bytes, path)
     }
 

@@ -3,6 +3,8 @@
 //! generation loop that connects evolution to them, including resuming from a checkpoint so
 //! that a stopped run finishes with the same bytes as one never stopped.
 
+pub mod lock;
+
 use crate::brain::spec::Topology;
 use crate::evo::evaluate::EvaluationError;
 use crate::evo::state::{
@@ -14,6 +16,8 @@ use crate::record::atomic::{remove_stale_temp_files, write_atomic};
 use crate::record::checkpoint::{self, CheckpointError, CheckpointErrorKind, ContentError};
 use crate::record::fitness_csv::{FitnessCsv, FitnessRow};
 use crate::record::genome_file::{GenomeFile, GenomeFileError, Origin};
+use crate::record::input::{read_regular, read_regular_text, MAX_CSV_BYTES, MAX_EXPERIMENT_BYTES};
+use lock::{LockError, RunLock};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -27,6 +31,10 @@ pub const FITNESS_FILE: &str = "fitness.csv";
 pub const BEST_FILE: &str = "best.json";
 /// The checkpoint folder.
 pub const CHECKPOINT_DIR: &str = "checkpoints";
+/// Where `resume --discard-newer` moves the checkpoints newer than the one resumed.
+pub const DISCARDED_DIR: &str = "discarded-checkpoints";
+/// The log of explicit changes to a run (config changes, shortening, discarded checkpoints).
+pub const CHANGES_FILE: &str = "config-changes.log";
 
 /// What a checkpoint holds besides its envelope (format, program version, config hash,
 /// generation, checksum). No random generator state is needed: every stream is derived from
@@ -52,8 +60,78 @@ pub enum RunError {
         /// The folder.
         dir: PathBuf,
     },
+    /// Another process writes this run folder.
+    #[error("{dir} is in use by {}: another berry-evolve writes this run folder. Wait for it to finish (or stop it), then try again", match pid { Some(p) => format!("process {p}"), None => "another process".to_string() })]
+    InUse {
+        /// The folder.
+        dir: PathBuf,
+        /// The holder's process id.
+        pid: Option<u32>,
+    },
+    /// The run folder's lock file could not be opened or locked.
+    #[error("cannot lock the run folder {dir} ({path}): {error}; a run folder must be a writable folder on a local file system")]
+    Lock {
+        /// The folder.
+        dir: PathBuf,
+        /// The lock file.
+        path: PathBuf,
+        /// The I/O error.
+        error: std::io::Error,
+    },
+    /// The run folder holds a run's files but no checkpoint: nothing to resume.
+    #[error("{dir} holds the files of a run that stopped before its first checkpoint, so there is nothing to resume; start it over with: berry-evolve run {experiment} --out {dir} --force")]
+    NothingToResume {
+        /// The folder.
+        dir: PathBuf,
+        /// The experiment file to start over with.
+        experiment: String,
+    },
+    /// `--force` found an experiment.toml that this program did not write.
+    #[error("{path} is not the file a run writes (it differs from the run's own form, e.g. it has comments), so --force does not delete it; move it out of the run folder (or choose another --out) and run again")]
+    NotOwnExperiment {
+        /// The file.
+        path: PathBuf,
+    },
+    /// `--out` is a symbolic link to nothing.
+    #[error("--out {dir} is a symbolic link to {target}, which does not exist; create that folder first (mkdir -p {target}) or choose another --out")]
+    DanglingOut {
+        /// The link.
+        dir: PathBuf,
+        /// Where it points.
+        target: PathBuf,
+    },
+    /// What `resume` was given is neither a run folder nor a checkpoint in one.
+    #[error("cannot resume {target}: {reason}")]
+    ResumeTarget {
+        /// The argument.
+        target: PathBuf,
+        /// Why, and what to do.
+        reason: String,
+    },
+    /// Resuming an older checkpoint would leave newer ones behind.
+    #[error("{dir} holds checkpoints newer than {checkpoint} ({newer}); resuming from it would discard them. To do that, moving them to {dir}/{DISCARDED_DIR}/ and recording it in {CHANGES_FILE}, run: {command}")]
+    NewerCheckpoints {
+        /// The run folder.
+        dir: PathBuf,
+        /// The checkpoint asked for.
+        checkpoint: PathBuf,
+        /// The newer checkpoints' names.
+        newer: String,
+        /// The command that does it.
+        command: String,
+    },
+    /// `resume --generations N` asked for fewer generations than the run plans.
+    #[error("--generations {requested} is fewer than the {planned} generations this run plans; to shorten the run (recorded in {CHANGES_FILE}), run: {command}")]
+    FewerGenerations {
+        /// What was asked for.
+        requested: u64,
+        /// What the run plans.
+        planned: u64,
+        /// The command that does it.
+        command: String,
+    },
     /// The run folder could not be created (e.g. a parent is a regular file).
-    #[error("cannot create the run folder {dir}: {error}; choose another --out, or make sure every parent of it is a writable folder")]
+    #[error("cannot create the run folder {dir}: {error}; choose another --out, or make sure every parent of it is a writable folder with free space")]
     CreateFolder {
         /// The run folder.
         dir: PathBuf,
@@ -104,7 +182,7 @@ pub enum RunError {
         expected: String,
     },
     /// `resume --generations N` asked for fewer generations than the checkpoint holds.
-    #[error("--generations {requested}: checkpoint {checkpoint} already holds {completed} completed generations; ask for at least that many")]
+    #[error("--generations {requested}: checkpoint {checkpoint} already holds {completed} completed generations; ask for at least that many{older}")]
     TooFewGenerations {
         /// What was asked for.
         requested: u64,
@@ -112,6 +190,8 @@ pub enum RunError {
         completed: u64,
         /// The checkpoint.
         checkpoint: PathBuf,
+        /// A command resuming an older checkpoint instead, when one exists.
+        older: String,
     },
     /// A file of the run could not be written during the run (full disk, permissions, the
     /// folder removed); the run stopped.
@@ -195,8 +275,84 @@ fn holds_run(dir: &Path) -> bool {
         .any(|f| dir.join(f).exists())
 }
 
+/// Takes the run folder's lock (see [`lock`]): the first thing every writer does.
+fn lock_folder(dir: &Path) -> Result<RunLock, RunError> {
+    RunLock::acquire(dir).map_err(|e| match e {
+        LockError::InUse { pid } => RunError::InUse {
+            dir: dir.to_path_buf(),
+            pid,
+        },
+        LockError::Io(error) => RunError::Lock {
+            dir: dir.to_path_buf(),
+            path: dir.join(lock::LOCK_FILE),
+            error,
+        },
+    })
+}
+
+/// Removes the temporary files of killed writes in the run folder (only a lock holder may).
+fn clean_temp_files(dir: &Path) -> Result<(), RunError> {
+    remove_stale_temp_files(dir).map_err(io_err(dir))?;
+    let cdir = dir.join(CHECKPOINT_DIR);
+    if cdir.is_dir() {
+        remove_stale_temp_files(&cdir).map_err(io_err(&cdir))?;
+    }
+    Ok(())
+}
+
+/// Is `path` an experiment.toml this program wrote: exactly the run's own serialization of
+/// the experiment it holds? A user's file (comments, another key order) is not.
+fn is_own_experiment(path: &Path) -> bool {
+    read_regular_text(path, MAX_EXPERIMENT_BYTES)
+        .ok()
+        .and_then(|text| {
+            Experiment::from_toml(&text, path)
+                .ok()
+                .map(|e| e.to_toml() == text)
+        })
+        .unwrap_or(false)
+}
+
+/// `--force`: removes the earlier run's own files (and nothing else) and returns their
+/// names relative to `dir`. Refuses, before removing anything, an experiment.toml that this
+/// program did not write.
+fn remove_own_files(dir: &Path) -> Result<Vec<String>, RunError> {
+    let experiment = dir.join(EXPERIMENT_FILE);
+    if experiment.exists() && !is_own_experiment(&experiment) {
+        return Err(RunError::NotOwnExperiment { path: experiment });
+    }
+    let mut files: Vec<(PathBuf, String)> = Vec::new();
+    for f in [EXPERIMENT_FILE, FITNESS_FILE, BEST_FILE, CHANGES_FILE] {
+        let p = dir.join(f);
+        if p.symlink_metadata().is_ok_and(|m| m.is_file()) {
+            files.push((p, f.to_string()));
+        }
+    }
+    for sub in [CHECKPOINT_DIR, DISCARDED_DIR] {
+        let d = dir.join(sub);
+        if d.is_dir() {
+            for (_, p) in checkpoint::list_checkpoints(&d).map_err(io_err(&d))? {
+                let name = format!(
+                    "{sub}/{}",
+                    p.file_name().unwrap_or_default().to_string_lossy()
+                );
+                files.push((p, name));
+            }
+        }
+    }
+    let mut removed = Vec::new();
+    for (p, name) in files {
+        std::fs::remove_file(&p).map_err(io_err(&p))?;
+        removed.push(name);
+    }
+    // An emptied folder of discarded checkpoints goes too; one with the user's files stays.
+    let _ = std::fs::remove_dir(dir.join(DISCARDED_DIR));
+    Ok(removed)
+}
+
 /// Starts a new run of `experiment` in `dir`. Refuses a folder that already holds a run
-/// unless `force`, in which case the old run's files are removed first.
+/// unless `force`, in which case the old run's own files (and only those) are removed first.
+/// Refuses at once, touching nothing, a folder another process writes.
 pub fn start(
     experiment: Experiment,
     dir: &Path,
@@ -204,25 +360,37 @@ pub fn start(
     options: RunOptions<'_>,
     progress: &mut dyn Progress,
 ) -> Result<RunSummary, RunError> {
-    if dir.is_dir() {
-        // A run killed while writing (e.g. before --force) leaves `.<name>.tmp-*` files.
-        remove_stale_temp_files(dir).map_err(io_err(dir))?;
+    if dir
+        .symlink_metadata()
+        .is_ok_and(|m| m.file_type().is_symlink())
+        && !dir.exists()
+    {
+        return Err(RunError::DanglingOut {
+            dir: dir.to_path_buf(),
+            target: std::fs::read_link(dir).unwrap_or_default(),
+        });
     }
+    std::fs::create_dir_all(dir).map_err(|error| RunError::CreateFolder {
+        dir: dir.to_path_buf(),
+        error,
+    })?;
+    let lock = lock_folder(dir)?;
+    // A run killed while writing (e.g. before --force) leaves `.<name>.tmp-*` files.
+    clean_temp_files(dir)?;
     if holds_run(dir) {
         if !force {
             return Err(RunError::FolderInUse {
                 dir: dir.to_path_buf(),
             });
         }
-        for f in [EXPERIMENT_FILE, FITNESS_FILE, BEST_FILE] {
-            let p = dir.join(f);
-            if p.exists() {
-                std::fs::remove_file(&p).map_err(io_err(&p))?;
-            }
-        }
-        let c = dir.join(CHECKPOINT_DIR);
-        if c.exists() {
-            std::fs::remove_dir_all(&c).map_err(io_err(&c))?;
+        let removed = remove_own_files(dir)?;
+        if !removed.is_empty() {
+            progress.note(&format!(
+                "--force removed the earlier run's {} file(s) from {}: {}",
+                removed.len(),
+                dir.display(),
+                removed.join(", ")
+            ));
         }
     }
     let checkpoints = dir.join(CHECKPOINT_DIR);
@@ -232,8 +400,10 @@ pub fn start(
     })?;
     let experiment_path = dir.join(EXPERIMENT_FILE);
     write_atomic(&experiment_path, experiment.to_toml().as_bytes())
-        .map_err(io_err(&experiment_path))?;
-    let csv = FitnessCsv::create(&dir.join(FITNESS_FILE))?;
+        .map_err(io_err(&experiment_path))
+        .map_err(|e| output_failed(dir, e))?;
+    let csv =
+        FitnessCsv::create(&dir.join(FITNESS_FILE)).map_err(|e| output_failed(dir, e.into()))?;
     let topology = experiment.topology();
     let population = first_population(&experiment, &topology);
     drive(
@@ -245,11 +415,25 @@ pub fn start(
             history: Vec::new(),
             best_ever: None,
             next_generation: 0,
+            _lock: lock,
         },
         population,
         options,
         progress,
     )
+}
+
+/// What `resume` is asked to do beyond continuing.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ResumeRequest {
+    /// Run until this many generations in total.
+    pub generations: Option<u64>,
+    /// Continue although experiment.toml differs from the checkpoint's experiment.
+    pub allow_config_change: bool,
+    /// Resume an older checkpoint although newer ones exist, moving those aside.
+    pub discard_newer: bool,
+    /// Accept `generations` below what the run plans.
+    pub shorten: bool,
 }
 
 /// Where to resume from: a run folder (its newest good checkpoint) or a checkpoint file.
@@ -260,7 +444,142 @@ pub fn resume(
     options: RunOptions<'_>,
     progress: &mut dyn Progress,
 ) -> Result<RunSummary, RunError> {
-    let (dir, loaded_path, payload, program) = load_checkpoint(target)?;
+    resume_with(
+        target,
+        ResumeRequest {
+            generations,
+            allow_config_change,
+            ..ResumeRequest::default()
+        },
+        options,
+        progress,
+    )
+}
+
+/// The run folder of a `resume` target and the checkpoint file named, if one was: a folder
+/// is itself; a checkpoint file (a symbolic link, a bare name typed inside `checkpoints/`)
+/// belongs to the folder holding the `checkpoints/` it really lies in. A checkpoint that
+/// lies in no run folder is refused before anything is read or written.
+pub fn resume_target(target: &Path) -> Result<(PathBuf, Option<PathBuf>), RunError> {
+    let refuse = |reason: String| RunError::ResumeTarget {
+        target: target.to_path_buf(),
+        reason,
+    };
+    let meta = match std::fs::metadata(target) {
+        Ok(m) => m,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            return Err(refuse(
+                "no such run folder or checkpoint file; give the run folder (e.g. results/<name>/seed-<seed>) or one of its checkpoints/gen-NNNNNN.json".to_string(),
+            ))
+        }
+        Err(e) => return Err(refuse(e.to_string())),
+    };
+    if meta.is_dir() {
+        return Ok((target.to_path_buf(), None));
+    }
+    if !meta.is_file() {
+        return Err(refuse(
+            "not a regular file or folder (only a run folder or a checkpoint file can be resumed)"
+                .to_string(),
+        ));
+    }
+    let in_checkpoints = |p: &Path| {
+        p.parent()
+            .filter(|d| d.file_name().is_some_and(|n| n == CHECKPOINT_DIR))
+            .map(|d| match d.parent() {
+                Some(r) if !r.as_os_str().is_empty() => r.to_path_buf(),
+                _ => PathBuf::from("."),
+            })
+    };
+    let is_link = target
+        .symlink_metadata()
+        .is_ok_and(|m| m.file_type().is_symlink());
+    if !is_link {
+        if let Some(dir) = in_checkpoints(target) {
+            return Ok((dir, Some(target.to_path_buf())));
+        }
+    }
+    let real = std::fs::canonicalize(target).map_err(|e| refuse(e.to_string()))?;
+    match in_checkpoints(&real) {
+        Some(dir) => Ok((dir, Some(real))),
+        None => Err(refuse(format!(
+            "{} is not inside a run folder's {CHECKPOINT_DIR}/ folder, so there is no run to continue; put it in one and resume that folder: mkdir -p RUN/{CHECKPOINT_DIR} && cp {} RUN/{CHECKPOINT_DIR}/ && berry-evolve resume RUN",
+            real.display(),
+            target.display()
+        ))),
+    }
+}
+
+/// [`resume`] with every choice explicit (see [`ResumeRequest`]).
+pub fn resume_with(
+    target: &Path,
+    request: ResumeRequest,
+    options: RunOptions<'_>,
+    progress: &mut dyn Progress,
+) -> Result<RunSummary, RunError> {
+    let (dir, file) = resume_target(target)?;
+    let lock = lock_folder(&dir)?;
+    clean_temp_files(&dir)?;
+    if file.is_none() {
+        let listed = checkpoint::list_checkpoints(&dir.join(CHECKPOINT_DIR)).unwrap_or_default();
+        if listed.is_empty() && holds_run(&dir) {
+            let experiment = dir.join(EXPERIMENT_FILE);
+            return Err(RunError::NothingToResume {
+                dir: dir.clone(),
+                experiment: if experiment.is_file() {
+                    experiment.display().to_string()
+                } else {
+                    "EXPERIMENT.toml".to_string()
+                },
+            });
+        }
+    }
+    let (loaded_path, payload, program) = match &file {
+        Some(f) => {
+            let (_, p, payload, program) = load_checkpoint(f)?;
+            (p, payload, program)
+        }
+        None => {
+            let (_, p, payload, program) = load_checkpoint(&dir)?;
+            (p, payload, program)
+        }
+    };
+    let generations = request.generations;
+    let last_generation = payload.last.generation;
+    // An older checkpoint than the newest: the newer ones would be left behind.
+    let cdir = dir.join(CHECKPOINT_DIR);
+    let newer: Vec<PathBuf> = checkpoint::list_checkpoints(&cdir)
+        .map_err(io_err(&cdir))?
+        .into_iter()
+        .filter(|(g, _)| *g > last_generation)
+        .map(|(_, p)| p)
+        .collect();
+    let mut discard = None;
+    if !newer.is_empty() {
+        let names = newer
+            .iter()
+            .map(|p| {
+                p.file_name()
+                    .unwrap_or_default()
+                    .to_string_lossy()
+                    .into_owned()
+            })
+            .collect::<Vec<_>>();
+        if !request.discard_newer {
+            return Err(RunError::NewerCheckpoints {
+                dir: dir.clone(),
+                checkpoint: loaded_path,
+                newer: names.join(", "),
+                command: format!(
+                    "berry-evolve resume {} --discard-newer{}",
+                    target.display(),
+                    generations.map_or(String::new(), |g| format!(" --generations {g}"))
+                ),
+            });
+        }
+        // Moved aside only after every other check passed (a refused resume touches nothing).
+        discard = Some(names);
+    }
     if program != checkpoint::PROGRAM {
         // Reproducibility is promised per version: another version may compute differently
         // (0.2.0 changed the brains' arithmetic), so say so rather than stay silent.
@@ -276,7 +595,7 @@ pub fn resume(
     if experiment_path.exists() {
         let on_disk = Experiment::load(&experiment_path)?;
         if on_disk.config_hash() != experiment.config_hash() {
-            if !allow_config_change {
+            if !request.allow_config_change {
                 return Err(RunError::ConfigChanged {
                     path: experiment_path,
                     checkpoint: loaded_path,
@@ -286,20 +605,66 @@ pub fn resume(
             }
             record_config_change(&dir, &experiment, &on_disk, &loaded_path)?;
             experiment = on_disk;
-        } else if on_disk.evolution.generations != experiment.evolution.generations
-            && generations.is_none()
-        {
-            // Only the length differs: the file was edited to extend the run.
-            experiment.evolution.generations = on_disk.evolution.generations;
+        } else {
+            if on_disk.evolution.generations != experiment.evolution.generations
+                && generations.is_none()
+            {
+                // Only the length differs: the file was edited to extend the run.
+                experiment.evolution.generations = on_disk.evolution.generations;
+            }
+            if on_disk.output != experiment.output {
+                // [output] decides only where and how often results are saved: honoured.
+                progress.note(&format!(
+                    "{} has an edited [output] table; it is used from now on",
+                    experiment_path.display()
+                ));
+                experiment.output = on_disk.output.clone();
+            }
         }
     }
+    let mut shortened = None;
     if let Some(g) = generations {
-        if g < payload.last.generation + 1 {
+        if g < last_generation + 1 {
+            let older = checkpoint::list_checkpoints(&cdir)
+                .unwrap_or_default()
+                .into_iter()
+                .rev()
+                .find(|(og, _)| *og < g)
+                .map_or(String::new(), |(_, p)| {
+                    format!(
+                        ", or continue from an older checkpoint: berry-evolve resume {} --discard-newer --generations {g}{}",
+                        p.display(),
+                        if g < experiment.evolution.generations { " --shorten" } else { "" }
+                    )
+                });
             return Err(RunError::TooFewGenerations {
                 requested: g,
-                completed: payload.last.generation + 1,
+                completed: last_generation + 1,
                 checkpoint: loaded_path,
+                older,
             });
+        }
+        let planned = experiment.evolution.generations;
+        if g < planned {
+            if !request.shorten {
+                return Err(RunError::FewerGenerations {
+                    requested: g,
+                    planned,
+                    command: format!(
+                        "berry-evolve resume {} --generations {g} --shorten{}",
+                        target.display(),
+                        if request.discard_newer {
+                            " --discard-newer"
+                        } else {
+                            ""
+                        }
+                    ),
+                });
+            }
+            shortened = Some(format!(
+                "resumed from {} with --shorten: generations {planned} -> {g}",
+                loaded_path.display()
+            ));
         }
         experiment.evolution.generations = g;
     }
@@ -309,20 +674,38 @@ pub fn resume(
             path: experiment_path.clone(),
             error,
         })?;
+    if let Some(names) = discard {
+        let aside = dir.join(DISCARDED_DIR);
+        std::fs::create_dir_all(&aside).map_err(io_err(&aside))?;
+        for p in &newer {
+            let to = aside.join(p.file_name().unwrap_or_default());
+            std::fs::rename(p, &to).map_err(io_err(p))?;
+        }
+        record_change(
+            &dir,
+            &format!(
+                "resumed from {} with --discard-newer: moved {} to {DISCARDED_DIR}/",
+                loaded_path.display(),
+                names.join(", ")
+            ),
+        )?;
+        progress.note(&format!(
+            "moved the newer checkpoints {} to {}",
+            names.join(", "),
+            aside.display()
+        ));
+    }
+    if let Some(line) = shortened {
+        record_change(&dir, &line)?;
+    }
     write_atomic(&experiment_path, experiment.to_toml().as_bytes())
         .map_err(io_err(&experiment_path))?;
-    let last_generation = payload.last.generation;
     let csv_path = dir.join(FITNESS_FILE);
-    let csv = if csv_path.exists() || payload.history.len() as u64 != last_generation + 1 {
+    let csv = if payload.history.len() as u64 == last_generation + 1 {
+        repair_csv(&csv_path, &payload.history, &loaded_path, progress)?;
         FitnessCsv::reopen_for_resume(&csv_path, last_generation)?.csv
     } else {
-        // A deleted fitness.csv is rebuilt from the rows the checkpoint carries (the same
-        // bytes: the same rows through the same writer).
-        let mut csv = FitnessCsv::create(&csv_path)?;
-        for row in &payload.history {
-            csv.append(row)?;
-        }
-        csv
+        FitnessCsv::reopen_for_resume(&csv_path, last_generation)?.csv
     };
     let topology = experiment.topology();
     let mut state = Loop {
@@ -333,6 +716,7 @@ pub fn resume(
         best_ever: payload.best_ever,
         next_generation: last_generation + 1,
         experiment,
+        _lock: lock,
     };
     if state.next_generation >= state.experiment.evolution.generations {
         // Nothing left to evaluate: make sure the final files match the finished run.
@@ -349,8 +733,61 @@ pub fn resume(
     drive(state, population, options, progress)
 }
 
+/// Makes `fitness.csv` begin with exactly the rows the checkpoint carries (the true ones):
+/// a missing file is rebuilt, a damaged or edited row rewritten, and the user told which.
+/// Rows after the checkpoint are left for [`FitnessCsv::reopen_for_resume`] to drop.
+fn repair_csv(
+    path: &Path,
+    history: &[FitnessRow],
+    checkpoint: &Path,
+    progress: &mut dyn Progress,
+) -> Result<(), RunError> {
+    let expected = crate::record::fitness_csv::to_bytes(history).map_err(io_err(path))?;
+    let existing = match read_regular(path, MAX_CSV_BYTES) {
+        Ok(bytes) => Some(bytes),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => None,
+        Err(e) => {
+            return Err(RunError::Io {
+                path: path.to_path_buf(),
+                error: e,
+            })
+        }
+    };
+    let what = match &existing {
+        Some(bytes) if bytes.starts_with(&expected) => return Ok(()),
+        None => "it was missing".to_string(),
+        Some(bytes) => {
+            let line = bytes
+                .split(|&b| b == b'\n')
+                .zip(expected.split(|&b| b == b'\n'))
+                .position(|(a, b)| a != b)
+                .unwrap_or(0);
+            if line == 0 {
+                "its header was damaged".to_string()
+            } else if line > history.len() {
+                "rows were missing".to_string()
+            } else {
+                format!(
+                    "the row of generation {} differed from the checkpoint",
+                    history[line - 1].generation
+                )
+            }
+        }
+    };
+    write_atomic(path, &expected).map_err(io_err(path))?;
+    progress.note(&format!(
+        "repaired {}: {what}; rows 0..={} rewritten from {}",
+        path.display(),
+        history.len().saturating_sub(1),
+        checkpoint.display()
+    ));
+    Ok(())
+}
+
 /// Finds and reads the checkpoint to resume from. Returns (run folder, checkpoint, payload,
-/// the program that wrote it).
+/// the program that wrote it). Reads only: removes and renames nothing, takes no lock, so
+/// `export-csv` can watch a live run. A checkpoint pruned by the live run between listing
+/// and reading is skipped for the next newest one (see `checkpoint::load_latest_good`).
 pub fn load_checkpoint(
     target: &Path,
 ) -> Result<(PathBuf, PathBuf, CheckpointPayload, String), RunError> {
@@ -362,10 +799,6 @@ pub fn load_checkpoint(
         return Ok((dir, target.to_path_buf(), loaded.payload, loaded.program));
     }
     let cdir = target.join(CHECKPOINT_DIR);
-    remove_stale_temp_files(target).map_err(io_err(target))?;
-    if cdir.is_dir() {
-        remove_stale_temp_files(&cdir).map_err(io_err(&cdir))?;
-    }
     let loaded = checkpoint::load_latest_good::<CheckpointPayload>(&cdir, None)?
         .refuse_if_newest_unusable()?;
     check_payload_hash(
@@ -462,22 +895,28 @@ fn record_config_change(
     new: &Experiment,
     checkpoint: &Path,
 ) -> Result<(), RunError> {
-    use std::io::Write;
-    let path = dir.join("config-changes.log");
-    let mut f = std::fs::OpenOptions::new()
-        .create(true)
-        .append(true)
-        .open(&path)
-        .map_err(io_err(&path))?;
-    writeln!(
-        f,
-        "resumed from {} with a changed experiment: config hash {} -> {}",
-        checkpoint.display(),
-        old.config_hash(),
-        new.config_hash()
+    record_change(
+        dir,
+        &format!(
+            "resumed from {} with a changed experiment: config hash {} -> {}",
+            checkpoint.display(),
+            old.config_hash(),
+            new.config_hash()
+        ),
     )
-    .and_then(|_| f.sync_all())
-    .map_err(io_err(&path))
+}
+
+/// Appends `line` to `config-changes.log`, replacing the file atomically (the log is small).
+fn record_change(dir: &Path, line: &str) -> Result<(), RunError> {
+    let path = dir.join(CHANGES_FILE);
+    let mut text = match read_regular(&path, MAX_CSV_BYTES) {
+        Ok(bytes) => bytes,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Vec::new(),
+        Err(error) => return Err(RunError::Io { path, error }),
+    };
+    text.extend_from_slice(line.as_bytes());
+    text.push(b'\n');
+    write_atomic(&path, &text).map_err(io_err(&path))
 }
 
 /// The state the generation loop carries.
@@ -489,6 +928,8 @@ struct Loop {
     history: Vec<FitnessRow>,
     best_ever: Option<Champion>,
     next_generation: u64,
+    /// Held for the whole run: no other process writes this folder meanwhile.
+    _lock: RunLock,
 }
 
 impl Loop {
