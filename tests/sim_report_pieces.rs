@@ -246,3 +246,128 @@ fn wandering_predator_freezes_in_a_corner_of_a_small_pen() {
         1.0,
     );
 }
+
+// ---------------------------------------------------------------- the eye (§7.4)
+
+/// One letter per colour: background, grey wall, yellow wall, green food.
+fn letter(rgb: &[f64]) -> char {
+    match rgb {
+        [0.0, 0.0, 0.0] => '.',
+        [0.5, 0.5, 0.5] => 'W',
+        [1.0, 1.0, 0.0] => 'T',
+        [0.0, 1.0, 0.0] => 'f',
+        other => panic!("unexpected colour {other:?}"),
+    }
+}
+
+/// Creature 0's retina as rows of letters, top row first.
+fn picture(w: &mut World) -> Vec<String> {
+    let [width, height] = w.retina_size().expect("the creature has an eye");
+    let mut out = vec![0.0; 3 * width * height];
+    assert!(w.render_eye(0, &mut out));
+    out.chunks(3 * width)
+        .map(|row| row.chunks(3).map(letter).collect())
+        .collect()
+}
+
+/// The eye at (100, 150), 5 LU up, looking along +x; rows at +15°, 0° and −15° (a vertical
+/// field of 45° over 3 rows), columns at −8°, −4°, 0°, 4°, 8°. Food 2 LU high whose near side
+/// is 10 LU ahead; a yellow wall 40 LU high 100 LU ahead.
+const EYE_TOP: &str = r#"
+[world]
+boundary_walls = false
+
+[[world.walls]]
+from = [200, 0]
+to = [200, 300]
+colour = [1, 1, 0]
+height = 40
+
+[world.kinds.low]
+class = "food"
+radius = 2
+height = 2
+
+[[world.objects]]
+kind = "low"
+position = [112, 150]
+
+[world.start]
+region = [100, 150, 100, 150]
+heading = 0
+
+[creature.inputs]
+eye = true
+
+[creature.eye]
+fov = 20
+vertical_fov = 45
+width = 5
+height = 3
+"#;
+
+/// 0.3.5: the row looking 15° down passed over the food's rim (at 10 LU it is 5 − 10·tan 15°
+/// = 2.32 LU up, above the food's 2) and showed the ground (background) behind it, though
+/// it comes down to the food's top, 2 LU up, at (5 − 2) / tan 15° = 11.196 LU, inside the
+/// food's circle (10 to 14 LU along the middle column; 10.78 to 12.98 along the outermost,
+/// 12·sin 8° = 1.67 LU from the centre). The two upper rows pass over the food and see the
+/// far wall (at 100 LU the +15° row is 31.8 LU up and the level row 5 LU, both below its 40).
+#[test]
+fn multi_row_eye_never_sees_the_top_of_an_object_lower_than_the_eye() {
+    let mut w = world(EYE_TOP, 1, 1);
+    assert_eq!(picture(&mut w), ["TTTTT", "TTTTT", "fffff"]);
+}
+
+/// The top is seen at 11.196 LU: an eye range of 11.1 LU leaves it out, 11.3 LU keeps it
+/// (the wall, 100 LU away, is out of range in both).
+#[test]
+fn the_top_of_a_low_object_is_seen_where_the_ray_comes_down_to_it() {
+    let short = EYE_TOP.replace("height = 3\n", "height = 3\nrange = 11.1\n");
+    assert_eq!(
+        picture(&mut world(&short, 1, 1)),
+        [".....", ".....", "....."]
+    );
+    let long = EYE_TOP.replace("height = 3\n", "height = 3\nrange = 11.3\n");
+    assert_eq!(
+        picture(&mut world(&long, 1, 1)),
+        [".....", ".....", "fffff"]
+    );
+}
+
+/// A ray that leaves the circle before it comes down to the top sees past it: food of radius
+/// 0.5 from 10 to 11 LU is missed (11 < 11.196), of radius 0.7 from 10 to 11.4 LU seen by the
+/// middle column only (the ±4° columns pass 10.7·sin 4° = 0.75 LU from its centre).
+#[test]
+fn a_ray_over_a_narrow_low_object_sees_past_it() {
+    let narrow = EYE_TOP
+        .replace("radius = 2\n", "radius = 0.5\n")
+        .replace("position = [112, 150]", "position = [110.5, 150]");
+    assert_eq!(
+        picture(&mut world(&narrow, 1, 1)),
+        ["TTTTT", "TTTTT", "....."]
+    );
+    let wider = EYE_TOP
+        .replace("radius = 2\n", "radius = 0.7\n")
+        .replace("position = [112, 150]", "position = [110.7, 150]");
+    assert_eq!(
+        picture(&mut world(&wider, 1, 1)),
+        ["TTTTT", "TTTTT", "..f.."]
+    );
+}
+
+/// Walls have no thickness: a row looking down over a low wall sees what lies beyond (here
+/// the food's top behind a grey wall 1 LU high, 5 LU ahead, whose face the −15° row meets at
+/// 5 − 5·tan 15° = 3.66 LU up, above it). A 1-row retina sees neither low thing.
+#[test]
+fn a_row_looking_down_over_a_low_wall_sees_beyond_it() {
+    let walled = EYE_TOP.replace(
+        "[world.kinds.low]",
+        "[[world.walls]]\nfrom = [105, 100]\nto = [105, 200]\nheight = 1\n\n[world.kinds.low]",
+    );
+    assert_eq!(
+        picture(&mut world(&walled, 1, 1)),
+        ["TTTTT", "TTTTT", "fffff"]
+    );
+    let flat = walled.replace("height = 3\n", "height = 1\n");
+    assert_eq!(picture(&mut world(&flat, 1, 1)), ["TTTTT"]);
+}
