@@ -3,14 +3,22 @@
 //!
 //! Every wall is a vertical rectangle of its height and colour; food, aversive objects and
 //! other living creatures are vertical cylinders of their own radius, height and colour
-//! (radius-0 objects are points and are never seen). Each pixel column casts one horizontal
-//! ray ([`crate::geometry::ray_segment`], [`crate::geometry::ray_circle`]); a surface met at
-//! distance d with height H covers the pixel rows whose elevation e satisfies
+//! with a flat top (radius-0 objects are points and are never seen). Each pixel column casts
+//! one horizontal ray ([`crate::geometry::ray_segment`], [`crate::geometry::ray_circle`]); a
+//! surface met at distance d with height H covers the pixel rows whose elevation e satisfies
 //! −eye_height ≤ d·tan e ≤ H − eye_height, and each row shows the nearest surface that covers
 //! it, or the background. This gives the painter's image of the report (a tall far wall shows
 //! above a low near one) without sorting. With a 1-row retina (e = 0) a surface is seen iff
 //! H ≥ eye_height. On equal distance the first surface in the order walls, food, aversive
 //! objects, creatures wins.
+//!
+//! A row looking down (e < 0) whose ray passes over the rim of a cylinder lower than the eye
+//! (H < eye_height) meets its top disc where it has come down to height H, at distance
+//! (H − eye_height) / tan e, if that is before the ray leaves the cylinder's circle: the row
+//! shows the object there (SPEC-NOTES, Eye), so a multi-row retina sees low objects from
+//! above. Walls have no thickness, so their top is a line a ray never meets: a row that
+//! passes over a wall sees what lies beyond it. An eye whose rows all look level or up (every
+//! 1-row retina) never meets a top and does not look for one.
 //!
 //! Cylinders are ray-tested only against the columns within their angular extent widened by
 //! a small slack (two polynomial arctangents per object instead of a ray test per column),
@@ -58,6 +66,27 @@ fn atan2_bound(y: f64, x: f64) -> f64 {
     }
 }
 
+/// Where a ray from `origin` along `dir` that meets the circle (see
+/// [`crate::geometry::ray_circle`]) leaves it: the far root of |origin + t·dir − centre| =
+/// radius, written so that it does not cancel (as `ray_circle` does for the near root).
+/// NaN for a zero `dir`, which then meets no top.
+#[inline]
+fn ray_circle_exit(origin: Vec2, dir: Vec2, centre: Vec2, radius: f64) -> f64 {
+    let m = origin - centre;
+    let a = dir.length_squared();
+    let b = m.dot(dir);
+    let c = m.length_squared() - radius * radius;
+    let cross = m.perp_dot(dir);
+    let root = (a * (radius * radius) - cross * cross).max(0.0).sqrt();
+    if b <= 0.0 {
+        (root - b) / a
+    } else {
+        // Inside the circle (c ≤ 0) and pointing away from the centre: the product of the
+        // roots is c/a, and the near one (−b − root)/a is ≤ 0.
+        c / (-b - root)
+    }
+}
+
 /// What the eye can see.
 pub struct Scene<'a> {
     /// Every wall.
@@ -87,6 +116,9 @@ pub struct Eye {
     columns: Vec<(f64, f64)>,
     /// tan of each row's elevation, top row first.
     row_tan: Vec<f64>,
+    /// Some row looks down (tan e < 0), so it may see the top of a cylinder lower than the
+    /// eye.
+    looks_down: bool,
     eye_height: f64,
     background: [f64; 3],
     /// Largest distance seen, +∞ when unlimited.
@@ -123,7 +155,7 @@ impl Eye {
             })
             .collect();
         let vfov = spec.vertical_fov.to_radians();
-        let row_tan = (0..height)
+        let row_tan: Vec<f64> = (0..height)
             .map(|j| {
                 if height == 1 {
                     0.0
@@ -132,11 +164,13 @@ impl Eye {
                 }
             })
             .collect();
+        let looks_down = row_tan.iter().any(|&t| t < 0.0);
         Eye {
             width,
             height,
             columns,
             row_tan,
+            looks_down,
             eye_height: spec.eye_height,
             background: spec.background,
             range: spec.range.unwrap_or(f64::INFINITY),
@@ -362,9 +396,52 @@ impl Eye {
         height: f64,
         colour: &[f64; 3],
     ) {
+        if self.looks_down && height < self.eye_height {
+            for i in columns {
+                let dir = self.dirs[i];
+                if let Some(t) = ray_circle(position, dir, centre, radius) {
+                    self.paint(out, i, t, height, colour);
+                    let exit = ray_circle_exit(position, dir, centre, radius);
+                    self.paint_top(out, i, t, exit, height, colour);
+                }
+            }
+            return;
+        }
         for i in columns {
             if let Some(t) = ray_circle(position, self.dirs[i], centre, radius) {
                 self.paint(out, i, t, height, colour);
+            }
+        }
+    }
+
+    /// The top disc, at height `height` below the eye, of a cylinder that column `i`'s ray
+    /// enters at distance `t` and leaves at `exit`: each row looking down whose ray comes
+    /// down to that height at a distance in [t, exit] (so passes over the rim and meets the
+    /// disc) shows it there, where nothing nearer does. A row that met the side at t meets
+    /// the height at or before t, so only at the rim (the same distance) do both hold.
+    #[inline(never)]
+    fn paint_top(
+        &mut self,
+        out: &mut [f64],
+        i: usize,
+        t: f64,
+        exit: f64,
+        height: f64,
+        colour: &[f64; 3],
+    ) {
+        let top = height - self.eye_height;
+        for j in 0..self.height {
+            let tan = self.row_tan[j];
+            if tan >= 0.0 {
+                continue;
+            }
+            // top < 0 and tan < 0: the ray is at the top's height this far out.
+            let d = top / tan;
+            let q = j * self.width + i;
+            if d >= t && d <= exit && d <= self.range && d < self.depth[q] {
+                self.depth[q] = d;
+                let p = 3 * q;
+                out[p..p + 3].copy_from_slice(colour);
             }
         }
     }

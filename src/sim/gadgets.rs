@@ -84,8 +84,8 @@ pub struct TeleporterSpec {
 }
 
 /// Irrelevant creatures (`[world.wanderers]`, §4.8): bodies like the creatures' driven by
-/// random motor signals held for a random number of ticks, spinning away from whatever a
-/// whisker touches. They block movement, smell, are felt and seen.
+/// random motor signals held for a random number of ticks, turning away from whatever a
+/// whisker touches (see [`TurnAway`]). They block movement, smell, are felt and seen.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct WanderersSpec {
@@ -114,6 +114,12 @@ pub struct WanderersSpec {
     /// Body colour for the eye (default: `[0.6, 0.4, 0.8]`).
     #[serde(deserialize_with = "crate::sim::spec::exact::array")]
     pub colour: [f64; 3],
+    /// Largest turn per tick in degrees while turning away from what a whisker touches, in
+    /// (0, 180] (default: absent = 30). The turn is a spin in place, at most `max_rpt` per
+    /// wheel (a spin of s RPT turns 720·s degrees), kept in one direction until neither
+    /// whisker touches; see [`TurnAway`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub turn_degrees: Option<f64>,
 }
 
 impl Default for WanderersSpec {
@@ -127,6 +133,7 @@ impl Default for WanderersSpec {
             intensity: 0.0,
             range: None,
             colour: [0.6, 0.4, 0.8],
+            turn_degrees: None,
         }
     }
 }
@@ -189,6 +196,10 @@ pub struct PredatorSpec {
     /// Body colour for the eye (default: red `[0.9, 0.1, 0.1]`).
     #[serde(deserialize_with = "crate::sim::spec::exact::array")]
     pub colour: [f64; 3],
+    /// Largest turn per tick in degrees while a wandering predator turns away from a touch,
+    /// as `[world.wanderers] turn_degrees` (default: absent = 30).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub turn_degrees: Option<f64>,
 }
 
 impl Default for PredatorSpec {
@@ -204,6 +215,7 @@ impl Default for PredatorSpec {
             intensity: 0.0,
             range: None,
             colour: [0.9, 0.1, 0.1],
+            turn_degrees: None,
         }
     }
 }
@@ -318,6 +330,14 @@ fn colour(key: &str, c: &[f64; 3]) -> Valid {
     Ok(())
 }
 
+fn turn(key: &str, degrees: Option<f64>) -> Valid {
+    if let Some(d) = degrees {
+        positive(key, d)?;
+        crate::validate::within(key, d, 0.0, 180.0)?;
+    }
+    Ok(())
+}
+
 fn hold(key: &str, h: [u64; 2]) -> Valid {
     count_within(&format!("{key}[0]"), h[0], 1, MAX_TICKS, "ticks")?;
     count_within(
@@ -399,6 +419,7 @@ pub fn validate(
     }
     non_negative(&format!("{key}.max_rpt"), wanderers.max_rpt)?;
     hold(&format!("{key}.hold_ticks"), wanderers.hold_ticks)?;
+    turn(&format!("{key}.turn_degrees"), wanderers.turn_degrees)?;
     smell(key, &wanderers.odour, wanderers.intensity, wanderers.range)?;
     colour(&format!("{key}.colour"), &wanderers.colour)?;
     count_within(
@@ -424,6 +445,7 @@ pub fn validate(
             inside(&format!("{key}.start"), s, arena)?;
         }
         hold(&format!("{key}.hold_ticks"), p.hold_ticks)?;
+        turn(&format!("{key}.turn_degrees"), p.turn_degrees)?;
         smell(&key, &p.odour, p.intensity, p.range)?;
         colour(&format!("{key}.colour"), &p.colour)?;
     }
@@ -525,12 +547,71 @@ pub struct Actor {
     pub hold_left: u64,
     /// Next waypoint of a patrol.
     pub waypoint: usize,
+    /// How it turns away from a touch while wandering.
+    pub turn_away: TurnAway,
+}
+
+/// Which way a wanderer turns.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Turn {
+    /// Anticlockwise on screen (towards its left).
+    Left,
+    /// Clockwise on screen (towards its right).
+    Right,
+}
+
+/// A wanderer's turn away from what its whiskers touch (§4.8, SPEC-NOTES): a spin in place
+/// by at most `turn_degrees` per tick, in one direction kept from the first touching tick
+/// until neither whisker touches.
+///
+/// Why: a spin at ±max_rpt turns 720·max_rpt degrees in one tick (180° at the default 0.25,
+/// 144° at 0.2); beside a wall that turn lands the other whisker on the wall, the next tick
+/// spins straight back, and the wanderer flips between two headings for good (in 0.3.5 a
+/// wanderer in an open arena froze 0.2 LU from a wall; in a 30 × 30 pen most froze within
+/// 2,000 ticks). A bounded turn with a kept direction sweeps the headings one way, so it
+/// reaches the free ones (next to a straight wall about 170° of them, in a right-angled
+/// corner about 70°: the 30° default always lands in them). Where no heading is free (a
+/// corridor narrower than the whisker span, or bodies all around), after a full circle
+/// without freeing both whiskers it drives its held command for one tick and starts another
+/// circle, so it still moves along the corridor instead of spinning forever.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TurnAway {
+    /// Spin signal per wheel in RPT: `turn_degrees / 720`, at most `max_rpt`.
+    pub rpt: f64,
+    /// Ticks of turning that make a full circle: ⌈1 / (2·rpt)⌉ (`u32::MAX` when rpt is 0).
+    pub full_circle: u32,
+    /// The direction of the turn in progress, `None` while no whisker touches.
+    pub turning: Option<Turn>,
+    /// Ticks turned since the turn began or since the last full circle.
+    pub turned: u32,
+}
+
+impl TurnAway {
+    /// Largest turn per tick in degrees when `turn_degrees` is absent.
+    pub const DEFAULT_DEGREES: f64 = 30.0;
+
+    /// The turn of a body whose motor signals are at most `max_rpt` (≥ 0), turning at most
+    /// `degrees` per tick (validated in (0, 180]; absent = [`TurnAway::DEFAULT_DEGREES`]).
+    pub fn new(max_rpt: f64, degrees: Option<f64>) -> TurnAway {
+        let rpt = (degrees.unwrap_or(Self::DEFAULT_DEGREES) / 720.0).min(max_rpt);
+        let ticks = (1.0 / (2.0 * rpt)).ceil();
+        TurnAway {
+            rpt,
+            // A float-to-integer cast saturates: rpt = 0 gives +∞, hence u32::MAX.
+            full_circle: ticks as u32,
+            turning: None,
+            turned: 0,
+        }
+    }
 }
 
 impl Actor {
     /// The wanderer's command: a fresh random one when the held one ran out (draws: left,
-    /// right, then the hold length), spinning away from a touching whisker (left touch →
-    /// spin right, right or both → spin left), which does not consume the held one.
+    /// right, then the hold length), else the held one, except while a whisker touches:
+    /// then it turns away ([`TurnAway`]), which does not consume the held command (its hold
+    /// still counts down). The direction is chosen on the first touching tick: a left touch
+    /// turns it right, a right touch left, both a direction drawn from `rng` (one draw, after
+    /// those of a fresh command).
     pub fn wander(&mut self, whiskers: [bool; 2], rng: &mut Rng) -> (f64, f64) {
         if self.hold_left == 0 {
             let m = self.max_rpt;
@@ -539,10 +620,27 @@ impl Actor {
             self.hold_left = lo + below(rng, hi - lo + 1);
         }
         self.hold_left -= 1;
-        match whiskers {
-            [true, false] => (self.max_rpt, -self.max_rpt),
-            [_, true] => (-self.max_rpt, self.max_rpt),
-            _ => self.held,
+        let t = &mut self.turn_away;
+        if whiskers == [false, false] {
+            t.turning = None;
+            t.turned = 0;
+            return self.held;
+        }
+        let turn = *t.turning.get_or_insert_with(|| match whiskers {
+            [true, false] => Turn::Right,
+            [false, true] => Turn::Left,
+            _ if below(rng, 2) == 0 => Turn::Left,
+            _ => Turn::Right,
+        });
+        t.turned = t.turned.saturating_add(1);
+        if t.turned > t.full_circle {
+            // A full circle found no free heading: move on the held command for a tick.
+            t.turned = 0;
+            return self.held;
+        }
+        match turn {
+            Turn::Right => (t.rpt, -t.rpt),
+            Turn::Left => (-t.rpt, t.rpt),
         }
     }
 

@@ -56,7 +56,9 @@ use crate::sim::area::{bearing, Area};
 use crate::sim::controller::{Controller, MotorCommand, ObservationLayout, SensorGroup};
 use crate::sim::eye::{Eye, Scene};
 use crate::sim::food::{Aversive, Food};
-use crate::sim::gadgets::{Actor, Door, Effect, Flyer, Role, Strategy, Teleporter, Thing};
+use crate::sim::gadgets::{
+    Actor, Door, Effect, Flyer, Role, Strategy, Teleporter, Thing, TurnAway,
+};
 use crate::sim::grid::{Scratch, StaticIndex};
 use crate::sim::metabolism::Decay;
 use crate::sim::motion::{
@@ -400,6 +402,7 @@ impl World {
                 held: (0.0, 0.0),
                 hold_left: 0,
                 waypoint: 0,
+                turn_away: TurnAway::new(w.max_rpt, w.turn_degrees),
             });
             things.push(Thing {
                 position: pose.position,
@@ -439,6 +442,7 @@ impl World {
                 held: (0.0, 0.0),
                 hold_left: 0,
                 waypoint: 0,
+                turn_away: TurnAway::new(p.max_rpt, p.turn_degrees),
             });
             things.push(Thing {
                 position: pose.position,
