@@ -4,8 +4,8 @@
 use crate::cli::console::{errln, outln};
 
 use anyhow::Context;
-use berry_evolve::brain::{Brain, BrainController};
-use berry_evolve::evo::evaluate::{aggregate, run_trial, trial_stream};
+use berry_evolve::evo::evaluate::aggregate;
+use berry_evolve::evo::trial::{self, NoObserver, TickObserver};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::record::trace::TraceWriter;
@@ -77,16 +77,39 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
         }
         None => (0..experiment.evaluation.trials).collect(),
     };
+    let mut trace = match &args.trace {
+        Some(path) => Some(TraceObserver {
+            writer: TraceWriter::new(std::io::BufWriter::new(
+                std::fs::File::create(path)
+                    .with_context(|| format!("cannot create {}", path.display()))?,
+            )),
+            error: None,
+        }),
+        None => None,
+    };
     let mut outcomes = Vec::new();
     for &t in &trials {
-        let outcome = run_trial(
-            &experiment,
-            &topology,
-            std::slice::from_ref(&genome),
-            generation,
-            group,
-            TrialIndex(t),
-        )?;
+        // The one trial path evaluation takes: the traced life is the scored one.
+        let outcome = match &mut trace {
+            Some(observer) => trial::run_trial(
+                &experiment,
+                &topology,
+                std::slice::from_ref(&genome),
+                generation,
+                group,
+                TrialIndex(t),
+                observer,
+            )?,
+            None => trial::run_trial(
+                &experiment,
+                &topology,
+                std::slice::from_ref(&genome),
+                generation,
+                group,
+                TrialIndex(t),
+                NoObserver,
+            )?,
+        };
         let o = outcome[0];
         outln!(
             "trial {t}: score {:.6}  metabolism [{:.4}, {:.4}, {:.4}, {:.4}]  shocked ticks {}{}",
@@ -115,29 +138,31 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
         None => outln!("fitness: none (the brain produced a non-finite output)"),
     }
     outln!("metabolism {:?}", evaluation.metabolism);
-    if let Some(trace_path) = &args.trace {
-        let file_out = std::fs::File::create(trace_path)
-            .with_context(|| format!("cannot create {}", trace_path.display()))?;
-        let mut trace = TraceWriter::new(std::io::BufWriter::new(file_out));
-        for &t in &trials {
-            let brain = Brain::new(&topology, &genome.parameters)?;
-            let mut controllers = [BrainController::new(
-                brain,
-                experiment.creature.max_rpt,
-                experiment.creature.eats_by_action(),
-            )];
-            let rng = trial_stream(&experiment, generation, group, TrialIndex(t));
-            let mut world = World::new(&experiment.world, &experiment.creature, 1, rng)?;
-            for _ in 0..experiment.evaluation.ticks {
-                world.step(&mut controllers);
-                trace.write_tick(&world)?;
-                if !world.creatures()[0].alive {
-                    break;
-                }
-            }
+    if let (Some(observer), Some(path)) = (trace, &args.trace) {
+        if let Some(e) = observer.error {
+            return Err(e).with_context(|| format!("cannot write {}", path.display()));
         }
-        trace.flush()?;
-        errln!("trace written to {}", trace_path.display());
+        let mut writer = observer.writer;
+        writer
+            .flush()
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        errln!("trace written to {}", path.display());
     }
     Ok(())
+}
+
+/// Writes each tick of the replayed trial(s) to the trace CSV, keeping the first error.
+struct TraceObserver<W: std::io::Write> {
+    writer: TraceWriter<W>,
+    error: Option<csv::Error>,
+}
+
+impl<W: std::io::Write> TickObserver for TraceObserver<W> {
+    fn tick(&mut self, world: &World, _tick: u64) {
+        if self.error.is_none() {
+            if let Err(e) = self.writer.write_tick(world) {
+                self.error = Some(e);
+            }
+        }
+    }
 }
