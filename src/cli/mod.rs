@@ -6,7 +6,9 @@ pub mod compare;
 pub mod console;
 pub mod export;
 pub mod inspect;
+pub mod plot;
 pub mod progress;
+pub mod render;
 pub mod replay;
 pub mod resume;
 pub mod run;
@@ -44,6 +46,10 @@ pub enum Command {
     Compare(compare::CompareArgs),
     /// Measure simulator and evolution speed (creature-ticks per second, 1 and 2 threads).
     Bench(bench::BenchArgs),
+    /// Draw a run's fitness curves (or a summary's medians and quartiles) as SVG.
+    Plot(plot::PlotArgs),
+    /// Draw one trial of a genome: the arena to scale, its objects and the creature's path.
+    Render(render::RenderArgs),
 }
 
 /// Runs the parsed command line.
@@ -57,6 +63,8 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         (Some(Command::Inspect(args)), _) => inspect::run(args),
         (Some(Command::Bench(args)), _) => bench::run(args),
         (Some(Command::Compare(args)), _) => compare::run(args),
+        (Some(Command::Plot(args)), _) => plot::run(args),
+        (Some(Command::Render(args)), _) => render::run(args),
         (None, None) => {
             use clap::CommandFactory;
             Cli::command().print_help()?;

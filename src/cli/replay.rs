@@ -1,18 +1,22 @@
 //! `berry-evolve replay`: evaluate one genome in an experiment's trial worlds, exactly as
-//! evolution evaluated it, and print its fitness and metabolic vector.
+//! evolution evaluated it (the one trial path, [`berry_evolve::evo::trial`]), print its
+//! fitness and metabolic vector, and on request write the trace of the whole world (CSV and
+//! JSON lines) and an animated replay page (HTML) of those very lives.
 
 use crate::cli::console::{errln, outln};
 
 use anyhow::Context;
-use berry_evolve::brain::{Brain, BrainController};
-use berry_evolve::evo::evaluate::{aggregate, run_trial, trial_stream};
+use berry_evolve::brain::genome::Genome;
+use berry_evolve::brain::spec::Topology;
+use berry_evolve::evo::evaluate::{aggregate, TrialOutcome};
+use berry_evolve::evo::trial::{self, NoObserver};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::genome_file::GenomeFile;
-use berry_evolve::record::trace::TraceWriter;
+use berry_evolve::record::trace::files::{csv_paths, write_csv_files, write_jsonl};
+use berry_evolve::record::trace::recorder::{TraceRecorder, TrialTrace};
 use berry_evolve::seed::{Generation, TrialIndex};
-use berry_evolve::sim::world::World;
 use clap::Args;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `replay`.
 #[derive(Debug, Args)]
@@ -31,70 +35,170 @@ pub struct ReplayArgs {
     /// Override the experiment's seed (use the seed the genome was evolved with).
     #[arg(long)]
     pub seed: Option<u64>,
-    /// Write the per-tick trace of the replayed trial(s) to this CSV file.
+    /// Write the trace of the whole world to this CSV file (creatures), with
+    /// STEM-actors.csv, STEM-objects.csv, STEM-events.csv and STEM-world.jsonl beside it.
     #[arg(long)]
     pub trace: Option<PathBuf>,
+    /// Write the same trace as JSON lines to this file.
+    #[arg(long)]
+    pub trace_jsonl: Option<PathBuf>,
+}
+
+/// What a replay needs, checked: the experiment (seed overridden), the genome and its
+/// topology, whose worlds, and which trials.
+pub(crate) struct Replay {
+    pub experiment: Experiment,
+    pub topology: Topology,
+    pub genome: Genome,
+    pub generation: Generation,
+    pub group: u64,
+    pub trials: Vec<u64>,
+}
+
+impl Replay {
+    /// Loads and checks the inputs; errors name the file or the flag.
+    pub fn prepare(
+        genome_path: &Path,
+        experiment_path: &Path,
+        seed: Option<u64>,
+        generation: Option<u64>,
+        trial: Option<u64>,
+    ) -> anyhow::Result<Replay> {
+        let mut experiment = Experiment::load(experiment_path)?;
+        if let Some(seed) = seed {
+            experiment.seed = seed;
+            experiment
+                .validate()
+                .with_context(|| format!("--seed {seed}"))?;
+        }
+        let file = GenomeFile::load(genome_path)?;
+        let topology = file.topology_for(&experiment, genome_path)?;
+        if let Some(recorded) = &file.origin.config_hash {
+            let here = experiment.config_hash();
+            if *recorded != here {
+                errln!(
+                    "note: {} was evolved under config hash {}, this experiment's is {} (another seed \
+                     or other settings), so its worlds and fitness differ from the recorded ones; \
+                     replay with the run folder's experiment.toml (or the right --seed) to reproduce them",
+                    genome_path.display(),
+                    &recorded[..recorded.len().min(12)],
+                    &here[..12]
+                );
+            }
+        }
+        let genome = file.genome();
+        let generation = Generation(generation.or(file.origin.generation).unwrap_or(0));
+        // Without common random numbers the worlds depend on the individual's index too.
+        let group = if experiment.evaluation.common_random_numbers {
+            0
+        } else {
+            file.origin.individual.unwrap_or(0)
+        };
+        let trials: Vec<u64> = match trial {
+            Some(t) => {
+                anyhow::ensure!(
+                    t < experiment.evaluation.trials,
+                    "--trial {t}: experiment {} has trials 0..{} (0 to {}); choose one of those",
+                    experiment_path.display(),
+                    experiment.evaluation.trials,
+                    experiment.evaluation.trials.saturating_sub(1)
+                );
+                vec![t]
+            }
+            None => (0..experiment.evaluation.trials).collect(),
+        };
+        Ok(Replay {
+            experiment,
+            topology,
+            genome,
+            generation,
+            group,
+            trials,
+        })
+    }
+
+    /// Lives trial `t`, recording it when `recorder` is given.
+    pub fn run(
+        &self,
+        t: u64,
+        recorder: Option<&mut TraceRecorder>,
+    ) -> anyhow::Result<TrialOutcome> {
+        let genomes = std::slice::from_ref(&self.genome);
+        let (e, topology) = (&self.experiment, &self.topology);
+        let (generation, group, trial) = (self.generation, self.group, TrialIndex(t));
+        // The one trial path evaluation takes: the traced life is the scored one.
+        let outcomes = match recorder {
+            Some(r) => trial::run_trial(e, topology, genomes, generation, group, trial, r)?,
+            None => trial::run_trial(e, topology, genomes, generation, group, trial, NoObserver)?,
+        };
+        Ok(outcomes[0])
+    }
+
+    /// Lives every selected trial, recording them.
+    pub fn record(&self) -> anyhow::Result<Vec<TrialTrace>> {
+        let mut recorder = TraceRecorder::new(&self.experiment);
+        for &t in &self.trials {
+            self.run(t, Some(&mut recorder))?;
+        }
+        Ok(recorder.trials)
+    }
+}
+
+/// Refuses an output path that is one of the inputs (compared as canonical paths; an output
+/// that does not exist yet is compared through its canonical parent folder).
+pub(crate) fn refuse_overwriting_inputs(
+    flag: &str,
+    output: &Path,
+    inputs: &[&Path],
+) -> anyhow::Result<()> {
+    let canonical = |p: &Path| -> Option<PathBuf> {
+        if let Ok(c) = p.canonicalize() {
+            return Some(c);
+        }
+        let parent = match p.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        Some(parent.canonicalize().ok()?.join(p.file_name()?))
+    };
+    let Some(out) = canonical(output) else {
+        return Ok(());
+    };
+    for input in inputs {
+        if canonical(input).is_some_and(|i| i == out) {
+            anyhow::bail!(
+                "{flag} {}: that is an input of this command ({}); choose another output file",
+                output.display(),
+                input.display()
+            );
+        }
+    }
+    Ok(())
 }
 
 /// Runs the subcommand.
 pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
-    if let Some(trace) = &args.trace {
-        berry_evolve::record::atomic::refuse_output_over_input(
-            "--trace",
-            trace,
-            &[&args.genome, &args.experiment],
-        )?;
-    }
-    let mut experiment = Experiment::load(&args.experiment)?;
-    if let Some(seed) = args.seed {
-        experiment.seed = seed;
-        experiment.validate()?;
-    }
-    let file = GenomeFile::load(&args.genome)?;
-    let topology = file.topology_for(&experiment, &args.genome)?;
-    if let Some(recorded) = &file.origin.config_hash {
-        let here = experiment.config_hash();
-        if *recorded != here {
-            errln!(
-                "note: {} was evolved under config hash {}, this experiment's is {} (another seed \
-                 or other settings), so its worlds and fitness differ from the recorded ones; \
-                 replay with the run folder's experiment.toml (or the right --seed) to reproduce them",
-                args.genome.display(),
-                &recorded[..recorded.len().min(12)],
-                &here[..12]
-            );
+    let inputs = [args.genome.as_path(), args.experiment.as_path()];
+    if let Some(path) = &args.trace {
+        for p in csv_paths(path) {
+            refuse_overwriting_inputs("--trace", &p, &inputs)?;
         }
     }
-    let genome = file.genome();
-    let generation = Generation(args.generation.or(file.origin.generation).unwrap_or(0));
-    // Without common random numbers the worlds depend on the individual's index too.
-    let group = if experiment.evaluation.common_random_numbers {
-        0
-    } else {
-        file.origin.individual.unwrap_or(0)
-    };
-    let trials: Vec<u64> = match args.trial {
-        Some(t) => {
-            anyhow::ensure!(
-                t < experiment.evaluation.trials,
-                "--trial {t}: the experiment has trials 0..{}",
-                experiment.evaluation.trials
-            );
-            vec![t]
-        }
-        None => (0..experiment.evaluation.trials).collect(),
-    };
+    if let Some(path) = &args.trace_jsonl {
+        refuse_overwriting_inputs("--trace-jsonl", path, &inputs)?;
+    }
+    let replay = Replay::prepare(
+        &args.genome,
+        &args.experiment,
+        args.seed,
+        args.generation,
+        args.trial,
+    )?;
+    let recording = args.trace.is_some() || args.trace_jsonl.is_some();
+    let mut recorder = recording.then(|| TraceRecorder::new(&replay.experiment));
     let mut outcomes = Vec::new();
-    for &t in &trials {
-        let outcome = run_trial(
-            &experiment,
-            &topology,
-            std::slice::from_ref(&genome),
-            generation,
-            group,
-            TrialIndex(t),
-        )?;
-        let o = outcome[0];
+    for &t in &replay.trials {
+        let o = replay.run(t, recorder.as_mut())?;
         outln!(
             "trial {t}: score {:.6}  metabolism [{:.4}, {:.4}, {:.4}, {:.4}]  shocked ticks {}{}",
             o.score,
@@ -111,45 +215,29 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
         );
         outcomes.push(o);
     }
-    let evaluation = aggregate(&experiment, &outcomes);
+    let experiment = &replay.experiment;
+    let evaluation = aggregate(experiment, &outcomes);
     match evaluation.fitness {
         Some(f) => outln!(
             "fitness {f:.6} ({:?} over {} trial(s) of generation {})",
             experiment.evaluation.aggregate,
-            trials.len(),
-            generation.0
+            replay.trials.len(),
+            replay.generation.0
         ),
         None => outln!("fitness: none (the brain produced a non-finite output)"),
     }
     outln!("metabolism {:?}", evaluation.metabolism);
-    if let Some(trace_path) = &args.trace {
-        // Atomic: until the trace is complete, an earlier trace file keeps its content.
-        let file_out = berry_evolve::record::atomic::AtomicFile::create(trace_path)
-            .with_context(|| format!("cannot create {}", trace_path.display()))?;
-        let mut trace = TraceWriter::new(file_out);
-        for &t in &trials {
-            let brain = Brain::new(&topology, &genome.parameters)?;
-            let mut controllers = [BrainController::new(
-                brain,
-                experiment.creature.max_rpt,
-                experiment.creature.eats_by_action(),
-            )];
-            let rng = trial_stream(&experiment, generation, group, TrialIndex(t));
-            let mut world = World::new(&experiment.world, &experiment.creature, 1, rng)?;
-            for _ in 0..experiment.evaluation.ticks {
-                world.step(&mut controllers);
-                trace.write_tick(&world)?;
-                if !world.creatures()[0].alive {
-                    break;
-                }
-            }
-        }
-        trace
-            .into_inner()
-            .map_err(anyhow::Error::from)
-            .and_then(|f| f.commit().map_err(anyhow::Error::from))
-            .with_context(|| format!("cannot write {}", trace_path.display()))?;
-        errln!("trace written to {}", trace_path.display());
+    let trials = recorder.map(|r| r.trials).unwrap_or_default();
+    if let Some(path) = &args.trace {
+        write_csv_files(&trials, path)?;
+        errln!(
+            "trace written to {} (and its -actors.csv, -objects.csv, -events.csv, -world.jsonl)",
+            path.display()
+        );
+    }
+    if let Some(path) = &args.trace_jsonl {
+        write_jsonl(&trials, path)?;
+        errln!("trace written to {}", path.display());
     }
     Ok(())
 }

@@ -16,6 +16,7 @@ use crate::brain::spec::Topology;
 use crate::brain::{Brain, BrainController};
 use crate::evo::fitness::LifeScore;
 use crate::evo::lockstep;
+use crate::evo::trial;
 use crate::experiment::{Aggregate, Experiment};
 use crate::seed::{stream, Generation, IndividualId, Purpose, Rng, TrialIndex};
 use crate::sim::controller::{Controller, MotorCommand};
@@ -251,11 +252,16 @@ pub fn run_trial(
     group: u64,
     trial: TrialIndex,
 ) -> Result<Vec<TrialOutcome>, EvaluationError> {
-    // The brains first, then the world, so that a bad genome is reported before a world
-    // that cannot be built, as everywhere.
-    let mut controllers = checked_controllers(experiment, topology, genomes, group)?;
-    let world = trial_world(experiment, genomes.len(), generation, group, trial)?;
-    Ok(live_trial(experiment, world, &mut controllers))
+    // The one trial path, watched by nobody (see `crate::evo::trial`).
+    trial::run_trial(
+        experiment,
+        topology,
+        genomes,
+        generation,
+        group,
+        trial,
+        trial::NoObserver,
+    )
 }
 
 /// [`run_trial`] in a given world: a clone of the trial's world from [`shared_worlds`].
@@ -271,7 +277,7 @@ fn run_trial_in(
 }
 
 /// One [`CheckedController`] per genome of group `group`.
-fn checked_controllers(
+pub(crate) fn checked_controllers(
     experiment: &Experiment,
     topology: &Topology,
     genomes: &[Genome],
@@ -317,23 +323,10 @@ pub(crate) fn shared_worlds(
 /// after the first tick in which no creature recorded a score.
 pub(crate) fn live_trial<C: Controller>(
     experiment: &Experiment,
-    mut world: World,
+    world: World,
     controllers: &mut [CheckedController<C>],
 ) -> Vec<TrialOutcome> {
-    let mut scores: Vec<LifeScore> = (0..controllers.len())
-        .map(|_| LifeScore::new(&experiment.fitness))
-        .collect();
-    let mut invalid = vec![false; controllers.len()];
-    for _ in 0..experiment.evaluation.ticks {
-        world.step(controllers);
-        for (flag, controller) in invalid.iter_mut().zip(controllers.iter()) {
-            *flag = controller.non_finite;
-        }
-        if !record_tick(&world, &invalid, &mut scores) {
-            break;
-        }
-    }
-    outcomes(&world, &scores, &invalid)
+    trial::live(experiment, world, controllers, trial::NoObserver)
 }
 
 /// Combines an individual's trials (in trial order) into its evaluation.

@@ -1,9 +1,12 @@
 //! Record: all file I/O of a run, written so that it survives a crash and reproduces byte for
-//! byte: atomic file replacement, checkpoints, the fitness CSV, genome files and per-tick traces.
+//! byte: atomic file replacement, checkpoints, the fitness CSV, genome files, per-tick traces, plots and pictures.
 
 pub mod atomic;
 pub mod checkpoint;
 pub mod fitness_csv;
 pub mod genome_file;
 pub mod input;
+pub mod plot;
+pub mod render;
+pub mod replay_html;
 pub mod trace;

@@ -12,6 +12,14 @@
 //!
 //! Numbers are written by the csv crate's shortest round-trip formatting, so the same world
 //! gives the same bytes.
+//!
+//! This is the small trace of `berry-evolve simulate`. The trace of the whole world (every
+//! creature's observation and command, wanderers, predators, food amounts, events and a
+//! description of the world), recorded on the one trial path for `replay`, is
+//! [`recorder`] (what is recorded) and [`files`] (its CSV and JSON-lines files).
+
+pub mod files;
+pub mod recorder;
 
 use crate::sim::World;
 use serde::Serialize;

@@ -172,6 +172,16 @@ impl Walls {
         &self.walls
     }
 
+    /// The boundary and interior walls (standing always), boundary walls first.
+    pub fn fixed(&self) -> &[Wall] {
+        &self.fixed
+    }
+
+    /// Every locked door's wall, open or closed, in file order.
+    pub fn doors(&self) -> &[Wall] {
+        &self.doors
+    }
+
     /// Segments that block movement (every wall).
     pub fn blocking(&self) -> &[Segment] {
         &self.blocking

@@ -1420,6 +1420,27 @@ impl World {
         self.walls.door_open(door)
     }
 
+    /// The boundary and interior walls, which stand all trial (boundary walls first); the
+    /// doors are [`World::door_walls`].
+    pub fn fixed_walls(&self) -> &[Wall] {
+        self.walls.fixed()
+    }
+
+    /// Every locked door's wall (index in `[[world.doors]]`), open or closed.
+    pub fn door_walls(&self) -> &[Wall] {
+        self.walls.doors()
+    }
+
+    /// The locked doors' running state (their triggers are [`World::things`]), in file order.
+    pub fn doors(&self) -> &[Door] {
+        &self.doors
+    }
+
+    /// The teleporters, in file order.
+    pub fn teleporters(&self) -> &[Teleporter] {
+        &self.teleporters
+    }
+
     /// Wanderers then ground predators, in file order.
     pub fn actors(&self) -> &[Actor] {
         &self.actors

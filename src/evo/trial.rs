@@ -1,0 +1,132 @@
+//! The one trial path: build a trial's world, live it tick by tick, score every life. Scoring
+//! ([`crate::evo::evaluate::run_trial`], [`crate::evo::evaluate::evaluate_group`]), replay
+//! and traces all call [`run_trial`], so a traced life is the scored life by construction;
+//! only the lockstep path ([`crate::evo::lockstep`], tested bit-identical to this one) steps
+//! its worlds itself.
+//!
+//! A caller watches the trial through a [`TickObserver`]: [`TickObserver::start`] sees the
+//! world as built (tick 0), [`TickObserver::tick`] the world after every tick (the last one
+//! included: the tick in which the trial ended), [`TickObserver::finish`] the outcomes.
+//! Observers only read the world, so they cannot change a result. [`NoObserver`]'s hooks are
+//! empty and inlined: the loop evaluation runs is the same machine code as before observers
+//! existed (the benchmark figures do not move; see `docs/performance.md`).
+
+use crate::brain::genome::Genome;
+use crate::brain::spec::Topology;
+use crate::evo::evaluate::{
+    checked_controllers, outcomes, record_tick, trial_world, CheckedController, EvaluationError,
+    TrialOutcome,
+};
+use crate::evo::fitness::LifeScore;
+use crate::experiment::Experiment;
+use crate::seed::{Generation, TrialIndex};
+use crate::sim::controller::Controller;
+use crate::sim::world::World;
+
+/// Which trial a life is: the generation and group its world's stream comes from, and the
+/// trial index.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TrialId {
+    /// Whose trial worlds (the generation).
+    pub generation: Generation,
+    /// The group of genomes sharing the world (0 with common random numbers unless the
+    /// caller says otherwise; it also numbers the individuals in errors).
+    pub group: u64,
+    /// The trial index.
+    pub trial: TrialIndex,
+}
+
+/// Sees a trial tick by tick; every hook only reads the world.
+pub trait TickObserver {
+    /// The world as built, before its first tick.
+    #[inline(always)]
+    fn start(&mut self, _trial: TrialId, _world: &World) {}
+
+    /// The world after tick `tick` (ticks done: 1 after the first), every tick of the trial,
+    /// the one in which it ended included.
+    fn tick(&mut self, world: &World, tick: u64);
+
+    /// The trial is over: `outcomes` holds one outcome per creature, in index order.
+    #[inline(always)]
+    fn finish(&mut self, _world: &World, _outcomes: &[TrialOutcome]) {}
+}
+
+/// The observer that watches nothing (evaluation's): every hook is empty and inlined away.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoObserver;
+
+impl TickObserver for NoObserver {
+    #[inline(always)]
+    fn tick(&mut self, _world: &World, _tick: u64) {}
+}
+
+impl<O: TickObserver + ?Sized> TickObserver for &mut O {
+    #[inline(always)]
+    fn start(&mut self, trial: TrialId, world: &World) {
+        (**self).start(trial, world);
+    }
+
+    #[inline(always)]
+    fn tick(&mut self, world: &World, tick: u64) {
+        (**self).tick(world, tick);
+    }
+
+    #[inline(always)]
+    fn finish(&mut self, world: &World, outcomes: &[TrialOutcome]) {
+        (**self).finish(world, outcomes);
+    }
+}
+
+/// Lives trial `trial` of generation `generation` for group `group` (`genomes`, one creature
+/// each, sharing one world) and returns one outcome per genome, showing every tick to
+/// `observer`. A pure function of its arguments: the world comes from the trial's own seed
+/// stream ([`crate::evo::evaluate::trial_stream`]), brains are built anew for this trial.
+pub fn run_trial<O: TickObserver>(
+    experiment: &Experiment,
+    topology: &Topology,
+    genomes: &[Genome],
+    generation: Generation,
+    group: u64,
+    trial: TrialIndex,
+    mut observer: O,
+) -> Result<Vec<TrialOutcome>, EvaluationError> {
+    // The brains first, then the world, so that a bad genome is reported before a world
+    // that cannot be built, as everywhere.
+    let mut controllers = checked_controllers(experiment, topology, genomes, group)?;
+    let world = trial_world(experiment, genomes.len(), generation, group, trial)?;
+    let id = TrialId {
+        generation,
+        group,
+        trial,
+    };
+    observer.start(id, &world);
+    Ok(live(experiment, world, &mut controllers, observer))
+}
+
+/// Steps `world` for at most `ticks` ticks with `controllers` (one per creature), showing
+/// each tick to `observer`, and stops after the first tick in which no creature recorded a
+/// score (nothing it could still record).
+pub(crate) fn live<C: Controller, O: TickObserver>(
+    experiment: &Experiment,
+    mut world: World,
+    controllers: &mut [CheckedController<C>],
+    mut observer: O,
+) -> Vec<TrialOutcome> {
+    let mut scores: Vec<LifeScore> = (0..controllers.len())
+        .map(|_| LifeScore::new(&experiment.fitness))
+        .collect();
+    let mut invalid = vec![false; controllers.len()];
+    for _ in 0..experiment.evaluation.ticks {
+        world.step(controllers);
+        for (flag, controller) in invalid.iter_mut().zip(controllers.iter()) {
+            *flag = controller.non_finite;
+        }
+        observer.tick(&world, world.tick());
+        if !record_tick(&world, &invalid, &mut scores) {
+            break;
+        }
+    }
+    let outcomes = outcomes(&world, &scores, &invalid);
+    observer.finish(&world, &outcomes);
+    outcomes
+}

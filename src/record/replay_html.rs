@@ -1,0 +1,1 @@
+//! The replay page (`berry-evolve replay --html`).

@@ -1,0 +1,837 @@
+//! The whole-world trace of a trial, recorded by a [`TickObserver`] ([`TraceRecorder`]) on the
+//! one trial path: a [`WorldDescription`] of the world as built (enough to draw it), then per
+//! tick every creature's pose, motor command, observation, shock and metabolism, every
+//! wanderer's and predator's pose, the food whose amount changed, and the [`Event`]s of the
+//! tick.
+//!
+//! Events are derived by comparing the world after a tick with the world after the one
+//! before, so the simulator's hot path knows nothing of traces:
+//!
+//! - `eat`: a food object's `given` grew (what bites took from it, depleting or not); the
+//!   eater is the creature whose `eaten` grew (of several, the nearest to the object), the
+//!   amounts are the object's growth of `given` per type A–D;
+//! - `shock`: a creature's shock state turned on (an onset, not every shocked tick: the
+//!   creature rows carry those); the source is an aversive object its body touches, else a
+//!   predator that attacked it, else a wall (a blocked move in a world with wall shocks);
+//! - `teleport`: a creature stands exactly on a teleporter's exit it did not stand on before;
+//! - `door_open`, `door_close`: a door's open state changed;
+//! - `attack`: a ground predator's body touches the creature, or an air predator's strike disc
+//!   holds its centre, at its position before or after its move, outside safe areas (the two
+//!   moments the world checks);
+//! - `death`: a living creature is dead.
+
+use crate::evo::evaluate::TrialOutcome;
+use crate::evo::trial::{TickObserver, TrialId};
+use crate::experiment::Experiment;
+use crate::geometry::{circles_touch, Vec2};
+use crate::sim::gadgets::{Effect, Role};
+use crate::sim::world::World;
+use serde::{Deserialize, Serialize};
+
+/// A 2-D point or vector `[x, y]` in LU.
+pub type Point = [f64; 2];
+
+fn point(v: Vec2) -> Point {
+    [v.x, v.y]
+}
+
+/// A heading (unit vector) as an angle in radians: atan2(y, x), positive clockwise on screen.
+pub fn heading_angle(v: Vec2) -> f64 {
+    libm::atan2(v.y, v.x)
+}
+
+/// The world of one trial as built, before its first tick: what a picture of it needs.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct WorldDescription {
+    /// The experiment's name.
+    pub experiment: String,
+    /// The experiment's master seed.
+    pub seed: u64,
+    /// Generation, group and trial index the world comes from.
+    pub generation: u64,
+    /// The group of genomes living it.
+    pub group: u64,
+    /// The trial index.
+    pub trial: u64,
+    /// The trial's length in ticks (the life may end earlier).
+    pub ticks: u64,
+    /// Arena `[width, height]` in LU; x to the right, y downwards.
+    pub arena: Point,
+    /// Body radius of every creature, wanderer and ground predator in LU.
+    pub creature_radius: f64,
+    /// Whisker length in LU.
+    pub whisker_length: f64,
+    /// Angle of each whisker from the heading, radians.
+    pub whisker_angle: f64,
+    /// The observation's input names ([`crate::sim::controller::ObservationLayout::names`]).
+    pub inputs: Vec<String>,
+    /// Boundary and interior walls (boundary first); they stand all trial.
+    pub walls: Vec<WallInfo>,
+    /// Locked doors, in file order (closed at the start).
+    pub doors: Vec<DoorInfo>,
+    /// Teleporters, in file order.
+    pub teleporters: Vec<TeleporterInfo>,
+    /// Areas, in file order.
+    pub areas: Vec<AreaInfo>,
+    /// Distal landmarks, in file order.
+    pub landmarks: Vec<Point>,
+    /// Food objects (explicit ones first, then each placement rule's) as placed.
+    pub food: Vec<FoodInfo>,
+    /// Aversive objects.
+    pub aversives: Vec<AversiveInfo>,
+    /// The evolving creatures' start poses.
+    pub creatures: Vec<PoseInfo>,
+    /// Wanderers then ground predators, in file order, at their start.
+    pub actors: Vec<ActorInfo>,
+    /// Air predators, in file order, at their start.
+    pub air_predators: Vec<AirPredatorInfo>,
+}
+
+/// A wall segment.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct WallInfo {
+    /// One end.
+    pub from: Point,
+    /// The other end.
+    pub to: Point,
+    /// Blocks smell (glass does not).
+    pub opaque: bool,
+    /// RGB in [0, 1].
+    pub colour: [f64; 3],
+    /// Height in LU.
+    pub height: f64,
+}
+
+/// A locked door and its trigger.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DoorInfo {
+    /// One end of the door's wall.
+    pub from: Point,
+    /// The other end.
+    pub to: Point,
+    /// Blocks smell while closed.
+    pub opaque: bool,
+    /// RGB in [0, 1].
+    pub colour: [f64; 3],
+    /// Centre of the trigger region.
+    pub trigger: Point,
+    /// Radius of the trigger region.
+    pub trigger_radius: f64,
+    /// Ticks the door stays open after a contact.
+    pub open_ticks: u64,
+}
+
+/// A teleporter.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TeleporterInfo {
+    /// Entry centre.
+    pub entry: Point,
+    /// Entry radius.
+    pub radius: f64,
+    /// Exit point.
+    pub exit: Point,
+    /// Heading after the jump, radians (None: the creature keeps its own).
+    pub exit_heading: Option<f64>,
+}
+
+/// An area.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AreaInfo {
+    /// Smallest corner.
+    pub lo: Point,
+    /// Largest corner.
+    pub hi: Point,
+    /// `safe` or `plain`.
+    pub kind: String,
+}
+
+/// A food object as placed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct FoodInfo {
+    /// Its kind's name in `[world.kinds]`.
+    pub kind: String,
+    /// The type A–D it holds most of (by capacity): 0 = A.
+    pub food_type: usize,
+    /// Centre.
+    pub position: Point,
+    /// Radius (0 = a point).
+    pub radius: f64,
+    /// Amount per type A–D at the start.
+    pub amount: [f64; 4],
+    /// Capacity per type A–D.
+    pub capacity: [f64; 4],
+    /// Bites take substance away.
+    pub depletes: bool,
+    /// RGB for the eye.
+    pub colour: [f64; 3],
+}
+
+/// An aversive object.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AversiveInfo {
+    /// Its kind's name.
+    pub kind: String,
+    /// Centre.
+    pub position: Point,
+    /// Radius.
+    pub radius: f64,
+    /// RGB for the eye.
+    pub colour: [f64; 3],
+}
+
+/// A position and heading.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct PoseInfo {
+    /// Centre.
+    pub position: Point,
+    /// Heading, radians.
+    pub heading: f64,
+}
+
+/// A wanderer or ground predator at its start.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ActorInfo {
+    /// `wanderer` or `predator`.
+    pub role: String,
+    /// A predator's strategy (`wander`, `chase`, `patrol`).
+    pub strategy: Option<String>,
+    /// A predator's effect (`lethal`, `shock`).
+    pub effect: Option<String>,
+    /// A patrol's waypoints.
+    pub waypoints: Vec<Point>,
+    /// RGB for the eye.
+    pub colour: [f64; 3],
+    /// Start pose.
+    pub start: PoseInfo,
+}
+
+/// An air predator at its start.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AirPredatorInfo {
+    /// Strike radius around its ground position.
+    pub strike_radius: f64,
+    /// `lethal` or `shock`.
+    pub effect: String,
+    /// Ground position at the start.
+    pub position: Point,
+    /// Velocity in LU per tick at the start.
+    pub velocity: Point,
+}
+
+/// One creature after one tick.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct CreatureTick {
+    /// Ticks done (1 after the first).
+    pub tick: u64,
+    /// Creature index.
+    pub creature: usize,
+    /// Centre after the tick.
+    pub x: f64,
+    /// Centre after the tick.
+    pub y: f64,
+    /// Heading after the tick, radians.
+    pub heading: f64,
+    /// Left motor signal of the tick (clamped), rotations per tick.
+    pub left: f64,
+    /// Right motor signal.
+    pub right: f64,
+    /// Eat output.
+    pub eat: f64,
+    /// Alive after the tick.
+    pub alive: bool,
+    /// Shock state at the end of the tick (the sensor reads it next tick).
+    pub shock: bool,
+    /// Metabolic vector after the tick.
+    pub metabolism: [f64; 4],
+    /// Whiskers sensed at the start of the tick (left, right).
+    pub whiskers: [bool; 2],
+    /// Food detectors A–D sensed at the start of the tick.
+    pub food: [bool; 4],
+    /// Distance travelled so far, LU.
+    pub travelled: f64,
+    /// The observation its brain received this tick (noise included), in
+    /// [`WorldDescription::inputs`] order.
+    pub inputs: Vec<f64>,
+}
+
+/// What moves besides the creatures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ActorKind {
+    /// An irrelevant creature.
+    Wanderer,
+    /// A ground predator.
+    Predator,
+    /// An air predator.
+    AirPredator,
+}
+
+impl ActorKind {
+    /// The name in CSV files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ActorKind::Wanderer => "wanderer",
+            ActorKind::Predator => "predator",
+            ActorKind::AirPredator => "air_predator",
+        }
+    }
+}
+
+/// A wanderer or predator after one tick.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ActorTick {
+    /// Ticks done.
+    pub tick: u64,
+    /// What it is.
+    pub kind: ActorKind,
+    /// Index among its kind (wanderer k, predator k of `[[world.predators]]`, air predator k).
+    pub index: usize,
+    /// Ground position.
+    pub x: f64,
+    /// Ground position.
+    pub y: f64,
+    /// Heading (an air predator's direction of flight), radians.
+    pub heading: f64,
+}
+
+/// A food object whose amount changed in a tick.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ObjectTick {
+    /// Ticks done.
+    pub tick: u64,
+    /// Food index.
+    pub object: usize,
+    /// Amount per type A–D after the tick.
+    pub amount: [f64; 4],
+}
+
+/// What happened (see the module docs for how each is found).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EventKind {
+    /// A creature ate from a food object.
+    Eat,
+    /// A creature's shock turned on.
+    Shock,
+    /// A creature jumped through a teleporter.
+    Teleport,
+    /// A door opened.
+    DoorOpen,
+    /// A door closed.
+    DoorClose,
+    /// A predator attacked a creature.
+    Attack,
+    /// A creature died.
+    Death,
+}
+
+impl EventKind {
+    /// The name in CSV files.
+    pub fn name(self) -> &'static str {
+        match self {
+            EventKind::Eat => "eat",
+            EventKind::Shock => "shock",
+            EventKind::Teleport => "teleport",
+            EventKind::DoorOpen => "door_open",
+            EventKind::DoorClose => "door_close",
+            EventKind::Attack => "attack",
+            EventKind::Death => "death",
+        }
+    }
+}
+
+/// One event of a tick.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Event {
+    /// Ticks done when it had happened.
+    pub tick: u64,
+    /// What.
+    pub event: EventKind,
+    /// The creature it concerns (None for a door nobody touched, e.g. one closing).
+    pub creature: Option<usize>,
+    /// What it met: `food`, `aversive`, `teleporter`, `door`, `predator`, `air_predator` or
+    /// `wall` (None: nothing in particular).
+    pub target_kind: Option<String>,
+    /// Index of the target among its kind (None for walls and no target).
+    pub target: Option<usize>,
+    /// Where: the food object (eat), the exit (teleport), the door's middle (doors), the
+    /// creature (shock, attack, death).
+    pub x: f64,
+    /// Where.
+    pub y: f64,
+    /// A teleport's entry.
+    pub from: Option<Point>,
+    /// What an eat moved, per type A–D.
+    pub amount: Option<[f64; 4]>,
+}
+
+/// One creature's outcome of the trial.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct OutcomeInfo {
+    /// The trial's score under `[fitness]`.
+    pub score: f64,
+    /// The metabolic vector at the end of life.
+    pub metabolism: [f64; 4],
+    /// Shocked ticks.
+    pub shocked_ticks: u64,
+    /// The brain produced a non-finite output.
+    pub non_finite: bool,
+}
+
+/// Everything recorded of one trial.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TrialTrace {
+    /// The world as built.
+    pub world: WorldDescription,
+    /// Per tick, one row per creature (dead ones included), in tick then creature order.
+    pub creatures: Vec<CreatureTick>,
+    /// Per tick, one row per wanderer, ground predator and air predator.
+    pub actors: Vec<ActorTick>,
+    /// The food objects whose amount changed, per tick.
+    pub objects: Vec<ObjectTick>,
+    /// Events, in tick order.
+    pub events: Vec<Event>,
+    /// Each creature's outcome, when the trial finished.
+    pub outcomes: Vec<OutcomeInfo>,
+}
+
+impl TrialTrace {
+    /// Ticks recorded (the last tick's number).
+    pub fn ticks(&self) -> u64 {
+        self.creatures.last().map_or(0, |c| c.tick)
+    }
+
+    /// How many creatures lived the trial.
+    pub fn creature_count(&self) -> usize {
+        self.world.creatures.len()
+    }
+}
+
+/// The state of the world after the previous tick, for the diffs.
+#[derive(Debug, Clone, Default)]
+struct Previous {
+    positions: Vec<Vec2>,
+    alive: Vec<bool>,
+    shocked: Vec<bool>,
+    eaten: Vec<[f64; 4]>,
+    given: Vec<[f64; 4]>,
+    amount: Vec<[f64; 4]>,
+    doors: Vec<bool>,
+}
+
+impl Previous {
+    fn of(world: &World) -> Previous {
+        let c = world.creatures();
+        Previous {
+            positions: c.iter().map(|c| c.pose.position).collect(),
+            alive: c.iter().map(|c| c.alive).collect(),
+            shocked: c.iter().map(|c| c.shocked).collect(),
+            eaten: c.iter().map(|c| c.eaten).collect(),
+            given: world.food().iter().map(|f| f.given).collect(),
+            amount: world.food().iter().map(|f| f.amount).collect(),
+            doors: (0..world.door_walls().len())
+                .map(|d| world.door_open(d))
+                .collect(),
+        }
+    }
+}
+
+/// Records every trial it observes into a [`TrialTrace`] (all in memory: about 8 bytes per
+/// number, so a 10,000-tick trial of a creature with 24 inputs takes a few MB).
+#[derive(Debug, Clone)]
+pub struct TraceRecorder {
+    experiment: String,
+    seed: u64,
+    ticks: u64,
+    whisker_length: f64,
+    whisker_angle: f64,
+    waypoints: Vec<Vec<Point>>,
+    /// The trials recorded, in the order they ran.
+    pub trials: Vec<TrialTrace>,
+    previous: Previous,
+}
+
+impl TraceRecorder {
+    /// A recorder for trials of `experiment`.
+    pub fn new(experiment: &Experiment) -> TraceRecorder {
+        TraceRecorder {
+            experiment: experiment.name.clone(),
+            seed: experiment.seed,
+            ticks: experiment.evaluation.ticks,
+            whisker_length: experiment.creature.whisker_length,
+            whisker_angle: experiment.creature.whisker_angle.to_radians(),
+            waypoints: experiment
+                .world
+                .predators
+                .iter()
+                .map(|p| p.waypoints.clone())
+                .collect(),
+            trials: Vec::new(),
+            previous: Previous::default(),
+        }
+    }
+
+    fn describe(&self, id: TrialId, world: &World) -> WorldDescription {
+        let kinds = world.kinds();
+        let wall = |w: &crate::sim::wall::Wall| WallInfo {
+            from: point(w.segment.a),
+            to: point(w.segment.b),
+            opaque: w.opaque,
+            colour: w.colour,
+            height: w.height,
+        };
+        let things = world.things();
+        WorldDescription {
+            experiment: self.experiment.clone(),
+            seed: self.seed,
+            generation: id.generation.0,
+            group: id.group,
+            trial: id.trial.0,
+            ticks: self.ticks,
+            arena: world.arena(),
+            creature_radius: world.creature_radius(),
+            whisker_length: self.whisker_length,
+            whisker_angle: self.whisker_angle,
+            inputs: world.layout().names().to_vec(),
+            walls: world.fixed_walls().iter().map(wall).collect(),
+            doors: world
+                .door_walls()
+                .iter()
+                .zip(world.doors())
+                .map(|(w, d)| {
+                    let t = things[d.trigger];
+                    DoorInfo {
+                        from: point(w.segment.a),
+                        to: point(w.segment.b),
+                        opaque: w.opaque,
+                        colour: w.colour,
+                        trigger: point(t.position),
+                        trigger_radius: t.radius,
+                        open_ticks: d.open_ticks,
+                    }
+                })
+                .collect(),
+            teleporters: world
+                .teleporters()
+                .iter()
+                .map(|t| TeleporterInfo {
+                    entry: point(t.entry),
+                    radius: t.radius,
+                    exit: point(t.exit),
+                    exit_heading: t.exit_heading.map(heading_angle),
+                })
+                .collect(),
+            areas: world
+                .areas()
+                .iter()
+                .map(|a| AreaInfo {
+                    lo: point(a.lo),
+                    hi: point(a.hi),
+                    kind: if a.is_safe() { "safe" } else { "plain" }.into(),
+                })
+                .collect(),
+            landmarks: world.landmarks().iter().map(|&l| point(l)).collect(),
+            food: world
+                .food()
+                .iter()
+                .map(|f| FoodInfo {
+                    kind: kinds.get(f.kind).cloned().unwrap_or_default(),
+                    food_type: main_type(&f.capacity),
+                    position: point(f.position),
+                    radius: f.radius,
+                    amount: f.amount,
+                    capacity: f.capacity,
+                    depletes: f.depletes,
+                    colour: f.colour,
+                })
+                .collect(),
+            aversives: world
+                .aversives()
+                .iter()
+                .map(|a| AversiveInfo {
+                    kind: kinds.get(a.kind).cloned().unwrap_or_default(),
+                    position: point(a.position),
+                    radius: a.radius,
+                    colour: a.colour,
+                })
+                .collect(),
+            creatures: world
+                .creatures()
+                .iter()
+                .map(|c| PoseInfo {
+                    position: point(c.pose.position),
+                    heading: heading_angle(c.pose.heading),
+                })
+                .collect(),
+            actors: world
+                .actors()
+                .iter()
+                .map(|a| {
+                    let (role, strategy, effect, waypoints) = match a.role {
+                        Role::Wanderer => ("wanderer", None, None, Vec::new()),
+                        Role::Predator {
+                            predator,
+                            strategy,
+                            effect,
+                        } => (
+                            "predator",
+                            Some(format!("{strategy:?}").to_lowercase()),
+                            Some(effect_name(effect).to_string()),
+                            self.waypoints.get(predator).cloned().unwrap_or_default(),
+                        ),
+                    };
+                    ActorInfo {
+                        role: role.into(),
+                        strategy,
+                        effect,
+                        waypoints,
+                        colour: things[a.thing].colour,
+                        start: PoseInfo {
+                            position: point(a.pose.position),
+                            heading: heading_angle(a.pose.heading),
+                        },
+                    }
+                })
+                .collect(),
+            air_predators: world
+                .flyers()
+                .iter()
+                .map(|f| AirPredatorInfo {
+                    strike_radius: f.strike_radius,
+                    effect: effect_name(f.effect).into(),
+                    position: point(f.position),
+                    velocity: point(f.velocity),
+                })
+                .collect(),
+        }
+    }
+
+    fn events(&self, world: &World, tick: u64, events: &mut Vec<Event>) {
+        let prev = &self.previous;
+        let r = world.creature_radius();
+        let creatures = world.creatures();
+        let event = |event, creature, target_kind: Option<&str>, target, at: Vec2| Event {
+            tick,
+            event,
+            creature,
+            target_kind: target_kind.map(str::to_string),
+            target,
+            x: at.x,
+            y: at.y,
+            from: None,
+            amount: None,
+        };
+        // Eating: what each object gave, to the creature that received something.
+        for (k, f) in world.food().iter().enumerate() {
+            let given: [f64; 4] = std::array::from_fn(|t| f.given[t] - prev.given[k][t]);
+            if given.iter().all(|&g| g <= 0.0) {
+                continue;
+            }
+            let eater = creatures
+                .iter()
+                .enumerate()
+                .filter(|(i, c)| (0..4).any(|t| c.eaten[t] > prev.eaten[*i][t]))
+                .min_by(|(_, a), (_, b)| {
+                    let da = a.pose.position.distance_squared(f.position);
+                    let db = b.pose.position.distance_squared(f.position);
+                    da.total_cmp(&db)
+                })
+                .map(|(i, _)| i);
+            let mut e = event(EventKind::Eat, eater, Some("food"), Some(k), f.position);
+            e.amount = Some(given);
+            events.push(e);
+        }
+        for (i, c) in creatures.iter().enumerate() {
+            if !prev.alive[i] {
+                continue;
+            }
+            let here = c.pose.position;
+            let before = prev.positions[i];
+            for (k, t) in world.teleporters().iter().enumerate() {
+                if here == t.exit && before != t.exit {
+                    let mut e = event(EventKind::Teleport, Some(i), Some("teleporter"), Some(k), here);
+                    e.from = Some(point(t.entry));
+                    events.push(e);
+                    break;
+                }
+            }
+            // Attacks: at the creature's position before its move (the predator's own move)
+            // or after it (the creature's contacts), outside safe areas.
+            let mut attackers: Vec<(&str, usize)> = Vec::new();
+            let exposed = |p: Vec2| !world.in_safe_area(p);
+            let mut predator = 0;
+            for a in world.actors() {
+                if let Role::Predator { .. } = a.role {
+                    let p = a.pose.position;
+                    if (circles_touch(here, r, p, r) && exposed(here))
+                        || (circles_touch(before, r, p, r) && exposed(before))
+                    {
+                        attackers.push(("predator", predator));
+                    }
+                    predator += 1;
+                }
+            }
+            for (k, f) in world.flyers().iter().enumerate() {
+                let p = f.position;
+                if (circles_touch(here, 0.0, p, f.strike_radius) && exposed(here))
+                    || (circles_touch(before, 0.0, p, f.strike_radius) && exposed(before))
+                {
+                    attackers.push(("air_predator", k));
+                }
+            }
+            for &(kind, k) in &attackers {
+                events.push(event(EventKind::Attack, Some(i), Some(kind), Some(k), here));
+            }
+            if c.shocked && !prev.shocked[i] {
+                let aversive = world
+                    .aversives()
+                    .iter()
+                    .position(|a| circles_touch(here, r, a.position, a.radius));
+                let (kind, target) = match (aversive, attackers.first()) {
+                    (Some(k), _) => (Some("aversive"), Some(k)),
+                    (None, Some(&(kind, k))) => (Some(kind), Some(k)),
+                    (None, None) if c.blocked => (Some("wall"), None),
+                    (None, None) => (None, None),
+                };
+                events.push(event(EventKind::Shock, Some(i), kind, target, here));
+            }
+            if !c.alive {
+                events.push(event(EventKind::Death, Some(i), None, None, here));
+            }
+        }
+        for (d, w) in world.door_walls().iter().enumerate() {
+            let open = world.door_open(d);
+            if open == prev.doors[d] {
+                continue;
+            }
+            let middle = (w.segment.a + w.segment.b) * 0.5;
+            let (kind, who) = if open {
+                let t = world.things()[world.doors()[d].trigger];
+                let who = creatures
+                    .iter()
+                    .position(|c| c.alive && circles_touch(c.pose.position, r, t.position, t.radius));
+                (EventKind::DoorOpen, who)
+            } else {
+                (EventKind::DoorClose, None)
+            };
+            events.push(event(kind, who, Some("door"), Some(d), middle));
+        }
+    }
+}
+
+/// The type A–D a food object holds most of by capacity (the first of equals).
+fn main_type(capacity: &[f64; 4]) -> usize {
+    let mut best = 0;
+    for t in 1..4 {
+        if capacity[t] > capacity[best] {
+            best = t;
+        }
+    }
+    best
+}
+
+fn effect_name(effect: Effect) -> &'static str {
+    match effect {
+        Effect::Lethal => "lethal",
+        Effect::Shock => "shock",
+    }
+}
+
+impl TickObserver for TraceRecorder {
+    fn start(&mut self, trial: TrialId, world: &World) {
+        let world_description = self.describe(trial, world);
+        self.trials.push(TrialTrace {
+            world: world_description,
+            creatures: Vec::new(),
+            actors: Vec::new(),
+            objects: Vec::new(),
+            events: Vec::new(),
+            outcomes: Vec::new(),
+        });
+        self.previous = Previous::of(world);
+    }
+
+    fn tick(&mut self, world: &World, tick: u64) {
+        let mut events = Vec::new();
+        self.events(world, tick, &mut events);
+        let Some(trace) = self.trials.last_mut() else {
+            return;
+        };
+        trace.events.append(&mut events);
+        for (i, c) in world.creatures().iter().enumerate() {
+            trace.creatures.push(CreatureTick {
+                tick,
+                creature: i,
+                x: c.pose.position.x,
+                y: c.pose.position.y,
+                heading: heading_angle(c.pose.heading),
+                left: c.command.left,
+                right: c.command.right,
+                eat: c.command.eat,
+                alive: c.alive,
+                shock: c.shocked,
+                metabolism: c.metabolism,
+                whiskers: c.whiskers,
+                food: c.food_detectors,
+                travelled: c.travelled,
+                inputs: world.observation(i).to_vec(),
+            });
+        }
+        let mut predators = 0;
+        let mut wanderers = 0;
+        for a in world.actors() {
+            let (kind, index) = match a.role {
+                Role::Wanderer => {
+                    wanderers += 1;
+                    (ActorKind::Wanderer, wanderers - 1)
+                }
+                Role::Predator { .. } => {
+                    predators += 1;
+                    (ActorKind::Predator, predators - 1)
+                }
+            };
+            trace.actors.push(ActorTick {
+                tick,
+                kind,
+                index,
+                x: a.pose.position.x,
+                y: a.pose.position.y,
+                heading: heading_angle(a.pose.heading),
+            });
+        }
+        for (k, f) in world.flyers().iter().enumerate() {
+            trace.actors.push(ActorTick {
+                tick,
+                kind: ActorKind::AirPredator,
+                index: k,
+                x: f.position.x,
+                y: f.position.y,
+                heading: heading_angle(f.velocity),
+            });
+        }
+        for (k, f) in world.food().iter().enumerate() {
+            if f.amount != self.previous.amount[k] {
+                trace.objects.push(ObjectTick {
+                    tick,
+                    object: k,
+                    amount: f.amount,
+                });
+            }
+        }
+        self.previous = Previous::of(world);
+    }
+
+    fn finish(&mut self, _world: &World, outcomes: &[TrialOutcome]) {
+        if let Some(trace) = self.trials.last_mut() {
+            trace.outcomes = outcomes
+                .iter()
+                .map(|o| OutcomeInfo {
+                    score: o.score,
+                    metabolism: o.metabolism,
+                    shocked_ticks: o.shocked_ticks,
+                    non_finite: o.non_finite,
+                })
+                .collect();
+        }
+    }
+}
