@@ -55,6 +55,11 @@ pub enum Purpose {
     Baseline = 5,
     /// The `simulate` demo command's worlds.
     Demo = 6,
+    /// The fixed validation worlds the champion is chosen on (`[validation]`): generation 0,
+    /// individual 0, trial t for world t, the same worlds every time. Apart from the training
+    /// worlds and from `compare`'s held-out worlds, which are both [`Purpose::TrialWorld`]
+    /// streams.
+    ValidationWorld = 7,
 }
 
 /// SplitMix64's output function: a bijective 64-bit mixer with full avalanche.
