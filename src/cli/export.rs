@@ -3,7 +3,7 @@
 use anyhow::Context;
 use berry_evolve::record::atomic::{refuse_output_over_input, write_atomic};
 use berry_evolve::record::checkpoint::{list_checkpoints, parse_checkpoint_file_name};
-use berry_evolve::record::fitness_csv::to_bytes;
+use berry_evolve::record::fitness_csv::{extra_columns, to_bytes_with};
 use berry_evolve::run::load_checkpoint;
 use clap::Args;
 use std::io::Write;
@@ -45,7 +45,8 @@ pub fn run(args: ExportArgs) -> anyhow::Result<()> {
         w.flush()?;
         drop(w);
     } else {
-        bytes = to_bytes(&payload.history)
+        let columns = extra_columns(&payload.experiment);
+        bytes = to_bytes_with(&columns, &payload.history, &payload.history_extra)
             .with_context(|| format!("formatting the history of {}", path.display()))?;
     }
     match &args.output {

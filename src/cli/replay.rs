@@ -213,6 +213,10 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
                 ""
             }
         );
+        let measures = crate::cli::compare::measure_values_text(&replay.experiment, &o.measures);
+        if !measures.is_empty() {
+            outln!("trial {t}:{measures}");
+        }
         outcomes.push(o);
     }
     let experiment = &replay.experiment;
@@ -227,6 +231,12 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
         None => outln!("fitness: none (the brain produced a non-finite output)"),
     }
     outln!("metabolism {:?}", evaluation.metabolism);
+    if !experiment.behaviour.measures.is_empty() {
+        outln!(
+            "measures (mean over trials):{}",
+            crate::cli::compare::measures_text(experiment, &evaluation.measures)
+        );
+    }
     let trials = recorder.map(|r| r.trials).unwrap_or_default();
     if let Some(path) = &args.trace {
         write_csv_files(&trials, path)?;

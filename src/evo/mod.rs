@@ -13,6 +13,7 @@ pub mod spec;
 pub mod state;
 pub mod stats;
 pub mod trial;
+pub mod validation;
 pub mod vary;
 
 pub use init::initial_population;

@@ -14,10 +14,9 @@
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
 use crate::evo::evaluate::{
-    checked_controllers, outcomes, record_tick, trial_world, CheckedController, EvaluationError,
-    TrialOutcome,
+    checked_controllers, outcomes, record_tick, start_scores, trial_world, CheckedController,
+    EvaluationError, TrialOutcome,
 };
-use crate::evo::fitness::LifeScore;
 use crate::experiment::Experiment;
 use crate::seed::{Generation, TrialIndex};
 use crate::sim::controller::Controller;
@@ -112,9 +111,7 @@ pub(crate) fn live<C: Controller, O: TickObserver>(
     controllers: &mut [CheckedController<C>],
     mut observer: O,
 ) -> Vec<TrialOutcome> {
-    let mut scores: Vec<LifeScore> = (0..controllers.len())
-        .map(|_| LifeScore::new(&experiment.fitness))
-        .collect();
+    let (plan, mut scores) = start_scores(experiment, &mut world);
     let mut invalid = vec![false; controllers.len()];
     for _ in 0..experiment.evaluation.ticks {
         world.step(controllers);
@@ -122,11 +119,11 @@ pub(crate) fn live<C: Controller, O: TickObserver>(
             *flag = controller.non_finite;
         }
         observer.tick(&world, world.tick());
-        if !record_tick(&world, &invalid, &mut scores) {
+        if !record_tick(&world, &invalid, &mut scores, &plan) {
             break;
         }
     }
-    let outcomes = outcomes(&world, &scores, &invalid);
+    let outcomes = outcomes(&world, &scores, &invalid, &plan);
     observer.finish(&world, &outcomes);
     outcomes
 }

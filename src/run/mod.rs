@@ -11,10 +11,11 @@ use crate::evo::state::{
     evaluate, first_generation, improved_champion_for, next_generation_of, Champion,
     EvaluatedGeneration, GenerationSummary, SearchState,
 };
+use crate::evo::validation::{self, ValidatedChampion};
 use crate::experiment::{Experiment, ExperimentError};
 use crate::record::atomic::{remove_stale_temp_files, write_atomic};
 use crate::record::checkpoint::{self, CheckpointError, CheckpointErrorKind, ContentError};
-use crate::record::fitness_csv::{FitnessCsv, FitnessRow};
+use crate::record::fitness_csv::{extra_columns, FitnessCsv, FitnessRow};
 use crate::record::genome_file::{GenomeFile, GenomeFileError, Origin};
 use crate::record::input::{read_regular, read_regular_text, MAX_CSV_BYTES, MAX_EXPERIMENT_BYTES};
 use lock::{LockError, RunLock};
@@ -22,6 +23,8 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use thiserror::Error;
+
+mod validated;
 
 /// File names inside a run folder.
 pub const EXPERIMENT_FILE: &str = "experiment.toml";
@@ -53,6 +56,13 @@ pub struct CheckpointPayload {
     /// checkpoints keep their bytes).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub search: Option<SearchState>,
+    /// Per completed generation, the values of the fitness CSV's extra columns (behaviour
+    /// measures, validation); empty when the experiment has none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub history_extra: Vec<Vec<Option<f64>>>,
+    /// The best individual on validation so far (`[validation]` on).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub validated_best: Option<ValidatedChampion>,
 }
 
 /// Why a run could not start, continue or finish.
@@ -406,8 +416,8 @@ pub fn start(
     write_atomic(&experiment_path, experiment.to_toml().as_bytes())
         .map_err(io_err(&experiment_path))
         .map_err(|e| output_failed(dir, e))?;
-    let csv =
-        FitnessCsv::create(&dir.join(FITNESS_FILE)).map_err(|e| output_failed(dir, e.into()))?;
+    let csv = FitnessCsv::create_with(&dir.join(FITNESS_FILE), &extra_columns(&experiment))
+        .map_err(|e| output_failed(dir, e.into()))?;
     let topology = experiment.topology();
     let (population, search) = first_generation(&experiment, &topology);
     drive(
@@ -421,6 +431,9 @@ pub fn start(
             next_generation: 0,
             _lock: lock,
             search,
+            history_extra: Vec::new(),
+            validated_best: None,
+            validation_worlds: None,
         },
         population,
         options,
@@ -706,11 +719,19 @@ pub fn resume_with(
     write_atomic(&experiment_path, experiment.to_toml().as_bytes())
         .map_err(io_err(&experiment_path))?;
     let csv_path = dir.join(FITNESS_FILE);
+    let columns = extra_columns(&experiment);
     let csv = if payload.history.len() as u64 == last_generation + 1 {
-        repair_csv(&csv_path, &payload.history, &loaded_path, progress)?;
-        FitnessCsv::reopen_for_resume(&csv_path, last_generation)?.csv
+        repair_csv(
+            &csv_path,
+            &payload.history,
+            &payload.history_extra,
+            &columns,
+            &loaded_path,
+            progress,
+        )?;
+        FitnessCsv::reopen_for_resume_with(&csv_path, last_generation, &columns)?.csv
     } else {
-        FitnessCsv::reopen_for_resume(&csv_path, last_generation)?.csv
+        FitnessCsv::reopen_for_resume_with(&csv_path, last_generation, &columns)?.csv
     };
     let topology = experiment.topology();
     let mut state = Loop {
@@ -720,6 +741,9 @@ pub fn resume_with(
         history: payload.history,
         best_ever: payload.best_ever,
         next_generation: last_generation + 1,
+        history_extra: payload.history_extra,
+        validated_best: payload.validated_best,
+        validation_worlds: None,
         experiment,
         _lock: lock,
         search: payload.search.clone(),
@@ -747,10 +771,13 @@ pub fn resume_with(
 fn repair_csv(
     path: &Path,
     history: &[FitnessRow],
+    history_extra: &[Vec<Option<f64>>],
+    columns: &[String],
     checkpoint: &Path,
     progress: &mut dyn Progress,
 ) -> Result<(), RunError> {
-    let expected = crate::record::fitness_csv::to_bytes(history).map_err(io_err(path))?;
+    let expected = crate::record::fitness_csv::to_bytes_with(columns, history, history_extra)
+        .map_err(io_err(path))?;
     let existing = match read_regular(path, MAX_CSV_BYTES) {
         Ok(bytes) => Some(bytes),
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => None,
@@ -957,6 +984,10 @@ struct Loop {
     _lock: RunLock,
     /// The search distribution that sampled the generation being evaluated (PGPE).
     search: Option<SearchState>,
+    history_extra: Vec<Vec<Option<f64>>>,
+    validated_best: Option<ValidatedChampion>,
+    /// The validation worlds, built at the first validation of this process.
+    validation_worlds: Option<Vec<crate::sim::world::World>>,
 }
 
 impl Loop {
@@ -985,6 +1016,9 @@ impl Loop {
     }
 
     fn write_best(&self) -> Result<(), RunError> {
+        if self.experiment.validation.enabled() {
+            return self.write_validated_best();
+        }
         if let Some(c) = &self.best_ever {
             let file = GenomeFile::new(
                 &self.experiment,
@@ -1013,6 +1047,8 @@ impl Loop {
             best_ever: self.best_ever.clone(),
             history: self.history.clone(),
             search: self.search.clone(),
+            history_extra: self.history_extra.clone(),
+            validated_best: self.validated_best.clone(),
         };
         Ok(checkpoint::write_checkpoint(
             &self.dir.join(CHECKPOINT_DIR),
@@ -1087,12 +1123,32 @@ fn drive(
                 .write_best()
                 .map_err(|e| output_failed(&state.dir, e))?;
         }
+        let (extras, validated) = pool.install(|| {
+            validation::after_generation(
+                &state.experiment,
+                &state.topology,
+                &evaluated,
+                &summary,
+                total,
+                Vec::new(),
+                &mut state.validation_worlds,
+            )
+        })?;
+        if let Some(v) = validation::improved(state.validated_best.as_ref(), validated.as_ref()) {
+            state.validated_best = Some(v);
+            state
+                .write_best()
+                .map_err(|e| output_failed(&state.dir, e))?;
+        }
         let row = state.row(&evaluated, &summary);
         state
             .csv
-            .append(&row)
+            .append_with(&row, &extras)
             .map_err(|e| output_failed(&state.dir, e.into()))?;
         state.history.push(row);
+        if !extras.is_empty() {
+            state.history_extra.push(extras);
+        }
         progress.generation(&row);
         let is_last = generation + 1 >= total;
         let stop_requested = options.stop.is_some_and(|s| s.load(Ordering::SeqCst));
