@@ -137,7 +137,8 @@ fn two_runs_started_together_one_refuses_and_the_run_is_the_uninterrupted_one() 
                 .unwrap();
             assert!(out.status.success());
         }
-        let mut args = vec!["run", fixture("slow.toml").to_str().unwrap(), "--quiet"];
+        let slow = fixture("slow.toml");
+        let mut args = vec!["run", slow.to_str().unwrap(), "--quiet"];
         if force {
             args.push("--force");
         }

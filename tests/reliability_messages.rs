@@ -15,7 +15,7 @@ fn a_run_stopped_before_its_first_checkpoint_points_to_force() {
     let exp = tmp.path().join("long.toml");
     std::fs::write(&exp, text).unwrap();
     let dir = tmp.path().join("run");
-    let mut child = bin()
+    let child = bin()
         .args(["run", exp.to_str().unwrap(), "--out", dir.to_str().unwrap()])
         .stdout(Stdio::null())
         .stderr(Stdio::piped())

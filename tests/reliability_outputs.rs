@@ -13,6 +13,8 @@ fn tiny_run(dir: &Path) {
         "run",
         fixture("tiny.toml").to_str().unwrap(),
         "--quiet",
+        "--generations",
+        "30",
         "--out",
         dir.to_str().unwrap(),
     ]);

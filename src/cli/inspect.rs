@@ -1,6 +1,7 @@
 //! `berry-evolve inspect`: what an experiment file means, so a user can see which input is
 //! which before running it.
 
+use anyhow::Context;
 use berry_evolve::experiment::Experiment;
 use clap::Args;
 use std::fmt::Write as _;
@@ -51,6 +52,8 @@ pub fn run(args: InspectArgs) -> anyhow::Result<()> {
         per_generation
     )?;
     // One write, so a closed pipe (`| head`) is a single error that main treats as done.
-    std::io::stdout().write_all(out.as_bytes())?;
+    std::io::stdout()
+        .write_all(out.as_bytes())
+        .context("cannot write to standard output")?;
     Ok(())
 }

@@ -65,6 +65,7 @@ where
         )
     })?;
     let dir = parent_dir(path);
+    remove_dead_writers_temp_files(dir, &file_name.to_string_lossy());
     let (temp_path, file) = create_temp(dir, &file_name.to_string_lossy())?;
 
     let result = fill_and_sync(file, write)
@@ -114,7 +115,10 @@ impl AtomicFile {
                 format!("cannot write {}: the path has no file name", path.display()),
             )
         })?;
-        let (temp, file) = create_temp(parent_dir(path), &file_name.to_string_lossy())?;
+        let dir = parent_dir(path);
+        let name = file_name.to_string_lossy();
+        remove_dead_writers_temp_files(dir, &name);
+        let (temp, file) = create_temp(dir, &name)?;
         Ok(AtomicFile {
             dest: path.to_path_buf(),
             temp,
@@ -168,6 +172,36 @@ impl Drop for AtomicFile {
     fn drop(&mut self) {
         if self.writer.take().is_some() {
             let _ = fs::remove_file(&self.temp);
+        }
+    }
+}
+
+/// Removes the temporary files for `file_name` in `dir` left by processes that no longer
+/// exist (a killed trace writer): outside a locked run folder nobody else would. A file whose
+/// writer's process id is alive (or may be: no `/proc`) is left alone. Best effort.
+fn remove_dead_writers_temp_files(dir: &Path, file_name: &str) {
+    let proc = Path::new("/proc");
+    if !proc.join("self").exists() {
+        return;
+    }
+    let prefix = format!(".{file_name}{TEMP_MARKER}");
+    let Ok(entries) = fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(name) = name.to_str() else { continue };
+        let Some(rest) = name.strip_prefix(&prefix) else {
+            continue;
+        };
+        let Some((pid, _)) = rest.split_once('-') else {
+            continue;
+        };
+        if !is_temp_name(name) || proc.join(pid).exists() {
+            continue;
+        }
+        if entry.file_type().is_ok_and(|t| t.is_file()) {
+            let _ = fs::remove_file(entry.path());
         }
     }
 }

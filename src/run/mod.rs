@@ -826,7 +826,8 @@ fn repair_csv(
 pub fn load_checkpoint(
     target: &Path,
 ) -> Result<(PathBuf, PathBuf, CheckpointPayload, String), RunError> {
-    if target.is_file() {
+    if !target.is_dir() {
+        // A file, or something that is neither (refused by the reader, a FIFO included).
         let loaded = checkpoint::load::<CheckpointPayload>(target, None)?;
         check_payload_hash(target, &loaded.config_hash, &loaded.payload)?;
         check_payload_shape(target, &loaded.payload)?;
