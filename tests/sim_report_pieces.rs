@@ -230,9 +230,9 @@ fn wanderer_turn_degrees_sets_the_turn_and_is_validated() {
         ),
     ] {
         let s = setup(bad);
-        let e = World::new(&s.world, &s.creature, 1, rng(1))
-            .err()
-            .expect("refused");
+        let Err(e) = World::new(&s.world, &s.creature, 1, rng(1)) else {
+            panic!("refused")
+        };
         assert!(e.to_string().contains(key), "{bad}: {e}");
     }
 }
@@ -422,9 +422,9 @@ fn a_shorter_odour_list_repeats_over_the_creatures() {
 #[test]
 fn body_odours_are_validated() {
     let s = setup("[creature]\nodours = [[0, 0, 0, 0, 0, 0, 0, 0], [0, 0, 0, -1, 0, 0, 0, 0]]\n");
-    let e = World::new(&s.world, &s.creature, 2, rng(1))
-        .err()
-        .expect("refused");
+    let Err(e) = World::new(&s.world, &s.creature, 2, rng(1)) else {
+        panic!("refused")
+    };
     assert!(e.to_string().contains("creature.odours[1][3]"), "{e}");
     let e = toml::from_str::<sim_common::Setup>("[creature]\nodours = [[1, 0]]\n").err();
     assert!(e.expect("refused").to_string().contains("8 numbers"));
@@ -511,8 +511,8 @@ fn creatures_start_on_the_start_grid() {
     }
     assert_eq!(seen.len(), 9, "{seen:?}");
     let s = setup("[world.start]\nregion = [101, 101, 109, 109]\ngrid = 10\n");
-    let e = World::new(&s.world, &s.creature, 1, rng(1))
-        .err()
-        .expect("refused");
+    let Err(e) = World::new(&s.world, &s.creature, 1, rng(1)) else {
+        panic!("refused")
+    };
     assert!(e.to_string().contains("world.start.grid"), "{e}");
 }
