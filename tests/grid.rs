@@ -393,6 +393,56 @@ fn grid_and_brute_force_agree_on_worlds_of_one_component_smells() {
     assert!(checked >= 15, "only {checked} random worlds could be built");
 }
 
+/// [`random_world`] with the report's last smells (§4.2, §5.1): every door trigger and a few
+/// landmarks (inside and outside the arena) smell, and each creature has its own body odour
+/// (`[creature] odours`), drawn from a generator of their own so that the rest is the world
+/// `random_world` gives.
+fn every_object_smells_world(seed: u64) -> String {
+    let mut r = Mix(seed ^ 0x5EED);
+    let mut out = String::new();
+    for line in random_world(seed).lines() {
+        out.push_str(line);
+        out.push('\n');
+        if line.starts_with("open_ticks") {
+            let o = odour(&mut r);
+            let range = range(&mut r, 150.0);
+            writeln!(
+                out,
+                "odour = {o}\nintensity = {:.3}\n{range}",
+                r.uniform(0.1, 2.0)
+            )
+            .unwrap();
+        }
+        if line == "[creature]" {
+            let odours: Vec<String> = (0..1 + r.below(5)).map(|_| odour(&mut r)).collect();
+            writeln!(out, "odours = [{}]", odours.join(", ")).unwrap();
+        }
+    }
+    for _ in 0..1 + r.below(3) {
+        let (x, y) = (r.uniform(-50.0, 1250.0), r.uniform(-50.0, 1250.0));
+        let o = odour(&mut r);
+        let range = range(&mut r, 150.0);
+        writeln!(
+            out,
+            "[[world.landmarks]]\nposition = [{x:.3}, {y:.3}]\nodour = {o}\nintensity = {:.3}\n{range}",
+            r.uniform(0.1, 2.0)
+        )
+        .unwrap();
+    }
+    out
+}
+
+#[test]
+fn grid_and_brute_force_agree_when_triggers_landmarks_and_each_body_smell() {
+    let mut checked = 0;
+    for seed in 0..16u64 {
+        let text = every_object_smells_world(seed);
+        checked += usize::from(grid_agrees_with_brute_force(&text, 6, seed));
+    }
+    eprintln!("{checked} random worlds checked");
+    assert!(checked >= 8, "only {checked} random worlds could be built");
+}
+
 /// Everything a tick can change, printed exactly (`{:?}` of an f64 round-trips its bits).
 fn state(w: &World) -> String {
     let mut s = format!("{:?}\n{:?}\n", w.creatures(), w.food());

@@ -230,9 +230,9 @@ fn wanderer_turn_degrees_sets_the_turn_and_is_validated() {
         ),
     ] {
         let s = setup(bad);
-        let e = World::new(&s.world, &s.creature, 1, rng(1))
-            .err()
-            .expect("refused");
+        let Err(e) = World::new(&s.world, &s.creature, 1, rng(1)) else {
+            panic!("refused")
+        };
         assert!(e.to_string().contains(key), "{bad}: {e}");
     }
 }
@@ -370,4 +370,149 @@ fn a_row_looking_down_over_a_low_wall_sees_beyond_it() {
     );
     let flat = walled.replace("height = 3\n", "height = 1\n");
     assert_eq!(picture(&mut world(&flat, 1, 1)), ["TTTTT"]);
+}
+
+// ---------------------------------------------------------------- body odours (§5.1)
+
+/// Three creatures with their own odours (components 1, 2, 3) at intensity 0.5, receptors at
+/// the centre (whisker length 0), c = 0.01: creature 0 at (100, 150) smells creature 1 at
+/// 10 LU, 0.5 / (1 + 1) = 0.25 in component 2, and creature 2 at 20 LU, 0.5 / (1 + 4) = 0.1
+/// in component 3, and nothing of its own component 1.
+#[test]
+fn each_creature_gives_off_its_own_body_odour() {
+    let text = "[creature]\nwhisker_length = 0\nodour_intensity = 0.5\n\
+                odours = [[1, 0, 0, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0, 0, 0], [0, 0, 1, 0, 0, 0, 0, 0]]\n";
+    let mut w = world(text, 3, 1);
+    sim_common::put(&mut w, 0, 100.0, 150.0, 0.0);
+    sim_common::put(&mut w, 1, 110.0, 150.0, 0.0);
+    sim_common::put(&mut w, 2, 100.0, 170.0, 0.0);
+    w.step(&mut [Still, Still, Still]);
+    let s = w.creatures()[0].smell[0];
+    assert_eq!(s[0], 0.0, "a creature never smells itself");
+    sim_common::assert_close(s[1], 0.25, "creature 1 at 10 LU");
+    sim_common::assert_close(s[2], 0.1, "creature 2 at 20 LU");
+    // Creature 1: creature 0 at 10 LU (0.25 in component 1), creature 2 at √500 LU
+    // (0.5 / 6 in component 3).
+    let s = w.creatures()[1].smell[0];
+    sim_common::assert_close(s[0], 0.25, "creature 0");
+    assert_eq!(s[1], 0.0);
+    sim_common::assert_close(s[2], 0.5 / 6.0, "creature 2");
+}
+
+/// A shorter list repeats: with two odours, creature 2 gives off the first, like creature 0,
+/// so creature 1 smells both in component 1: 0.25 + 0.5 / 6.
+#[test]
+fn a_shorter_odour_list_repeats_over_the_creatures() {
+    let text = "[creature]\nwhisker_length = 0\nodour_intensity = 0.5\n\
+                odours = [[1, 0, 0, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0, 0, 0]]\n";
+    let mut w = world(text, 3, 1);
+    sim_common::put(&mut w, 0, 100.0, 150.0, 0.0);
+    sim_common::put(&mut w, 1, 110.0, 150.0, 0.0);
+    sim_common::put(&mut w, 2, 100.0, 170.0, 0.0);
+    w.step(&mut [Still, Still, Still]);
+    let s = w.creatures()[1].smell[0];
+    sim_common::assert_close(s[0], 0.25 + 0.5 / 6.0, "creatures 0 and 2");
+    assert_eq!(s[1], 0.0);
+    let s = w.creatures()[0].smell[0];
+    // Creature 2 at 20 LU shares creature 0's odour: 0.1, without creature 0's own 0.5.
+    sim_common::assert_close(s[0], 0.1, "creature 2, not itself");
+    sim_common::assert_close(s[1], 0.25, "creature 1");
+}
+
+#[test]
+fn body_odours_are_validated() {
+    let s = setup("[creature]\nodours = [[0, 0, 0, 0, 0, 0, 0, 0], [0, 0, 0, -1, 0, 0, 0, 0]]\n");
+    let Err(e) = World::new(&s.world, &s.creature, 2, rng(1)) else {
+        panic!("refused")
+    };
+    assert!(e.to_string().contains("creature.odours[1][3]"), "{e}");
+    let e = toml::from_str::<sim_common::Setup>("[creature]\nodours = [[1, 0]]\n").err();
+    assert!(e.expect("refused").to_string().contains("8 numbers"));
+}
+
+// ---------------------------------------------------------------- smelly triggers, landmarks (§4.2)
+
+/// A door trigger at (100, 150) with odour component 4 at intensity 1: a receptor 10 LU away
+/// smells 1 / (1 + 1) = 0.5, open door or closed; beyond its range of 8 LU nothing.
+#[test]
+fn a_door_trigger_smells() {
+    let text = "[[world.doors]]\nfrom = [200, 0]\nto = [200, 300]\ntrigger = [100, 150]\n\
+                trigger_radius = 2\nodour = [0, 0, 0, 1, 0, 0, 0, 0]\nintensity = 1\n\
+                [creature]\nwhisker_length = 0\n";
+    let mut w = world(text, 1, 1);
+    sim_common::put(&mut w, 0, 110.0, 150.0, 0.0);
+    w.step(&mut [Still]);
+    sim_common::assert_close(w.creatures()[0].smell[0][3], 0.5, "trigger at 10 LU");
+    let ranged = text.replace("intensity = 1\n", "intensity = 1\nrange = 8\n");
+    let mut w = world(&ranged, 1, 1);
+    sim_common::put(&mut w, 0, 110.0, 150.0, 0.0);
+    w.step(&mut [Still]);
+    assert_eq!(w.creatures()[0].smell[0][3], 0.0, "beyond the range");
+}
+
+/// A landmark at (150, 100) with odour component 5 at intensity 2: from (150, 120), 20 LU,
+/// 2 / (1 + 4) = 0.4. One outside the arena at (150, −50) is hidden by the opaque top wall;
+/// without boundary walls it is smelled from 170 LU: 2 / (1 + 289). Silent landmarks add
+/// nothing to the world's things.
+#[test]
+fn a_landmark_smells_from_its_position() {
+    let base = "[world.start]\nregion = [150, 120, 150, 120]\n[creature]\nwhisker_length = 0\n";
+    let lm = |x: f64, y: f64| {
+        format!(
+            "[[world.landmarks]]\nposition = [{x}, {y}]\nodour = [0, 0, 0, 0, 1, 0, 0, 0]\n\
+             intensity = 2\n"
+        )
+    };
+    let mut w = world(&format!("{}{base}", lm(150.0, 100.0)), 1, 1);
+    w.step(&mut [Still]);
+    sim_common::assert_close(w.creatures()[0].smell[0][4], 0.4, "landmark at 20 LU");
+    let mut w = world(&format!("{}{base}", lm(150.0, -50.0)), 1, 1);
+    w.step(&mut [Still]);
+    assert_eq!(
+        w.creatures()[0].smell[0][4],
+        0.0,
+        "behind the opaque boundary wall"
+    );
+    let open = format!(
+        "[world]\nboundary_walls = false\n{}{base}",
+        lm(150.0, -50.0)
+    );
+    let mut w = world(&open, 1, 1);
+    w.step(&mut [Still]);
+    sim_common::assert_close(w.creatures()[0].smell[0][4], 2.0 / 290.0, "at 170 LU");
+    let silent = world(
+        &format!("[[world.landmarks]]\nposition = [150, 100]\n{base}"),
+        1,
+        1,
+    );
+    assert!(silent.things().is_empty());
+}
+
+// ---------------------------------------------------------------- start grid (§2)
+
+/// `[world.start] grid = 10` in the region [100, 100, 120, 120]: body centres only at the
+/// nine points (100..=120 step 10)², and over many worlds at each of them.
+#[test]
+fn creatures_start_on_the_start_grid() {
+    let text = "[world.start]\nregion = [100, 100, 120, 120]\ngrid = 10\n";
+    let mut seen = std::collections::BTreeSet::new();
+    for seed in 0..40 {
+        let w = world(text, 3, seed);
+        for c in w.creatures() {
+            let p = c.pose.position;
+            let (i, j) = (p.x / 10.0, p.y / 10.0);
+            assert!(i.fract() == 0.0 && j.fract() == 0.0, "{p:?} off the grid");
+            assert!(
+                (10.0..=12.0).contains(&i) && (10.0..=12.0).contains(&j),
+                "{p:?}"
+            );
+            seen.insert((i as i64, j as i64));
+        }
+    }
+    assert_eq!(seen.len(), 9, "{seen:?}");
+    let s = setup("[world.start]\nregion = [101, 101, 109, 109]\ngrid = 10\n");
+    let Err(e) = World::new(&s.world, &s.creature, 1, rng(1)) else {
+        panic!("refused")
+    };
+    assert!(e.to_string().contains("world.start.grid"), "{e}");
 }

@@ -50,6 +50,24 @@ pub struct DoorSpec {
     /// t + open_ticks + 1 unless touched again.
     #[serde(default = "hundred")]
     pub open_ticks: u64,
+    /// Odour given off at the trigger's centre (§4.2: every object but walls may smell),
+    /// whether the door is open or closed, smelled like a teleporter entry's (default:
+    /// zeros = no smell).
+    #[serde(
+        default,
+        skip_serializing_if = "crate::sim::spec::exact::is_zero",
+        deserialize_with = "crate::sim::spec::exact::array"
+    )]
+    pub odour: [f64; 8],
+    /// Smell intensity at the trigger (default: 0).
+    #[serde(
+        default,
+        skip_serializing_if = "crate::sim::spec::exact::is_zero_scalar"
+    )]
+    pub intensity: f64,
+    /// Smell range θ of the trigger in LU (default: absent = unlimited).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub range: Option<f64>,
 }
 
 /// A teleporter (`[[world.teleporters]]`, §4.5.1): body contact with the entry circle moves an
@@ -374,6 +392,7 @@ pub fn validate(
         non_negative(&format!("{key}.height"), d.height)?;
         inside(&format!("{key}.trigger"), d.trigger, arena)?;
         non_negative(&format!("{key}.trigger_radius"), d.trigger_radius)?;
+        smell(&key, &d.odour, d.intensity, d.range)?;
         count_within(
             &format!("{key}.open_ticks"),
             d.open_ticks,
@@ -466,7 +485,8 @@ pub fn validate(
 }
 
 /// Something round other than food, aversive objects and creatures that senses may meet:
-/// door triggers, teleporter entries, wanderers, predators (their ground position).
+/// door triggers, teleporter entries, wanderers, predators (their ground position), and
+/// landmarks that smell (a point that is only smelled).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Thing {
     /// Centre in LU.

@@ -285,10 +285,11 @@ fn place_rule(
     Ok(())
 }
 
-/// Start poses for `count` creatures of body radius `radius`: uniform in the start region,
-/// the body touching no wall, no earlier creature and no food or aversive object; heading
+/// Start poses for `count` creatures of body radius `radius`: uniform in the start region
+/// (or among its points of the start grid), the body touching no wall, no earlier creature
+/// and no food or aversive object; heading
 /// from `[world.start]` or uniform on the circle. Per creature, the position draws (x, then
-/// y, repeated until a spot is free) come before the heading draw.
+/// y, repeated until a spot is free; grid indices with a grid) come before the heading draw.
 pub(crate) fn place_creatures(
     spec: &WorldSpec,
     radius: f64,
@@ -320,7 +321,7 @@ pub(crate) fn place_creatures(
     for n in 0..count {
         let mut found = None;
         for _ in 0..MAX_ATTEMPTS {
-            let p = sample(rng, region, None);
+            let p = sample(rng, region, spec.start.grid);
             if touches_a_wall(p, radius, walls)
                 || poses
                     .iter()

@@ -35,7 +35,10 @@ pub struct Body {
     pub whisker_cos: f64,
     /// See `whisker_cos`.
     pub whisker_sin: f64,
-    /// The smell every creature's body gives off.
+    /// The creatures' body smell when all share one (`[creature] odour`); with `odours`,
+    /// the largest of theirs, component by component. The senses read only whether it is
+    /// silent (then no creature's body smells, and the other creatures are skipped); each
+    /// creature gives off its own [`Creature::body_smell`].
     pub smell: Smell,
 }
 
@@ -70,7 +73,7 @@ pub struct Surroundings<'a> {
     pub areas: &'a [Area],
     /// Every creature, the sensing one included (skipped by index).
     pub creatures: &'a [Creature],
-    /// Door triggers, teleporter entries, wanderers and predators.
+    /// Door triggers, teleporter entries, wanderers, predators and smelly landmarks.
     pub things: &'a [Thing],
     /// Index in `things` of the sensing body itself when it is a wanderer or predator
     /// (`usize::MAX` for a creature).
@@ -157,7 +160,7 @@ impl Surroundings<'_> {
                         &mut acc,
                         receptor,
                         other.pose.position,
-                        &body.smell,
+                        &other.body_smell,
                         1.0,
                         c,
                         opaque,
@@ -596,7 +599,7 @@ impl Surroundings<'_> {
             for (j, other) in self.creatures.iter().enumerate() {
                 if j != me && other.alive {
                     let p = other.pose.position;
-                    near.source(self, acc, p, &body.smell, || 1.0, scratch);
+                    near.source(self, acc, p, &other.body_smell, || 1.0, scratch);
                 }
             }
         }

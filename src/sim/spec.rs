@@ -10,6 +10,7 @@
 
 use crate::sim::controller::{GroupSizes, InputsSpec, ObservationLayout};
 use crate::sim::gadgets::{AirPredatorSpec, DoorSpec, PredatorSpec, TeleporterSpec, WanderersSpec};
+use crate::sim::smell::Smell;
 use crate::validate::{
     all_finite, all_non_negative, count_within, finite, non_negative, positive, within,
     InvalidValue, Valid,
@@ -55,6 +56,31 @@ pub(crate) mod exact {
         d: D,
     ) -> Result<Option<[f64; N]>, D::Error> {
         array(d).map(Some)
+    }
+
+    /// A list of arrays of exactly N numbers each.
+    pub fn arrays<'de, D: Deserializer<'de>, const N: usize>(
+        d: D,
+    ) -> Result<Vec<[f64; N]>, D::Error> {
+        Vec::<Vec<f64>>::deserialize(d)?
+            .into_iter()
+            .map(|values| {
+                let n = values.len();
+                values.try_into().map_err(|_| {
+                    D::Error::invalid_length(n, &format!("an array of {N} numbers").as_str())
+                })
+            })
+            .collect()
+    }
+
+    /// Serde's `skip_serializing_if` for an odour that is all zeros (the default).
+    pub fn is_zero<const N: usize>(values: &[f64; N]) -> bool {
+        values.iter().all(|&v| v == 0.0)
+    }
+
+    /// Serde's `skip_serializing_if` for an intensity of 0 (the default).
+    pub fn is_zero_scalar(value: &f64) -> bool {
+        *value == 0.0
     }
 }
 
@@ -120,7 +146,8 @@ pub struct WorldSpec {
 }
 
 /// A distal landmark (`[[world.landmarks]]`, §4.5.3): a point with no body, not felt, not
-/// smelled, not seen, not blocking; only its bearing is sensed.
+/// seen, not blocking; its bearing is sensed, and it may smell (§4.2 "all objects ... except
+/// for walls, smell").
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LandmarkSpec {
@@ -128,6 +155,22 @@ pub struct LandmarkSpec {
     /// typically far away).
     #[serde(deserialize_with = "exact::array")]
     pub position: Point,
+    /// Odour given off at its position, smelled through eq. 25 like any other object's: from
+    /// the position, fading with the distance to it, hidden by opaque walls between (so a
+    /// landmark outside the boundary walls, which are opaque, is never smelled inside)
+    /// (default: zeros = no smell).
+    #[serde(
+        default,
+        skip_serializing_if = "exact::is_zero",
+        deserialize_with = "exact::array"
+    )]
+    pub odour: [f64; 8],
+    /// Smell intensity at its position (default: 0).
+    #[serde(default, skip_serializing_if = "exact::is_zero_scalar")]
+    pub intensity: f64,
+    /// Smell range θ in LU (eq. 26; default: absent = unlimited).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub range: Option<f64>,
 }
 
 /// What an area is for (§4.6).
@@ -505,6 +548,12 @@ pub struct StartSpec {
     /// uniformly random heading for each creature).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub heading: Option<f64>,
+    /// Grid pitch in LU (§2), as `[[world.place]] grid`: body centres are drawn uniformly
+    /// among the grid points `(i·pitch, j·pitch)` inside the region, each still touching no
+    /// wall, other creature, food or aversive object (default: absent = anywhere in the
+    /// region). At least one grid point must lie in the region.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub grid: Option<f64>,
 }
 
 /// How a creature eats (SPEC-NOTES: the report does not say).
@@ -538,8 +587,19 @@ pub struct CreatureSpec {
     /// Body odour o = ⟨o1..o8⟩ that other creatures smell (default: zeros).
     #[serde(deserialize_with = "exact::array")]
     pub odour: [f64; 8],
-    /// Intensity of the body odour (default: 0).
+    /// Intensity of the body odour (default: 0); with `odours`, of each creature's.
     pub odour_intensity: f64,
+    /// A body odour per creature (§5.1: "may be distinct for each individual creature"):
+    /// creature i of a world (its index in the group evaluated together, from 0) gives off
+    /// `odours[i mod n]` at `odour_intensity` instead of `odour`, so a list as long as the
+    /// group gives each creature its own and a shorter one repeats (two entries: alternate
+    /// creatures share one of two odours). A creature never smells its own body (default:
+    /// empty = every creature gives off `odour`).
+    #[serde(
+        skip_serializing_if = "Vec::is_empty",
+        deserialize_with = "exact::arrays"
+    )]
+    pub odours: Vec<[f64; 8]>,
     /// Largest motor speed in RPT; motor commands are clamped to ±max_rpt (default: 0.25,
     /// about 3.1 LU per tick with w = 2).
     pub max_rpt: f64,
@@ -779,6 +839,7 @@ impl Default for CreatureSpec {
             wheel: 2.0,
             odour: [0.0; 8],
             odour_intensity: 0.0,
+            odours: Vec::new(),
             max_rpt: 0.25,
             eating: Eating::Contact,
             inhibit_smell_on_whisker: false,
@@ -804,6 +865,16 @@ impl CreatureSpec {
         positive("creature.wheel", self.wheel)?;
         all_non_negative("creature.odour", &self.odour)?;
         non_negative("creature.odour_intensity", self.odour_intensity)?;
+        count_within(
+            "creature.odours",
+            self.odours.len() as u64,
+            0,
+            crate::sim::placement::MAX_CREATURES as u64,
+            "odours, one per creature at most",
+        )?;
+        for (i, odour) in self.odours.iter().enumerate() {
+            all_non_negative(&format!("creature.odours[{i}]"), odour)?;
+        }
         non_negative("creature.max_rpt", self.max_rpt)?;
         all_non_negative("creature.initial_metabolism", &self.initial_metabolism)?;
         all_non_negative("creature.decay_per_tick", &self.decay_per_tick)?;
@@ -819,6 +890,31 @@ impl CreatureSpec {
         self.eye.validate("creature.eye")?;
         self.noise.validate()?;
         Ok(())
+    }
+
+    /// The smell of creature `i`'s body: `odours[i mod n]` when `odours` is given, else
+    /// `odour`, at `odour_intensity`, with unlimited range.
+    pub fn body_smell(&self, i: usize) -> Smell {
+        let odour = match self.odours.len() {
+            0 => &self.odour,
+            n => &self.odours[i % n],
+        };
+        Smell::new(odour, self.odour_intensity, None)
+    }
+
+    /// What every creature's body smell is at most, component by component (`odour`'s smell
+    /// without `odours`): silent when no creature's body smells.
+    pub fn strongest_body_smell(&self) -> Smell {
+        if self.odours.is_empty() {
+            return self.body_smell(0);
+        }
+        let mut most = [0.0f64; 8];
+        for o in &self.odours {
+            for (m, v) in most.iter_mut().zip(o) {
+                *m = m.max(*v);
+            }
+        }
+        Smell::new(&most, self.odour_intensity, None)
     }
 
     /// Where each input sits in the observation of this creature in `world` (the number of
@@ -940,25 +1036,17 @@ impl WorldSpec {
             }
             non_negative(&format!("{key}.min_spacing"), rule.min_spacing)?;
             if let Some(pitch) = rule.grid {
-                positive(&format!("{key}.grid"), pitch)?;
-                if pitch < MIN_GRID_PITCH {
-                    return Err(InvalidValue::new(
-                        format!("{key}.grid"),
-                        format!("must be at least {MIN_GRID_PITCH} LU (finer is below f64 precision at large arenas), got {pitch}"),
-                    ));
-                }
-                let [x0, y0, x1, y1] = rule.region.unwrap_or(self.arena_region());
-                if grid_span(x0, x1, pitch).is_none() || grid_span(y0, y1, pitch).is_none() {
-                    return Err(InvalidValue::new(
-                        format!("{key}.grid"),
-                        format!("no point of a {pitch} LU grid lies inside the region"),
-                    ));
-                }
+                let region = rule.region.unwrap_or(self.arena_region());
+                validate_grid(&format!("{key}.grid"), pitch, region)?;
             }
         }
 
         if let Some(region) = self.start.region {
             self.region_in_arena("world.start.region", region)?;
+        }
+        if let Some(pitch) = self.start.grid {
+            let region = self.start.region.unwrap_or(self.arena_region());
+            validate_grid("world.start.grid", pitch, region)?;
         }
         if let Some(heading) = self.start.heading {
             finite("world.start.heading", heading)?;
@@ -976,6 +1064,12 @@ impl WorldSpec {
             all_finite(
                 &format!("world.landmarks[{i}].position"),
                 &landmark.position,
+            )?;
+            validate_smell(
+                &format!("world.landmarks[{i}]"),
+                &landmark.odour,
+                landmark.intensity,
+                landmark.range,
             )?;
         }
         if creature.inputs.landmarks && self.landmarks.is_empty() {
@@ -1079,6 +1173,26 @@ pub(crate) fn grid_span(a: f64, b: f64, pitch: f64) -> Option<(i64, i64)> {
     let lo = if lo * pitch < a { lo + 1.0 } else { lo };
     let hi = if hi * pitch > b { hi - 1.0 } else { hi };
     (lo <= hi).then_some((lo as i64, hi as i64))
+}
+
+/// A placement grid of pitch `pitch` (§2) for `region`: at least [`MIN_GRID_PITCH`], with
+/// a grid point inside the region.
+fn validate_grid(key: &str, pitch: f64, region: Region) -> Valid {
+    positive(key, pitch)?;
+    if pitch < MIN_GRID_PITCH {
+        return Err(InvalidValue::new(
+            key,
+            format!("must be at least {MIN_GRID_PITCH} LU (finer is below f64 precision at large arenas), got {pitch}"),
+        ));
+    }
+    let [x0, y0, x1, y1] = region;
+    if grid_span(x0, x1, pitch).is_none() || grid_span(y0, y1, pitch).is_none() {
+        return Err(InvalidValue::new(
+            key,
+            format!("no point of a {pitch} LU grid lies inside the region"),
+        ));
+    }
+    Ok(())
 }
 
 fn validate_smell(key: &str, odour: &[f64; 8], intensity: f64, range: Option<f64>) -> Valid {

@@ -104,11 +104,15 @@ pub struct Creature {
     pub command: MotorCommand,
     /// Its last move was cut short by an obstacle.
     pub blocked: bool,
+    /// The smell its body gives off to the other creatures (`[creature] odour`, or its own
+    /// of `odours`, §5.1).
+    pub body_smell: Smell,
 }
 
 impl Creature {
-    fn new(pose: Pose, metabolism: [f64; 4]) -> Creature {
+    fn new(pose: Pose, metabolism: [f64; 4], body_smell: Smell) -> Creature {
         Creature {
+            body_smell,
             pose,
             metabolism,
             eaten: [0.0; 4],
@@ -184,8 +188,9 @@ pub struct World {
     /// order), air predators' new flights (file order), then each creature's sensor noise
     /// (in the order [`crate::sim::noise`] documents).
     rng: Rng,
-    /// Door triggers, teleporter entries, wanderers, ground predators and air predators, in
-    /// that order: what senses meet besides food, aversive objects and creatures.
+    /// Door triggers, teleporter entries, wanderers, ground predators, air predators and the
+    /// landmarks that smell, in that order: what senses meet besides food, aversive objects
+    /// and creatures.
     things: Vec<Thing>,
     /// Locked doors (§4.5.2), in file order.
     doors: Vec<Door>,
@@ -350,7 +355,7 @@ impl World {
             things.push(Thing {
                 position: Vec2::from(d.trigger),
                 radius: d.trigger_radius,
-                smell: Smell::NONE,
+                smell: Smell::new(&d.odour, d.intensity, d.range),
                 felt: true,
                 blocks: false,
                 seen: false,
@@ -487,6 +492,24 @@ impl World {
             });
             flyers.push(f);
         }
+        // Landmarks that smell (§4.2) are smelled from their position, as things with no
+        // body; silent ones are left out, so that a world of silent landmarks keeps the
+        // senses' paths of a world without things.
+        for l in &world.landmarks {
+            let smell = Smell::new(&l.odour, l.intensity, l.range);
+            if !smell.silent {
+                things.push(Thing {
+                    position: Vec2::from(l.position),
+                    radius: 0.0,
+                    smell,
+                    felt: false,
+                    blocks: false,
+                    seen: false,
+                    colour: [0.0; 3],
+                    height: 0.0,
+                });
+            }
+        }
         let rules = CreatureRules {
             motion: MotionParams {
                 wheel: creature.wheel,
@@ -526,14 +549,15 @@ impl World {
             brute_force: false,
             creatures: poses
                 .into_iter()
-                .map(|p| Creature::new(p, creature.initial_metabolism))
+                .enumerate()
+                .map(|(i, p)| Creature::new(p, creature.initial_metabolism, creature.body_smell(i)))
                 .collect(),
             body: Body {
                 radius,
                 whisker_length: creature.whisker_length,
                 whisker_cos: libm::cos(phi),
                 whisker_sin: libm::sin(phi),
-                smell: Smell::new(&creature.odour, creature.odour_intensity, None),
+                smell: creature.strongest_body_smell(),
             },
             motion: MotionParams {
                 wheel: creature.wheel,
@@ -1460,8 +1484,8 @@ impl World {
         &self.flyers
     }
 
-    /// Door triggers, teleporter entries, wanderers, ground and air predators, in that
-    /// order, as the senses meet them.
+    /// Door triggers, teleporter entries, wanderers, ground and air predators, then the
+    /// landmarks that smell, in that order, as the senses meet them.
     pub fn things(&self) -> &[Thing] {
         &self.things
     }
