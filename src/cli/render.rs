@@ -58,7 +58,10 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let trace = traces.first().context("no trial was lived")?;
     let e = &replay.experiment;
     let caption = Caption {
-        title: format!("{}: trial {} of generation {}", e.name, args.trial, replay.generation.0),
+        title: format!(
+            "{}: trial {} of generation {}",
+            e.name, args.trial, replay.generation.0
+        ),
         lines: vec![
             format!("genome {}", args.genome.display()),
             format!("seed {}, {} ticks per trial", e.seed, e.evaluation.ticks),
