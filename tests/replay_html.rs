@@ -83,7 +83,11 @@ fn the_page_draws_the_arena_and_the_creature_where_the_trace_says() {
         .arg(&trace)
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let page = std::fs::read_to_string(&html).unwrap();
     // Self-contained: no external script, style, font or image.
     for needle in ["<script src", "<link", "http://", "https://", "url("] {
@@ -102,7 +106,9 @@ fn the_page_draws_the_arena_and_the_creature_where_the_trace_says() {
             return;
         }
     };
-    let start = dom.find("<pre id=\"status\">").expect("the page has a status element");
+    let start = dom
+        .find("<pre id=\"status\">")
+        .expect("the page has a status element");
     let status = &dom[start..dom[start..].find("</pre>").unwrap() + start];
     let lines: Vec<&str> = status.lines().collect();
     assert!(lines[0].ends_with(&format!("tick {tick}")), "{status}");
@@ -117,7 +123,11 @@ fn the_page_draws_the_arena_and_the_creature_where_the_trace_says() {
     let row: Vec<f64> = csv
         .lines()
         .skip(1)
-        .map(|l| l.split(',').map(|c| c.parse().unwrap_or(f64::NAN)).collect::<Vec<f64>>())
+        .map(|l| {
+            l.split(',')
+                .map(|c| c.parse().unwrap_or(f64::NAN))
+                .collect::<Vec<f64>>()
+        })
         .find(|r| r[col("trial")] == 1.0 && r[col("tick")] == tick as f64)
         .expect("the trace has the tick");
     let creature = numbers(lines[2]);
