@@ -63,7 +63,14 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
             e.name, args.trial, replay.generation.0
         ),
         lines: vec![
-            format!("genome {}", args.genome.display()),
+            format!(
+                "genome {}",
+                args.genome
+                    .file_name()
+                    .map_or(args.genome.display().to_string(), |n| n
+                        .to_string_lossy()
+                        .to_string())
+            ),
             format!("seed {}, {} ticks per trial", e.seed, e.evaluation.ticks),
         ],
     };

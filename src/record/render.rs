@@ -619,15 +619,23 @@ fn legend(s: &mut String, trace: &TrialTrace, caption: &Caption, x0: f64, ticks:
         s,
         "",
         &format!(
-            "{ticks} ticks lived, {travelled:.0} LU travelled, {} bites, {} shocks, {} teleports{}",
-            count(EventKind::Eat),
-            count(EventKind::Shock),
-            count(EventKind::Teleport),
+            "{ticks} ticks lived, {travelled:.0} LU travelled{}",
             if count(EventKind::Death) > 0 {
                 ", died"
             } else {
                 ""
             }
+        ),
+        &mut y,
+    );
+    line(
+        s,
+        "",
+        &format!(
+            "{} bites, {} shocks, {} teleports",
+            count(EventKind::Eat),
+            count(EventKind::Shock),
+            count(EventKind::Teleport),
         ),
         &mut y,
     );
