@@ -188,7 +188,11 @@ fn the_written_trace_is_the_scored_life_in_every_shipped_experiment() {
         for (t, trace) in recorder.trials.iter().enumerate() {
             assert_eq!(trace.world.trial, t as u64);
             assert_eq!(trace.world.inputs, experiment.layout().names());
-            assert_eq!(trace.creatures.len() as u64, trace.ticks() * k as u64, "{name}");
+            assert_eq!(
+                trace.creatures.len() as u64,
+                trace.ticks() * k as u64,
+                "{name}"
+            );
             for (i, o) in outcomes[t].iter().enumerate() {
                 let last = &trace.creatures[trace.creatures.len() - k + i];
                 assert_eq!(last.metabolism, o.metabolism, "{name} trial {t}");
@@ -226,7 +230,10 @@ fn the_written_trace_is_the_scored_life_in_every_shipped_experiment() {
         assert!(last.starts_with(&format!("{},", recorder.trials.len() - 1)));
         for p in [&actors, &objects, &events] {
             let t = std::fs::read_to_string(p).unwrap();
-            assert!(t.lines().next().unwrap().starts_with("trial,tick,"), "{p:?}");
+            assert!(
+                t.lines().next().unwrap().starts_with("trial,tick,"),
+                "{p:?}"
+            );
         }
         let world_lines = std::fs::read_to_string(&world).unwrap();
         assert_eq!(world_lines.lines().count(), recorder.trials.len());

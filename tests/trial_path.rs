@@ -82,8 +82,8 @@ fn a_replayed_trial_is_the_scored_trial_in_every_shipped_experiment() {
         let k = experiment.evaluation.group_size as usize;
         for g in 0..population.len() / k {
             let genomes = &population[g * k..(g + 1) * k];
-            let group = evaluate_group(&experiment, &topology, genomes, generation, g as u64)
-                .unwrap();
+            let group =
+                evaluate_group(&experiment, &topology, genomes, generation, g as u64).unwrap();
             // Each group lives worlds of its own without common random numbers.
             let mut per_individual: Vec<Vec<TrialOutcome>> = vec![Vec::new(); k];
             for t in 0..experiment.evaluation.trials {

@@ -63,8 +63,8 @@ pub fn run(args: PlotArgs) -> anyhow::Result<()> {
     let output = args.output.unwrap_or(default_out);
     refuse_overwriting_inputs("-o", &output, &[csv.as_path()])?;
     let table = Table::load(&csv)?;
-    let summary = table.column("best").is_none()
-        && table.header.iter().any(|h| h.ends_with("_median"));
+    let summary =
+        table.column("best").is_none() && table.header.iter().any(|h| h.ends_with("_median"));
     let title = title_for(&csv);
     let svg = if summary {
         summary_plot(&table, &format!("{title}: across seeds"))?

@@ -58,9 +58,19 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let trace = traces.first().context("no trial was lived")?;
     let e = &replay.experiment;
     let caption = Caption {
-        title: format!("{}: trial {} of generation {}", e.name, args.trial, replay.generation.0),
+        title: format!(
+            "{}: trial {} of generation {}",
+            e.name, args.trial, replay.generation.0
+        ),
         lines: vec![
-            format!("genome {}", args.genome.display()),
+            format!(
+                "genome {}",
+                args.genome
+                    .file_name()
+                    .map_or(args.genome.display().to_string(), |n| n
+                        .to_string_lossy()
+                        .to_string())
+            ),
             format!("seed {}, {} ticks per trial", e.seed, e.evaluation.ticks),
         ],
     };

@@ -12,6 +12,7 @@ use berry_evolve::evo::evaluate::{aggregate, TrialOutcome};
 use berry_evolve::evo::trial::{self, NoObserver};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::genome_file::GenomeFile;
+use berry_evolve::record::replay_html;
 use berry_evolve::record::trace::files::{csv_paths, write_csv_files, write_jsonl};
 use berry_evolve::record::trace::recorder::{TraceRecorder, TrialTrace};
 use berry_evolve::seed::{Generation, TrialIndex};
@@ -42,6 +43,10 @@ pub struct ReplayArgs {
     /// Write the same trace as JSON lines to this file.
     #[arg(long)]
     pub trace_jsonl: Option<PathBuf>,
+    /// Write a self-contained page that animates the replayed trial (the first one replayed)
+    /// to this HTML file.
+    #[arg(long)]
+    pub html: Option<PathBuf>,
 }
 
 /// What a replay needs, checked: the experiment (seed overridden), the genome and its
@@ -187,6 +192,9 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
     if let Some(path) = &args.trace_jsonl {
         refuse_overwriting_inputs("--trace-jsonl", path, &inputs)?;
     }
+    if let Some(path) = &args.html {
+        refuse_overwriting_inputs("--html", path, &inputs)?;
+    }
     let replay = Replay::prepare(
         &args.genome,
         &args.experiment,
@@ -194,7 +202,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
         args.generation,
         args.trial,
     )?;
-    let recording = args.trace.is_some() || args.trace_jsonl.is_some();
+    let recording = args.trace.is_some() || args.trace_jsonl.is_some() || args.html.is_some();
     let mut recorder = recording.then(|| TraceRecorder::new(&replay.experiment));
     let mut outcomes = Vec::new();
     for &t in &replay.trials {
@@ -248,6 +256,13 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
     if let Some(path) = &args.trace_jsonl {
         write_jsonl(&trials, path)?;
         errln!("trace written to {}", path.display());
+    }
+    if let Some(path) = &args.html {
+        let first = trials
+            .first()
+            .context("no trial was replayed, so there is no page to write")?;
+        replay_html::write(first, path)?;
+        errln!("replay page written to {}", path.display());
     }
     Ok(())
 }

@@ -225,7 +225,13 @@ pub fn summary_plot(table: &Table, title: &str) -> Result<String, PlotError> {
                 table
                     .rows
                     .iter()
-                    .filter_map(|r| Some((r.get(x).copied()??, r.get(q1).copied()??, r.get(q3).copied()??)))
+                    .filter_map(|r| {
+                        Some((
+                            r.get(x).copied()??,
+                            r.get(q1).copied()??,
+                            r.get(q3).copied()??,
+                        ))
+                    })
                     .collect(),
             ),
             _ => None,
@@ -313,17 +319,25 @@ fn draw(table: &Table, title: &str, y_label: &str, curves: &[Curve]) -> Result<S
                 let mut outline: Vec<(f64, f64)> = band.iter().map(|&(x, lo, _)| (x, lo)).collect();
                 outline.extend(band.iter().rev().map(|&(x, _, hi)| (x, hi)));
                 chart
-                    .draw_series(std::iter::once(Polygon::new(outline, c.colour.mix(0.2).filled())))
+                    .draw_series(std::iter::once(Polygon::new(
+                        outline,
+                        c.colour.mix(0.2).filled(),
+                    )))
                     .map_err(|x| e(&x))?;
             }
         }
         for c in curves {
             let colour = c.colour;
             chart
-                .draw_series(LineSeries::new(c.points.iter().copied(), colour.stroke_width(2)))
+                .draw_series(LineSeries::new(
+                    c.points.iter().copied(),
+                    colour.stroke_width(2),
+                ))
                 .map_err(|x| e(&x))?
                 .label(c.name.clone())
-                .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], colour.stroke_width(2)));
+                .legend(move |(x, y)| {
+                    PathElement::new([(x, y), (x + 20, y)], colour.stroke_width(2))
+                });
         }
         chart
             .configure_series_labels()

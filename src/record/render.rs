@@ -89,17 +89,24 @@ fn points(frame: Frame, pts: &[[f64; 2]]) -> String {
     s.trim_end().to_string()
 }
 
+/// Distance between two points.
+fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+    ((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1])).sqrt()
+}
+
 /// Splits a path where it jumps (teleports, an air predator's new flight).
 fn split_at_jumps(pts: &[[f64; 2]], max_step: f64) -> Vec<Vec<[f64; 2]>> {
     let mut parts: Vec<Vec<[f64; 2]>> = vec![Vec::new()];
     for (k, p) in pts.iter().enumerate() {
         if k > 0 {
             let q = pts[k - 1];
-            if (p[0] - q[0]).hypot(p[1] - q[1]) > max_step {
+            if dist(*p, q) > max_step {
                 parts.push(Vec::new());
             }
         }
-        parts.last_mut().map(|v| v.push(*p));
+        if let Some(v) = parts.last_mut() {
+            v.push(*p);
+        }
     }
     parts.retain(|p| !p.is_empty());
     parts
@@ -207,8 +214,8 @@ pub fn render_svg(trace: &TrialTrace, caption: &Caption) -> String {
         let open = trace
             .events
             .iter()
-            .filter(|e| e.target_kind.as_deref() == Some("door") && e.target == Some(k))
-            .last()
+            .rev()
+            .find(|e| e.target_kind.as_deref() == Some("door") && e.target == Some(k))
             .is_some_and(|e| e.event == EventKind::DoorOpen);
         let opened = trace
             .events
@@ -301,8 +308,16 @@ pub fn render_svg(trace: &TrialTrace, caption: &Caption) -> String {
         } else {
             let (dx, dy) = (l[0] - centre[0], l[1] - centre[1]);
             let t = [
-                if dx != 0.0 { (aw / 2.0) / dx.abs() } else { f64::INFINITY },
-                if dy != 0.0 { (ah / 2.0) / dy.abs() } else { f64::INFINITY },
+                if dx != 0.0 {
+                    (aw / 2.0) / dx.abs()
+                } else {
+                    f64::INFINITY
+                },
+                if dy != 0.0 {
+                    (ah / 2.0) / dy.abs()
+                } else {
+                    f64::INFINITY
+                },
             ];
             let t = t[0].min(t[1]);
             [centre[0] + dx * t, centre[1] + dy * t]
@@ -331,7 +346,11 @@ pub fn render_svg(trace: &TrialTrace, caption: &Caption) -> String {
     }
     // Wanderers, predators, air predators: their paths, then where they are at the end.
     let r_body = frame.len(w.creature_radius).max(2.0);
-    let kinds = [ActorKind::Wanderer, ActorKind::Predator, ActorKind::AirPredator];
+    let kinds = [
+        ActorKind::Wanderer,
+        ActorKind::Predator,
+        ActorKind::AirPredator,
+    ];
     for kind in kinds {
         let count = match kind {
             ActorKind::Wanderer => w.actors.iter().filter(|a| a.role == "wanderer").count(),
@@ -365,7 +384,7 @@ pub fn render_svg(trace: &TrialTrace, caption: &Caption) -> String {
             let step = match kind {
                 ActorKind::AirPredator => {
                     let v = w.air_predators[k].velocity;
-                    2.0 * v[0].hypot(v[1]) + 1e-9
+                    2.0 * dist(v, [0.0, 0.0]) + 1e-9
                 }
                 _ => 30.0,
             };
@@ -375,8 +394,16 @@ pub fn render_svg(trace: &TrialTrace, caption: &Caption) -> String {
                     s,
                     r#"<polyline class="{class}-path" points="{}" fill="none" stroke="{colour}" stroke-width="{}" stroke-opacity="0.7"{}/>"#,
                     points(frame, &part),
-                    if kind == ActorKind::Wanderer { 1.0 } else { 1.5 },
-                    if kind == ActorKind::Wanderer { "" } else { r#" stroke-dasharray="5 3""# }
+                    if kind == ActorKind::Wanderer {
+                        1.0
+                    } else {
+                        1.5
+                    },
+                    if kind == ActorKind::Wanderer {
+                        ""
+                    } else {
+                        r#" stroke-dasharray="5 3""#
+                    }
                 );
             }
             match kind {
@@ -446,7 +473,7 @@ pub fn render_svg(trace: &TrialTrace, caption: &Caption) -> String {
         let mut last_arrow: Option<[f64; 2]> = None;
         for c in rows.iter().filter(|c| c.tick % every == 0) {
             // Not again where the last arrow stands (a creature turning on the spot).
-            if last_arrow.is_some_and(|p| (p[0] - c.x).hypot(p[1] - c.y) < 2.0 * w.creature_radius) {
+            if last_arrow.is_some_and(|p| dist(p, [c.x, c.y]) < 2.0 * w.creature_radius) {
                 continue;
             }
             last_arrow = Some([c.x, c.y]);
@@ -585,18 +612,30 @@ fn legend(s: &mut String, trace: &TrialTrace, caption: &Caption, x0: f64, ticks:
     let travelled = trace
         .creatures
         .iter()
-        .filter(|c| c.creature == 0)
-        .last()
+        .rev()
+        .find(|c| c.creature == 0)
         .map_or(0.0, |c| c.travelled);
     line(
         s,
         "",
         &format!(
-            "{ticks} ticks lived, {travelled:.0} LU travelled, {} bites, {} shocks, {} teleports{}",
+            "{ticks} ticks lived, {travelled:.0} LU travelled{}",
+            if count(EventKind::Death) > 0 {
+                ", died"
+            } else {
+                ""
+            }
+        ),
+        &mut y,
+    );
+    line(
+        s,
+        "",
+        &format!(
+            "{} bites, {} shocks, {} teleports",
             count(EventKind::Eat),
             count(EventKind::Shock),
             count(EventKind::Teleport),
-            if count(EventKind::Death) > 0 { ", died" } else { "" }
         ),
         &mut y,
     );
@@ -619,18 +658,25 @@ fn legend(s: &mut String, trace: &TrialTrace, caption: &Caption, x0: f64, ticks:
                 &format!(
                     r##"<circle cx="8" cy="0" r="6" fill="#fff" stroke="{colour}" stroke-width="1.5"/><circle cx="8" cy="0" r="4" fill="{colour}"/>"##
                 ),
-                &format!(
-                    "food {} (disc: amount left)",
-                    (b'A' + t as u8) as char
-                ),
+                &format!("food {} (disc: amount left)", (b'A' + t as u8) as char),
                 &mut y,
             );
         }
     }
     if !w.aversives.is_empty() {
-        line(s, r##"<circle cx="8" cy="0" r="6" fill="#9d4edd" fill-opacity="0.55"/>"##, "aversive object", &mut y);
+        line(
+            s,
+            r##"<circle cx="8" cy="0" r="6" fill="#9d4edd" fill-opacity="0.55"/>"##,
+            "aversive object",
+            &mut y,
+        );
     }
-    line(s, r##"<line x1="0" y1="0" x2="24" y2="0" stroke="#808080" stroke-width="3.5"/>"##, "wall", &mut y);
+    line(
+        s,
+        r##"<line x1="0" y1="0" x2="24" y2="0" stroke="#808080" stroke-width="3.5"/>"##,
+        "wall",
+        &mut y,
+    );
     if w.walls.iter().any(|x| !x.opaque) {
         line(
             s,
@@ -640,35 +686,100 @@ fn legend(s: &mut String, trace: &TrialTrace, caption: &Caption, x0: f64, ticks:
         );
     }
     if !w.doors.is_empty() {
-        line(s, r##"<line x1="0" y1="0" x2="24" y2="0" stroke="#996633" stroke-width="6"/>"##, "door, closed at the end", &mut y);
-        line(s, r##"<line x1="0" y1="0" x2="24" y2="0" stroke="#996633" stroke-width="2" stroke-dasharray="2 5"/>"##, "door, open at the end", &mut y);
-        line(s, r##"<circle cx="8" cy="0" r="7" fill="#ffb347" fill-opacity="0.25" stroke="#e07b00" stroke-dasharray="4 3"/>"##, "door trigger", &mut y);
+        line(
+            s,
+            r##"<line x1="0" y1="0" x2="24" y2="0" stroke="#996633" stroke-width="6"/>"##,
+            "door, closed at the end",
+            &mut y,
+        );
+        line(
+            s,
+            r##"<line x1="0" y1="0" x2="24" y2="0" stroke="#996633" stroke-width="2" stroke-dasharray="2 5"/>"##,
+            "door, open at the end",
+            &mut y,
+        );
+        line(
+            s,
+            r##"<circle cx="8" cy="0" r="7" fill="#ffb347" fill-opacity="0.25" stroke="#e07b00" stroke-dasharray="4 3"/>"##,
+            "door trigger",
+            &mut y,
+        );
     }
     if !w.teleporters.is_empty() {
-        line(s, r##"<circle cx="8" cy="0" r="6" fill="#c77dff" fill-opacity="0.35" stroke="#7b2cbf"/>"##, "teleporter entry → exit", &mut y);
+        line(
+            s,
+            r##"<circle cx="8" cy="0" r="6" fill="#c77dff" fill-opacity="0.35" stroke="#7b2cbf"/>"##,
+            "teleporter entry → exit",
+            &mut y,
+        );
     }
     if w.areas.iter().any(|a| a.kind == "safe") {
-        line(s, r##"<rect x="0" y="-6" width="20" height="12" fill="#cdebc5" stroke="#5a9e4b"/>"##, "safe area", &mut y);
+        line(
+            s,
+            r##"<rect x="0" y="-6" width="20" height="12" fill="#cdebc5" stroke="#5a9e4b"/>"##,
+            "safe area",
+            &mut y,
+        );
     }
     if w.areas.iter().any(|a| a.kind != "safe") {
-        line(s, r##"<rect x="0" y="-6" width="20" height="12" fill="#f3ecc2" stroke="#b8a94a"/>"##, "area", &mut y);
+        line(
+            s,
+            r##"<rect x="0" y="-6" width="20" height="12" fill="#f3ecc2" stroke="#b8a94a"/>"##,
+            "area",
+            &mut y,
+        );
     }
     if !w.landmarks.is_empty() {
-        line(s, r##"<circle cx="8" cy="0" r="5" fill="#f4d35e" stroke="#a07c00"/>"##, "landmark (bearing from start)", &mut y);
+        line(
+            s,
+            r##"<circle cx="8" cy="0" r="5" fill="#f4d35e" stroke="#a07c00"/>"##,
+            "landmark (bearing from start)",
+            &mut y,
+        );
     }
     if w.actors.iter().any(|a| a.role == "predator") {
-        line(s, r##"<circle cx="8" cy="0" r="5" fill="#9b2226"/>"##, "ground predator and its path", &mut y);
+        line(
+            s,
+            r##"<circle cx="8" cy="0" r="5" fill="#9b2226"/>"##,
+            "ground predator and its path",
+            &mut y,
+        );
     }
     if !w.air_predators.is_empty() {
-        line(s, r##"<line x1="0" y1="0" x2="24" y2="0" stroke="#bb3e03" stroke-dasharray="5 3"/>"##, "air predator track, strike disc", &mut y);
+        line(
+            s,
+            r##"<line x1="0" y1="0" x2="24" y2="0" stroke="#bb3e03" stroke-dasharray="5 3"/>"##,
+            "air predator track, strike disc",
+            &mut y,
+        );
     }
     if w.actors.iter().any(|a| a.role == "wanderer") {
-        line(s, r##"<circle cx="8" cy="0" r="5" fill="#8d99ae"/>"##, "wanderer and its path", &mut y);
+        line(
+            s,
+            r##"<circle cx="8" cy="0" r="5" fill="#8d99ae"/>"##,
+            "wanderer and its path",
+            &mut y,
+        );
     }
-    line(s, r##"<circle cx="8" cy="0" r="6" fill="none" stroke="#1b9e3a"/>"##, "ate here", &mut y);
-    line(s, r##"<path d="M8,-6 l5,9 l-10,0 z" fill="#ffb703"/>"##, "shocked (onset)", &mut y);
+    line(
+        s,
+        r##"<circle cx="8" cy="0" r="6" fill="none" stroke="#1b9e3a"/>"##,
+        "ate here",
+        &mut y,
+    );
+    line(
+        s,
+        r##"<path d="M8,-6 l5,9 l-10,0 z" fill="#ffb703"/>"##,
+        "shocked (onset)",
+        &mut y,
+    );
     if w.actors.iter().any(|a| a.role == "predator") || !w.air_predators.is_empty() {
-        line(s, r##"<path d="M2,-6 l12,12 M14,-6 l-12,12" stroke="#000" stroke-width="3"/>"##, "died", &mut y);
+        line(
+            s,
+            r##"<path d="M2,-6 l12,12 M14,-6 l-12,12" stroke="#000" stroke-width="3"/>"##,
+            "died",
+            &mut y,
+        );
     }
     let _ = writeln!(s, "</g>");
 }

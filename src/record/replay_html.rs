@@ -1,1 +1,235 @@
-//! The replay page (`berry-evolve replay --html`).
+//! The replay page (`berry-evolve replay --html out.html`): one self-contained HTML file that
+//! animates a trial on a canvas. The trial's JSON-lines trace
+//! ([`crate::record::trace::files`], numbers to 4 decimals) is embedded in the page, with
+//! inline JavaScript and CSS: no network, no external scripts or fonts.
+//!
+//! The page precomputes per-tick arrays once, draws the static arena (floor, areas, walls,
+//! triggers, teleporters, aversive objects, landmarks, the whole path faintly) into a cached
+//! background canvas, and per frame draws only that image plus what changes: doors, food
+//! amounts, wanderers and predators, the creatures' recent trail and bodies, and the cursors
+//! of the side charts (motor commands and metabolic vector over the whole trial, drawn once).
+//! Beside the arena: whiskers, both smell sensors' 8 receptors, food detectors, shock and
+//! the retina (when the eye is an input) of the selected creature.
+//!
+//! Controls: play/pause (space), speed, a range slider to scrub by tick, step −1/+1 (arrow
+//! keys). `page.html#tick=N` opens paused at tick N, and the page writes into
+//! `<pre id="status">` the tick, each creature's drawn canvas position and the colour of the
+//! canvas pixels there, and the same for the middle of a wall, so that a test can check the
+//! drawing against the trace.
+
+use crate::record::atomic::write_atomic_with;
+use crate::record::trace::files::write_jsonl_to;
+use crate::record::trace::recorder::TrialTrace;
+use std::io;
+use std::path::Path;
+
+/// The page for `trace`.
+pub fn page(trace: &TrialTrace) -> io::Result<String> {
+    let mut data = Vec::new();
+    write_jsonl_to(std::slice::from_ref(trace), Some(4), &mut data)?;
+    let data =
+        String::from_utf8(data).map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e))?;
+    // Inside a <script> element "</" could end it; "<\/" is the same JSON string.
+    let data = data.replace("</", "<\\/");
+    let title = format!(
+        "{}: trial {} of generation {}",
+        trace.world.experiment, trace.world.trial, trace.world.generation
+    )
+    .replace('&', "&amp;")
+    .replace('<', "&lt;");
+    Ok(TEMPLATE
+        .replace("{{TITLE}}", &title)
+        .replace("{{DATA}}", &data))
+}
+
+/// Writes the page for `trace` to `path` (atomically).
+pub fn write(trace: &TrialTrace, path: &Path) -> io::Result<()> {
+    let html = page(trace)?;
+    write_atomic_with(path, |w| w.write_all(html.as_bytes()))
+}
+
+/// The creature body's colour on the page (the test looks for it).
+pub const CREATURE_COLOUR: [u8; 3] = [31, 63, 191];
+
+const TEMPLATE: &str = r##"<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>{{TITLE}}</title>
+<style>
+body{font-family:sans-serif;font-size:13px;margin:10px;background:#fff;color:#222}
+#wrap{display:flex;gap:14px;align-items:flex-start}
+#side{display:flex;flex-direction:column;gap:6px;min-width:380px}
+canvas{display:block}
+#arena{border:1px solid #ccc}
+.row{display:flex;gap:8px;align-items:center;flex-wrap:wrap}
+h1{font-size:17px;margin:0 0 6px 0}
+.lbl{color:#555;font-size:12px;margin-top:4px}
+#status{font-size:11px;color:#444;white-space:pre-wrap;margin:4px 0 0 0}
+button{min-width:34px}
+</style></head><body>
+<h1>{{TITLE}}</h1>
+<div class="row" id="controls">
+<button id="play" title="play / pause (space)">play</button>
+<button id="back" title="one tick back (left arrow)">&minus;1</button>
+<button id="fwd" title="one tick on (right arrow)">+1</button>
+<label>speed <select id="speed"><option value="0.25">¼×</option><option value="0.5">½×</option><option value="1" selected>1×</option><option value="2">2×</option><option value="4">4×</option><option value="8">8×</option><option value="16">16×</option><option value="64">64×</option></select></label>
+<input id="scrub" type="range" min="0" max="1" value="0" style="width:360px">
+<span id="ticklabel"></span>
+<label id="whichlabel">creature <select id="which"></select></label>
+</div>
+<div id="wrap">
+<canvas id="arena"></canvas>
+<div id="side">
+<div class="lbl">whiskers (left, right) · food detectors A–D · shock</div><canvas id="touch" width="380" height="34"></canvas>
+<div class="lbl">smell receptors 1–8, left sensor then right</div><canvas id="smell" width="380" height="60"></canvas>
+<div class="lbl" id="eyelbl">retina</div><canvas id="eye" width="380" height="30"></canvas>
+<div class="lbl">motor commands (left, right, eat) over the trial</div><canvas id="motor" width="380" height="90"></canvas>
+<div class="lbl">metabolic vector m (A–D) over the trial</div><canvas id="metab" width="380" height="90"></canvas>
+<div class="lbl" id="info"></div>
+</div></div>
+<pre id="status"></pre>
+<script type="application/x-ndjson" id="trace">
+{{DATA}}
+</script>
+<script>
+"use strict";
+(function(){
+const lines=document.getElementById("trace").textContent.split("\n").filter(l=>l.trim().length);
+let W=null,outcome=null;const ticks=[];
+for(const l of lines){const r=JSON.parse(l);if(r.type==="world")W=r;else if(r.type==="tick")ticks.push(r);else if(r.type==="outcome")outcome=r;}
+const T=ticks.length,N=W.creatures.length;
+const FOOD=["#d62728","#1f77b4","#2ca02c","#ff7f0e"],CREATURE="rgb(31,63,191)";
+const rgb=c=>"rgb("+c.map(x=>Math.round(Math.max(0,Math.min(1,x))*255)).join(",")+")";
+// Per-tick arrays, index 0 = the start.
+const cx=[],cy=[],ch=[],alive=[];
+for(let i=0;i<N;i++){cx.push(new Float64Array(T+1));cy.push(new Float64Array(T+1));ch.push(new Float64Array(T+1));alive.push(new Uint8Array(T+1));
+ cx[i][0]=W.creatures[i].position[0];cy[i][0]=W.creatures[i].position[1];ch[i][0]=W.creatures[i].heading;alive[i][0]=1;}
+const crow=[];for(let i=0;i<N;i++)crow.push(new Array(T+1).fill(null));
+for(let t=1;t<=T;t++){const k=ticks[t-1];for(const c of k.creatures){const i=c.creature;cx[i][t]=c.x;cy[i][t]=c.y;ch[i][t]=c.heading;alive[i][t]=c.alive?1:0;crow[i][t]=c;}}
+for(let i=0;i<N;i++)crow[i][0]=crow[i][1];
+// Actors: wanderers, predators, air predators.
+const actorKeys=[];const ax={},ay={};
+function akey(kind,index){return kind+":"+index;}
+W.actors.forEach((a,n)=>{const kind=a.role,index=W.actors.slice(0,n).filter(b=>b.role===kind).length;const key=akey(kind,index);actorKeys.push([key,kind,a.colour]);ax[key]=new Float64Array(T+1);ay[key]=new Float64Array(T+1);ax[key][0]=a.start.position[0];ay[key][0]=a.start.position[1];});
+W.air_predators.forEach((a,k)=>{const key=akey("air_predator",k);actorKeys.push([key,"air_predator",[0.73,0.24,0.01],a.strike_radius]);ax[key]=new Float64Array(T+1);ay[key]=new Float64Array(T+1);ax[key][0]=a.position[0];ay[key][0]=a.position[1];});
+for(let t=1;t<=T;t++)for(const a of ticks[t-1].actors){const key=akey(a.kind,a.index);if(ax[key]){ax[key][t]=a.x;ay[key][t]=a.y;}}
+// Food amounts: the changes of each object, found by binary search.
+const changes=W.food.map(f=>[[0,f.amount]]);
+for(let t=1;t<=T;t++)for(const o of ticks[t-1].objects)changes[o.object].push([t,o.amount]);
+function amountAt(k,t){const c=changes[k];let lo=0,hi=c.length-1;while(lo<hi){const m=(lo+hi+1)>>1;if(c[m][0]<=t)lo=m;else hi=m-1;}return c[lo][1];}
+// Doors: open state per tick from the events.
+const doorOpen=W.doors.map(()=>new Uint8Array(T+1));
+const eats=[];const marks=[];
+for(let t=1;t<=T;t++){for(let d=0;d<W.doors.length;d++)doorOpen[d][t]=doorOpen[d][t-1];
+ for(const e of ticks[t-1].events){if(e.event==="door_open")doorOpen[e.target][t]=1;else if(e.event==="door_close")doorOpen[e.target][t]=0;else marks.push([t,e]);}}
+// Drawing frame: LU to canvas pixels.
+const PX=640,PAD=10,scale=PX/Math.max(W.arena[0],W.arena[1]);
+const cw=Math.round(W.arena[0]*scale+2*PAD),chh=Math.round(W.arena[1]*scale+2*PAD);
+const X=x=>PAD+x*scale,Y=y=>PAD+y*scale;
+const arena=document.getElementById("arena");arena.width=cw;arena.height=chh;
+const g=arena.getContext("2d",{willReadFrequently:true});
+const bg=document.createElement("canvas");bg.width=cw;bg.height=chh;
+(function drawBackground(){const b=bg.getContext("2d");b.fillStyle="#ffffff";b.fillRect(0,0,cw,chh);
+ b.fillStyle="rgb(247,247,242)";b.fillRect(X(0),Y(0),W.arena[0]*scale,W.arena[1]*scale);
+ for(const a of W.areas){b.fillStyle=a.kind==="safe"?"rgba(160,215,150,0.55)":"rgba(235,220,140,0.55)";b.fillRect(X(a.lo[0]),Y(a.lo[1]),(a.hi[0]-a.lo[0])*scale,(a.hi[1]-a.lo[1])*scale);}
+ for(const d of W.doors){b.beginPath();b.arc(X(d.trigger[0]),Y(d.trigger[1]),Math.max(3,d.trigger_radius*scale),0,2*Math.PI);b.fillStyle="rgba(255,179,71,0.3)";b.fill();b.setLineDash([4,3]);b.strokeStyle="#e07b00";b.stroke();b.setLineDash([]);}
+ for(const t of W.teleporters){b.beginPath();b.arc(X(t.entry[0]),Y(t.entry[1]),Math.max(3,t.radius*scale),0,2*Math.PI);b.fillStyle="rgba(199,125,255,0.4)";b.fill();b.strokeStyle="#7b2cbf";b.stroke();
+  b.setLineDash([6,4]);b.beginPath();b.moveTo(X(t.entry[0]),Y(t.entry[1]));b.lineTo(X(t.exit[0]),Y(t.exit[1]));b.stroke();b.setLineDash([]);b.beginPath();b.arc(X(t.exit[0]),Y(t.exit[1]),3,0,2*Math.PI);b.stroke();}
+ for(const a of W.aversives){b.beginPath();b.arc(X(a.position[0]),Y(a.position[1]),Math.max(3,a.radius*scale),0,2*Math.PI);b.fillStyle="rgba(157,78,221,0.55)";b.fill();}
+ for(const l of W.landmarks){const x=Math.max(0,Math.min(W.arena[0],l[0])),y=Math.max(0,Math.min(W.arena[1],l[1]));b.fillStyle="#f4d35e";b.strokeStyle="#a07c00";b.beginPath();for(let k=0;k<10;k++){const a=Math.PI/5*k-Math.PI/2,r=k%2?4:9;b.lineTo(X(x)+r*Math.cos(a),Y(y)+r*Math.sin(a));}b.closePath();b.fill();b.stroke();}
+ // The whole path, faint.
+ b.lineWidth=1;b.strokeStyle="rgba(31,63,191,0.18)";
+ for(let i=0;i<N;i++){b.beginPath();b.moveTo(X(cx[i][0]),Y(cy[i][0]));for(let t=1;t<=T;t++){const jump=Math.hypot(cx[i][t]-cx[i][t-1],cy[i][t]-cy[i][t-1])>30;if(jump)b.moveTo(X(cx[i][t]),Y(cy[i][t]));else b.lineTo(X(cx[i][t]),Y(cy[i][t]));}b.stroke();}
+ b.lineCap="round";
+ for(const w of W.walls){b.strokeStyle=rgb(w.colour);b.lineWidth=w.opaque?3.5:5;if(!w.opaque){b.globalAlpha=0.55;b.setLineDash([7,4]);}b.beginPath();b.moveTo(X(w.from[0]),Y(w.from[1]));b.lineTo(X(w.to[0]),Y(w.to[1]));b.stroke();b.globalAlpha=1;b.setLineDash([]);}
+ b.lineCap="butt";})();
+// The wall whose middle the status reports: the first opaque interior wall, else the first wall.
+const walls=W.walls;const boundary=walls.length>=4&&walls[0].from[0]===0&&walls[0].from[1]===0?4:0;
+let wallIndex=walls.findIndex((w,k)=>k>=boundary&&w.opaque);if(wallIndex<0)wallIndex=walls.findIndex(w=>w.opaque);if(wallIndex<0)wallIndex=0;
+// Side charts, drawn once; the cursor per frame.
+function chart(id,series,colours,lo,hi){const c=document.getElementById(id),x=c.getContext("2d"),w=c.width,h=c.height;const img=document.createElement("canvas");img.width=w;img.height=h;const b=img.getContext("2d");
+ b.fillStyle="#fafafa";b.fillRect(0,0,w,h);b.strokeStyle="#ddd";b.strokeRect(0.5,0.5,w-1,h-1);if(hi<=lo)hi=lo+1;
+ const y=v=>h-3-(v-lo)/(hi-lo)*(h-6);if(lo<0&&hi>0){b.strokeStyle="#ccc";b.beginPath();b.moveTo(0,y(0));b.lineTo(w,y(0));b.stroke();}
+ series.forEach((s,k)=>{b.strokeStyle=colours[k];b.lineWidth=1;b.beginPath();for(let t=0;t<=T;t++){const px=t/Math.max(1,T)*(w-1);if(t===0)b.moveTo(px,y(s[t]));else b.lineTo(px,y(s[t]));}b.stroke();});
+ b.fillStyle="#666";b.font="10px sans-serif";b.fillText(hi.toPrecision(3),3,10);b.fillText(lo.toPrecision(3),3,h-4);
+ return t=>{x.drawImage(img,0,0);const px=t/Math.max(1,T)*(w-1);x.strokeStyle="#000";x.beginPath();x.moveTo(px+0.5,0);x.lineTo(px+0.5,h);x.stroke();};}
+let cursorMotor=null,cursorMetab=null;
+function buildCharts(i){const get=f=>{const a=new Float64Array(T+1);for(let t=0;t<=T;t++){const c=crow[i][t];a[t]=c?f(c):0;}return a;};
+ const L=get(c=>c.left),R=get(c=>c.right),E=get(c=>c.eat);let lo=0,hi=0;for(const s of[L,R])for(const v of s){lo=Math.min(lo,v);hi=Math.max(hi,v);}
+ cursorMotor=chart("motor",[L,R,E],["#1f77b4","#d62728","#999"],Math.min(lo,-0.01),Math.max(hi,0.01));
+ const m=[0,1,2,3].map(k=>get(c=>c.metabolism[k]));let mh=0;for(const s of m)for(const v of s)mh=Math.max(mh,v);
+ cursorMetab=chart("metab",m,FOOD,0,Math.max(mh,1e-3));}
+const inputs=W.inputs,idx=n=>inputs.indexOf(n);
+const smellIdx=[];for(const side of["left","right"])for(let k=1;k<=8;k++)smellIdx.push(idx("smell_"+side+"_"+k));
+const eyeCols=[];let eyeRows=0;for(let k=0;k<inputs.length;k++){const m=/^eye_r_(\d+)_(\d+)$/.exec(inputs[k]);if(m){eyeRows=Math.max(eyeRows,+m[1]+1);eyeCols.push([+m[1],+m[2],k]);}}
+function bars(id,vals,labels){const c=document.getElementById(id),x=c.getContext("2d");x.fillStyle="#fff";x.fillRect(0,0,c.width,c.height);const n=vals.length,bw=(c.width-10)/n;
+ vals.forEach((v,k)=>{const h=(c.height-14)*Math.max(0,Math.min(1,v));x.fillStyle=k<8?"#e07b00":"#7b2cbf";x.fillRect(5+k*bw+1,c.height-12-h,bw-2,h);x.strokeStyle="#ccc";x.strokeRect(5+k*bw+1.5,1.5,bw-3,c.height-14);x.fillStyle="#555";x.font="9px sans-serif";x.fillText(labels[k],5+k*bw+bw/2-3,c.height-2);});}
+function boxes(vals,labels){const c=document.getElementById("touch"),x=c.getContext("2d");x.fillStyle="#fff";x.fillRect(0,0,c.width,c.height);
+ vals.forEach((v,k)=>{const px=6+k*52;x.fillStyle=v?(k===6?"#ffb703":k>=2?FOOD[k-2]:"#222"):"#eee";x.fillRect(px,4,44,16);x.strokeStyle="#999";x.strokeRect(px+0.5,4.5,44,16);x.fillStyle="#333";x.font="10px sans-serif";x.fillText(labels[k],px+2,31);});}
+function eye(c0){const c=document.getElementById("eye"),x=c.getContext("2d");x.fillStyle="#fff";x.fillRect(0,0,c.width,c.height);
+ if(!eyeCols.length){x.fillStyle="#888";x.font="11px sans-serif";x.fillText("no eye input",4,18);return;}
+ const cols=1+Math.max(...eyeCols.map(e=>e[1])),pw=Math.min(20,(c.width-8)/cols),ph=Math.min(20,(c.height-4)/eyeRows);
+ for(const [r,col,k] of eyeCols){const v=[c0.inputs[k],c0.inputs[k+1],c0.inputs[k+2]];x.fillStyle=rgb(v);x.fillRect(4+col*pw,2+r*ph,pw-1,ph-1);}}
+// State.
+let tick=0,playing=false,speed=1,acc=0,which=0,last=null;
+const scrub=document.getElementById("scrub");scrub.max=T;
+const sel=document.getElementById("which");for(let i=0;i<N;i++){const o=document.createElement("option");o.value=i;o.textContent=i;sel.appendChild(o);}
+if(N<2)document.getElementById("whichlabel").style.display="none";
+sel.onchange=()=>{which=+sel.value;buildCharts(which);draw();};
+buildCharts(0);
+function draw(){g.drawImage(bg,0,0);const t=tick;
+ g.lineCap="round";
+ W.doors.forEach((d,k)=>{g.strokeStyle=rgb(d.colour);if(doorOpen[k][t]){g.lineWidth=2;g.setLineDash([2,5]);}else{g.lineWidth=6;}g.beginPath();g.moveTo(X(d.from[0]),Y(d.from[1]));g.lineTo(X(d.to[0]),Y(d.to[1]));g.stroke();g.setLineDash([]);});
+ g.lineCap="butt";
+ W.food.forEach((f,k)=>{const a=amountAt(k,t),cap=f.capacity.reduce((p,q)=>p+q,0),frac=cap>0?Math.max(0,Math.min(1,a.reduce((p,q)=>p+q,0)/cap)):0,r=Math.max(3.5,f.radius*scale),col=FOOD[Math.min(3,f.food_type)];
+  g.beginPath();g.arc(X(f.position[0]),Y(f.position[1]),r,0,2*Math.PI);g.fillStyle="#fff";g.fill();g.strokeStyle=col;g.lineWidth=1.3;g.stroke();if(frac>0){g.beginPath();g.arc(X(f.position[0]),Y(f.position[1]),r*Math.sqrt(frac),0,2*Math.PI);g.fillStyle=col;g.fill();}});
+ for(const [key,kind,colour,strike] of actorKeys){const x=X(ax[key][t]),y=Y(ay[key][t]);
+  if(kind==="air_predator"){g.beginPath();g.arc(x,y,strike*scale,0,2*Math.PI);g.fillStyle="rgba(187,62,3,0.15)";g.fill();g.strokeStyle="#bb3e03";g.stroke();g.fillStyle="#bb3e03";g.fillRect(x-2,y-2,4,4);}
+  else{g.beginPath();g.arc(x,y,Math.max(3,W.creature_radius*scale),0,2*Math.PI);g.fillStyle=kind==="predator"?"#9b2226":"#8d99ae";g.fill();}}
+ // Marks of events so far (the last 400 ticks).
+ for(const [mt,e] of marks){if(mt>t||mt<t-400)continue;const x=X(e.x),y=Y(e.y);
+  if(e.event==="eat"){g.strokeStyle="rgba(27,158,58,0.5)";g.lineWidth=1;g.beginPath();g.arc(x,y,6,0,2*Math.PI);g.stroke();}
+  else if(e.event==="shock"){g.fillStyle="#ffb703";g.beginPath();g.moveTo(x,y-6);g.lineTo(x+5,y+3);g.lineTo(x-5,y+3);g.fill();}
+  else if(e.event==="death"){g.strokeStyle="#000";g.lineWidth=3;g.beginPath();g.moveTo(x-6,y-6);g.lineTo(x+6,y+6);g.moveTo(x+6,y-6);g.lineTo(x-6,y+6);g.stroke();}}
+ g.lineWidth=1;
+ const r=Math.max(4,W.creature_radius*scale);
+ for(let i=0;i<N;i++){
+  // The recent trail, coloured by age.
+  g.lineWidth=2;const from=Math.max(1,t-300);
+  for(let s=from;s<=t;s++){if(Math.hypot(cx[i][s]-cx[i][s-1],cy[i][s]-cy[i][s-1])>30)continue;const a=(s-from)/Math.max(1,t-from);g.strokeStyle="rgba(31,63,191,"+(0.15+0.7*a).toFixed(3)+")";g.beginPath();g.moveTo(X(cx[i][s-1]),Y(cy[i][s-1]));g.lineTo(X(cx[i][s]),Y(cy[i][s]));g.stroke();}
+  const x=X(cx[i][t]),y=Y(cy[i][t]),h=ch[i][t],c=crow[i][t];
+  // Whiskers (red while touching), the body, the heading outside it.
+  g.lineWidth=1.5;for(const [side,sgn] of[[0,-1],[1,1]]){const a=h+sgn*W.whisker_angle,l=W.whisker_length*scale;g.strokeStyle=c&&c.whiskers[side]?"#e00":"#555";g.beginPath();g.moveTo(x,y);g.lineTo(x+Math.max(l,r+2)*Math.cos(a),y+Math.max(l,r+2)*Math.sin(a));g.stroke();}
+  g.beginPath();g.arc(x,y,r,0,2*Math.PI);g.fillStyle=alive[i][t]?CREATURE:"#888";g.fill();
+  g.strokeStyle="#000";g.lineWidth=2;g.beginPath();g.moveTo(x+r*Math.cos(h),y+r*Math.sin(h));g.lineTo(x+(r+6)*Math.cos(h),y+(r+6)*Math.sin(h));g.stroke();g.lineWidth=1;
+  if(c&&c.shock){g.strokeStyle="#ffb703";g.lineWidth=2;g.beginPath();g.arc(x,y,r+3,0,2*Math.PI);g.stroke();g.lineWidth=1;}}
+ // Side panel for the selected creature.
+ const c=crow[which][Math.max(1,t)];
+ if(c){boxes([c.whiskers[0],c.whiskers[1],c.food[0],c.food[1],c.food[2],c.food[3],c.shock],["whisk L","whisk R","food A","food B","food C","food D","shock"]);
+  if(smellIdx.every(k=>k>=0))bars("smell",smellIdx.map(k=>c.inputs[k]),["1","2","3","4","5","6","7","8","1","2","3","4","5","6","7","8"]);
+  else{const sc=document.getElementById("smell").getContext("2d");sc.fillStyle="#fff";sc.fillRect(0,0,380,60);sc.fillStyle="#888";sc.font="11px sans-serif";sc.fillText("smell is not an input of this brain",4,30);}
+  eye(c);}
+ cursorMotor(t);cursorMetab(t);
+ scrub.value=t;document.getElementById("ticklabel").textContent="tick "+t+" / "+T;
+ const o=outcome&&outcome.creatures[which];
+ document.getElementById("info").textContent=(c?"m = ["+c.metabolism.map(v=>v.toFixed(2)).join(", ")+"], travelled "+c.travelled.toFixed(0)+" LU":"")+(o?" · trial score "+o.score.toFixed(4):"");
+ status();}
+function pixel(x,y){const d=g.getImageData(Math.floor(x),Math.floor(y),1,1).data;return d[0]+","+d[1]+","+d[2];}
+function status(){const t=tick,lines=["tick "+t,"scale "+scale+" offset "+PAD];
+ for(let i=0;i<N;i++){const x=X(cx[i][t]),y=Y(cy[i][t]);lines.push("creature "+i+" at "+x.toFixed(2)+","+y.toFixed(2)+" pixel "+pixel(x,y)+" alive "+alive[i][t]);}
+ const w=walls[wallIndex];if(w){const mx=(w.from[0]+w.to[0])/2,my=(w.from[1]+w.to[1])/2;lines.push("wall "+wallIndex+" at "+X(mx).toFixed(2)+","+Y(my).toFixed(2)+" pixel "+pixel(X(mx),Y(my))+" colour "+rgb(w.colour));}
+ document.getElementById("status").textContent=lines.join("\n");}
+function setTick(t){tick=Math.max(0,Math.min(T,t|0));draw();}
+document.getElementById("play").onclick=()=>{playing=!playing;document.getElementById("play").textContent=playing?"pause":"play";if(playing){if(tick>=T)tick=0;last=null;requestAnimationFrame(frame);}};
+document.getElementById("back").onclick=()=>{playing=false;document.getElementById("play").textContent="play";setTick(tick-1);};
+document.getElementById("fwd").onclick=()=>{playing=false;document.getElementById("play").textContent="play";setTick(tick+1);};
+document.getElementById("speed").onchange=e=>{speed=+e.target.value;};
+scrub.oninput=()=>setTick(+scrub.value);
+document.addEventListener("keydown",e=>{if(e.key===" "){e.preventDefault();document.getElementById("play").click();}else if(e.key==="ArrowLeft")document.getElementById("back").click();else if(e.key==="ArrowRight")document.getElementById("fwd").click();});
+// 30 ticks a second at 1×.
+function frame(now){if(!playing)return;if(last!==null){acc+=(now-last)/1000*30*speed;const n=Math.floor(acc);if(n>0){acc-=n;setTick(tick+n);}}last=now;if(tick>=T){playing=false;document.getElementById("play").textContent="play";return;}requestAnimationFrame(frame);}
+const m=/tick=(\d+)/.exec(location.hash);
+if(m){setTick(+m[1]);}else{setTick(0);playing=true;document.getElementById("play").textContent="pause";requestAnimationFrame(frame);}
+window.addEventListener("hashchange",()=>{const m=/tick=(\d+)/.exec(location.hash);if(m){playing=false;setTick(+m[1]);}});
+})();
+</script>
+</body></html>
+"##;

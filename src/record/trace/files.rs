@@ -161,8 +161,7 @@ pub fn write_csv_files(trials: &[TrialTrace], path: &Path) -> io::Result<()> {
         Ok(())
     })?;
     let header = names(&[
-        "trial", "tick", "object", "kind", "x", "y", "amount_a", "amount_b", "amount_c",
-        "amount_d",
+        "trial", "tick", "object", "kind", "x", "y", "amount_a", "amount_b", "amount_c", "amount_d",
     ]);
     write_csv(&objects, &header, |row| {
         for t in trials {
@@ -310,10 +309,7 @@ fn rounded_creature(c: &CreatureTick, d: Option<u32>) -> CreatureTick {
 }
 
 /// Slices of `rows` (sorted by tick) per tick: `rows[start..end]` for each tick in turn.
-fn by_tick<'a, T>(
-    rows: &'a [T],
-    tick: impl Fn(&T) -> u64 + 'a,
-) -> impl FnMut(u64) -> &'a [T] + 'a {
+fn by_tick<'a, T>(rows: &'a [T], tick: impl Fn(&T) -> u64 + 'a) -> impl FnMut(u64) -> &'a [T] + 'a {
     let mut at = 0;
     move |t| {
         while at < rows.len() && tick(&rows[at]) < t {

@@ -649,7 +649,13 @@ impl TraceRecorder {
             let before = prev.positions[i];
             for (k, t) in world.teleporters().iter().enumerate() {
                 if here == t.exit && before != t.exit {
-                    let mut e = event(EventKind::Teleport, Some(i), Some("teleporter"), Some(k), here);
+                    let mut e = event(
+                        EventKind::Teleport,
+                        Some(i),
+                        Some("teleporter"),
+                        Some(k),
+                        here,
+                    );
                     e.from = Some(point(t.entry));
                     events.push(e);
                     break;
@@ -707,9 +713,9 @@ impl TraceRecorder {
             let middle = (w.segment.a + w.segment.b) * 0.5;
             let (kind, who) = if open {
                 let t = world.things()[world.doors()[d].trigger];
-                let who = creatures
-                    .iter()
-                    .position(|c| c.alive && circles_touch(c.pose.position, r, t.position, t.radius));
+                let who = creatures.iter().position(|c| {
+                    c.alive && circles_touch(c.pose.position, r, t.position, t.radius)
+                });
                 (EventKind::DoorOpen, who)
             } else {
                 (EventKind::DoorClose, None)
