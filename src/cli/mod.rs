@@ -11,6 +11,7 @@ pub mod replay;
 pub mod resume;
 pub mod run;
 pub mod simulate;
+pub mod summary;
 
 use clap::{Parser, Subcommand};
 
@@ -44,6 +45,9 @@ pub enum Command {
     Compare(compare::CompareArgs),
     /// Measure simulator and evolution speed (creature-ticks per second, 1 and 2 threads).
     Bench(bench::BenchArgs),
+    /// Sum up replicates (`run --seeds`): summary.csv (quartiles across seeds per generation)
+    /// and held-out.csv (each seed's best.json, random and baseline genomes held out).
+    Summary(summary::SummaryArgs),
 }
 
 /// Runs the parsed command line.
@@ -57,6 +61,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         (Some(Command::Inspect(args)), _) => inspect::run(args),
         (Some(Command::Bench(args)), _) => bench::run(args),
         (Some(Command::Compare(args)), _) => compare::run(args),
+        (Some(Command::Summary(args)), _) => summary::run(args),
         (None, None) => {
             use clap::CommandFactory;
             Cli::command().print_help()?;

@@ -5,4 +5,5 @@ pub mod atomic;
 pub mod checkpoint;
 pub mod fitness_csv;
 pub mod genome_file;
+pub mod summary;
 pub mod trace;
