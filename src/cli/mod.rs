@@ -13,6 +13,7 @@ pub mod replay;
 pub mod resume;
 pub mod run;
 pub mod simulate;
+pub mod summary;
 
 use clap::{Parser, Subcommand};
 
@@ -50,6 +51,9 @@ pub enum Command {
     Plot(plot::PlotArgs),
     /// Draw one trial of a genome: the arena to scale, its objects and the creature's path.
     Render(render::RenderArgs),
+    /// Sum up replicates (`run --seeds`): summary.csv (quartiles across seeds per generation)
+    /// and held-out.csv (each seed's best.json, random and baseline genomes held out).
+    Summary(summary::SummaryArgs),
 }
 
 /// Runs the parsed command line.
@@ -65,6 +69,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         (Some(Command::Compare(args)), _) => compare::run(args),
         (Some(Command::Plot(args)), _) => plot::run(args),
         (Some(Command::Render(args)), _) => render::run(args),
+        (Some(Command::Summary(args)), _) => summary::run(args),
         (None, None) => {
             use clap::CommandFactory;
             Cli::command().print_help()?;

@@ -1,6 +1,6 @@
 //! `berry-evolve run`: start a new run of an experiment.
 
-use crate::cli::console::errln;
+use crate::cli::console::{errln, outln};
 
 use super::progress::reporter;
 use anyhow::Context;
@@ -20,8 +20,15 @@ pub struct RunArgs {
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Override the experiment's seed.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "seeds")]
     pub seed: Option<u64>,
+    /// Replicates: run these seeds one after another, each in its own run folder
+    /// `<out>/seed-<s>/` (default out: results/<name>/), each byte-identical to a `--seed s`
+    /// run. `1..10` is 1 to 10 inclusive; `1,3,5` a list. A seed whose folder already holds
+    /// a run is continued from its checkpoint (unless --force), so the same command finishes
+    /// an interrupted batch. Summarise with `berry-evolve summary <out>`.
+    #[arg(long)]
+    pub seeds: Option<String>,
     /// Override the number of generations.
     #[arg(long)]
     pub generations: Option<u64>,
@@ -116,6 +123,10 @@ pub fn stop_flag(at: Option<Interrupting>) -> anyhow::Result<Arc<AtomicBool>> {
 
 /// Runs the subcommand.
 pub fn run(args: RunArgs) -> anyhow::Result<()> {
+    if let Some(spec) = &args.seeds {
+        let seeds = parse_seeds(spec)?;
+        return run_seeds(&args, &seeds);
+    }
     let mut experiment = Experiment::load(&args.experiment)?;
     if let Some(seed) = args.seed {
         experiment.seed = seed;
@@ -171,4 +182,110 @@ pub fn report(summary: &berry_evolve::run::RunSummary) {
         "results in {}: fitness.csv, best.json, checkpoints/",
         summary.dir.display()
     );
+}
+
+/// The seeds of `--seeds`: `a..b` (a to b inclusive) or a comma-separated list, in the order
+/// given, without repeats.
+pub fn parse_seeds(spec: &str) -> anyhow::Result<Vec<u64>> {
+    let number = |t: &str| -> anyhow::Result<u64> {
+        t.trim().parse::<u64>().map_err(|_| {
+            anyhow::anyhow!(
+                "--seeds {spec}: `{}` is not a seed (a whole number from 0); write a range \
+                 such as 1..10 or a list such as 1,3,5",
+                t.trim()
+            )
+        })
+    };
+    let seeds: Vec<u64> = if let Some((a, b)) = spec.split_once("..") {
+        let (a, b) = (number(a)?, number(b.trim_start_matches('='))?);
+        anyhow::ensure!(
+            a <= b,
+            "--seeds {spec}: the range is empty (the first seed is above the last)"
+        );
+        anyhow::ensure!(
+            b - a < 10_000,
+            "--seeds {spec}: more than 10000 seeds; is this a typo?"
+        );
+        (a..=b).collect()
+    } else {
+        spec.split(',').map(number).collect::<anyhow::Result<_>>()?
+    };
+    for (i, s) in seeds.iter().enumerate() {
+        anyhow::ensure!(
+            !seeds[..i].contains(s),
+            "--seeds {spec}: seed {s} is named twice"
+        );
+    }
+    anyhow::ensure!(!seeds.is_empty(), "--seeds {spec}: no seed given");
+    Ok(seeds)
+}
+
+/// `run --seeds`: each seed in turn in `<out>/seed-<s>/`, one line per seed on stdout.
+fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
+    let mut experiment = Experiment::load(&args.experiment)?;
+    if let Some(g) = args.generations {
+        experiment.evolution.generations = g;
+    }
+    let base = match &args.out {
+        Some(out) => out.clone(),
+        None => PathBuf::from("results").join(&experiment.name),
+    };
+    let stop = stop_flag(None)?;
+    for &seed in seeds {
+        let mut e = experiment.clone();
+        e.seed = seed;
+        e.validate().with_context(|| {
+            format!(
+                "{} with seed {seed} and the command-line overrides",
+                args.experiment.display()
+            )
+        })?;
+        let dir = base.join(format!("seed-{seed}"));
+        let options = RunOptions {
+            jobs: args.jobs.unwrap_or(0),
+            stop: Some(&stop),
+        };
+        let mut progress = reporter(args.quiet);
+        let continued = !args.force && dir.join(berry_evolve::run::EXPERIMENT_FILE).exists();
+        let summary = if continued {
+            berry_evolve::run::resume(&dir, args.generations, false, options, progress.as_mut())
+        } else {
+            start(e, &dir, args.force, options, progress.as_mut())
+        }
+        .with_context(|| format!("seed {seed} ({})", dir.display()))?;
+        let how = if continued { " (continued)" } else { "" };
+        match &summary.best_ever {
+            Some(best) => outln!(
+                "seed {seed}{how}: {} generations, best ever {:.4} (generation {}, individual {}); results in {}",
+                summary.generations,
+                best.fitness,
+                best.generation,
+                best.individual,
+                summary.dir.display()
+            ),
+            None => outln!(
+                "seed {seed}{how}: {} generations, no finite fitness; results in {}",
+                summary.generations,
+                summary.dir.display()
+            ),
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_seeds;
+
+    #[test]
+    fn seeds_as_ranges_and_lists() {
+        assert_eq!(parse_seeds("1..5").unwrap(), vec![1, 2, 3, 4, 5]);
+        assert_eq!(parse_seeds("1..=3").unwrap(), vec![1, 2, 3]);
+        assert_eq!(parse_seeds("7").unwrap(), vec![7]);
+        assert_eq!(parse_seeds("1,3, 5").unwrap(), vec![1, 3, 5]);
+        assert!(parse_seeds("5..1").is_err());
+        assert!(parse_seeds("1,1").is_err());
+        assert!(parse_seeds("a..3").is_err());
+        assert!(parse_seeds("").is_err());
+    }
 }

@@ -328,7 +328,7 @@ impl FitnessCsv {
 /// reported as [`FitnessCsvError::PartialLine`].
 pub fn read_rows(path: &Path) -> Result<Vec<FitnessRow>, FitnessCsvError> {
     let bytes = super::input::read_regular(path, super::input::MAX_CSV_BYTES)
-            .map_err(|e| io_error(path, "read", e))?;
+        .map_err(|e| io_error(path, "read", e))?;
     let parsed = parse(path, &bytes, None, Some(&[]))?;
     if let Some(line) = parsed.partial_line {
         return Err(FitnessCsvError::PartialLine {

@@ -9,4 +9,5 @@ pub mod input;
 pub mod plot;
 pub mod render;
 pub mod replay_html;
+pub mod summary;
 pub mod trace;

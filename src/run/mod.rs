@@ -1131,7 +1131,7 @@ fn drive(
                 &evaluated,
                 &summary,
                 total,
-                Vec::new(),
+                centre_candidate(&state.experiment, &evaluated),
                 &mut state.validation_worlds,
             )
         })?;
@@ -1185,4 +1185,27 @@ fn drive(
         state.search = search;
         generation += 1;
     }
+}
+
+/// PGPE's champion is its distribution's centre, evaluated as the generation's last
+/// individual: validation always considers it (after the top individuals), also when its
+/// training score does not rank it among them. The GA has no centre.
+fn centre_candidate(
+    experiment: &Experiment,
+    evaluated: &EvaluatedGeneration,
+) -> Vec<validation::Candidate> {
+    if experiment.evolution.algorithm != crate::evo::spec::Algorithm::Pgpe {
+        return Vec::new();
+    }
+    let Some(last) = evaluated.individuals.len().checked_sub(1) else {
+        return Vec::new();
+    };
+    let centre = &evaluated.individuals[last];
+    vec![validation::Candidate {
+        genome: centre.genome.clone(),
+        generation: evaluated.generation,
+        individual: Some(last as u64),
+        training_fitness: centre.evaluation.fitness,
+        training_metabolism: Some(centre.evaluation.metabolism),
+    }]
 }
