@@ -58,6 +58,11 @@ pub enum Purpose {
     /// A distribution-based search (PGPE): the Gaussian noise that samples generation g
     /// around the centre (the GA uses `Initialisation` and `Variation` instead).
     Search = 7,
+    /// The fixed validation worlds the champion is chosen on (`[validation]`): generation 0,
+    /// individual 0, trial t for world t, the same worlds every time. Apart from the training
+    /// worlds and from `compare`'s held-out worlds, which are both [`Purpose::TrialWorld`]
+    /// streams.
+    ValidationWorld = 8,
 }
 
 /// SplitMix64's output function: a bijective 64-bit mixer with full avalanche.

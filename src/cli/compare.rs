@@ -61,14 +61,53 @@ fn evaluate(
     Ok(aggregate(experiment, &outcomes))
 }
 
-fn fmt(e: &Evaluation) -> String {
+fn fmt(experiment: &Experiment, e: &Evaluation) -> String {
     let f = e
         .fitness
         .map_or("non-finite".to_string(), |f| format!("{f:.4}"));
     format!(
-        "{f}  (A {:.3}, B {:.3}, C {:.3}, D {:.3})",
-        e.metabolism[0], e.metabolism[1], e.metabolism[2], e.metabolism[3]
+        "{f}  (A {:.3}, B {:.3}, C {:.3}, D {:.3}){}",
+        e.metabolism[0],
+        e.metabolism[1],
+        e.metabolism[2],
+        e.metabolism[3],
+        measures_text(experiment, &e.measures)
     )
+}
+
+/// A trial's measures (all [`berry_evolve::experiment::MEASURES`] values) as
+/// `  measures: distinct_food 3, ticks_alive 500` for the experiment's behaviour measures, or
+/// an empty string.
+pub fn measure_values_text(experiment: &Experiment, all: &[f64]) -> String {
+    let values: Vec<f64> = experiment
+        .behaviour
+        .measures
+        .iter()
+        .map(|m| all[m.index()])
+        .collect();
+    let text = measures_text(experiment, &values);
+    if text.is_empty() {
+        text
+    } else {
+        format!("  measures:{text}")
+    }
+}
+
+/// `  distinct_food 3.5, ticks_alive 500` for the experiment's behaviour measures (mean over
+/// trials), or nothing when it names none.
+pub fn measures_text(experiment: &Experiment, values: &[f64]) -> String {
+    let parts: Vec<String> = experiment
+        .behaviour
+        .measures
+        .iter()
+        .zip(values)
+        .map(|(m, v)| format!("{} {v:.4}", m.name()))
+        .collect();
+    if parts.is_empty() {
+        String::new()
+    } else {
+        format!("  {}", parts.join(", "))
+    }
 }
 
 /// Runs the subcommand.
@@ -92,7 +131,7 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         let file = GenomeFile::load(path)?;
         let topology = file.topology_for(&experiment, path)?;
         let e = evaluate(&experiment, &topology, &file.genome(), generation)?;
-        outln!("{}: fitness {}", path.display(), fmt(&e));
+        outln!("{}: fitness {}", path.display(), fmt(&experiment, &e));
     }
     if args.random > 0 {
         let topology = experiment.topology();
@@ -120,6 +159,18 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
             stats.best,
             stats.median
         );
+        // Per measure, the random genomes' median and best (largest) value.
+        for (k, m) in experiment.behaviour.measures.iter().enumerate() {
+            let values: Vec<f64> = evaluations.iter().map(|e| e.measures[k]).collect();
+            let s = FitnessStats::of(&values);
+            outln!(
+                "{} random genomes: {} median {:.4}, best {:.4}",
+                args.random,
+                m.name(),
+                s.median,
+                s.best
+            );
+        }
     }
     Ok(())
 }

@@ -1,7 +1,7 @@
 //! `berry-evolve export-csv`: the fitness curve (or the last population) held in a checkpoint.
 
 use anyhow::Context;
-use berry_evolve::record::fitness_csv::to_bytes;
+use berry_evolve::record::fitness_csv::{extra_columns, to_bytes_with};
 use berry_evolve::run::load_checkpoint;
 use clap::Args;
 use std::io::Write;
@@ -40,7 +40,8 @@ pub fn run(args: ExportArgs) -> anyhow::Result<()> {
         w.flush()?;
         drop(w);
     } else {
-        bytes = to_bytes(&payload.history)
+        let columns = extra_columns(&payload.experiment);
+        bytes = to_bytes_with(&columns, &payload.history, &payload.history_extra)
             .with_context(|| format!("formatting the history of {}", path.display()))?;
     }
     match &args.output {

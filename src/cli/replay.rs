@@ -102,6 +102,10 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
                 ""
             }
         );
+        let measures = crate::cli::compare::measure_values_text(&experiment, &o.measures);
+        if !measures.is_empty() {
+            outln!("trial {t}:{measures}");
+        }
         outcomes.push(o);
     }
     let evaluation = aggregate(&experiment, &outcomes);
@@ -115,6 +119,12 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
         None => outln!("fitness: none (the brain produced a non-finite output)"),
     }
     outln!("metabolism {:?}", evaluation.metabolism);
+    if !experiment.behaviour.measures.is_empty() {
+        outln!(
+            "measures (mean over trials):{}",
+            crate::cli::compare::measures_text(&experiment, &evaluation.measures)
+        );
+    }
     if let Some(trace_path) = &args.trace {
         let file_out = std::fs::File::create(trace_path)
             .with_context(|| format!("cannot create {}", trace_path.display()))?;

@@ -14,7 +14,7 @@
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
 use crate::brain::{Brain, BrainController};
-use crate::evo::fitness::LifeScore;
+use crate::evo::fitness::{LifePlan, LifeScore, MEASURE_COUNT};
 use crate::evo::lockstep;
 use crate::experiment::{Aggregate, Experiment};
 use crate::seed::{stream, Generation, IndividualId, Purpose, Rng, TrialIndex};
@@ -65,6 +65,9 @@ pub struct TrialOutcome {
     pub shocked_ticks: u64,
     /// True when the brain produced a NaN or infinite output: the life was stopped.
     pub non_finite: bool,
+    /// The behaviour measures, one per [`crate::experiment::MEASURES`] entry (0 for those
+    /// the experiment's `[behaviour]` does not name).
+    pub measures: [f64; MEASURE_COUNT],
 }
 
 /// An individual's evaluation over all its trials.
@@ -76,6 +79,10 @@ pub struct Evaluation {
     /// Mean over trials of the metabolic vector at the end of life (the per-food components
     /// kept alongside the score).
     pub metabolism: [f64; 4],
+    /// Mean over trials of each behaviour measure the experiment's `[behaviour]` names, in
+    /// its order (empty when it names none, and then left out of checkpoints).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub measures: Vec<f64>,
 }
 
 impl Evaluation {
@@ -211,30 +218,71 @@ fn world_error(
 /// The score bookkeeping after one tick: every living creature whose life is still valid
 /// (`invalid[i]` false) records the tick. Returns whether any did; when none did, the trial
 /// is over (nothing it could still record).
+/// What `plan` watches beyond the metabolism and the shock flag is recorded too, only when
+/// it watches something.
 #[inline]
-pub(crate) fn record_tick(world: &World, invalid: &[bool], scores: &mut [LifeScore]) -> bool {
+pub(crate) fn record_tick(
+    world: &World,
+    invalid: &[bool],
+    scores: &mut [LifeScore],
+    plan: &LifePlan,
+) -> bool {
     let mut anyone_alive = false;
-    for ((creature, score), &invalid) in world.creatures().iter().zip(scores).zip(invalid) {
+    let watch = plan.needs_world_every_tick();
+    for (i, ((creature, score), &invalid)) in world
+        .creatures()
+        .iter()
+        .zip(scores)
+        .zip(invalid)
+        .enumerate()
+    {
         if !invalid && creature.alive {
             score.record_tick(&creature.metabolism, creature.shocked);
+            if watch {
+                score.record_world(plan, world, i);
+            }
             anyone_alive = true;
         }
     }
     anyone_alive
 }
 
+/// The plan of a trial in `world` and one fresh score per creature: what both evaluation
+/// paths set up before the first tick (bite tracking turned on in `world` when needed).
+pub(crate) fn start_scores(
+    experiment: &Experiment,
+    world: &mut World,
+) -> (LifePlan, Vec<LifeScore>) {
+    let plan = LifePlan::new(experiment, world);
+    plan.prepare(world);
+    let scores = (0..world.creatures().len())
+        .map(|i| LifeScore::start(&plan, world, i))
+        .collect();
+    (plan, scores)
+}
+
 /// Every creature's outcome at the end of a trial.
-pub(crate) fn outcomes(world: &World, scores: &[LifeScore], invalid: &[bool]) -> Vec<TrialOutcome> {
+pub(crate) fn outcomes(
+    world: &World,
+    scores: &[LifeScore],
+    invalid: &[bool],
+    plan: &LifePlan,
+) -> Vec<TrialOutcome> {
     world
         .creatures()
         .iter()
         .zip(scores)
         .zip(invalid)
-        .map(|((creature, score), &non_finite)| TrialOutcome {
-            score: score.finish(&creature.metabolism),
-            metabolism: creature.metabolism,
-            shocked_ticks: score.shocked_ticks(),
-            non_finite,
+        .enumerate()
+        .map(|(i, ((creature, score), &non_finite))| {
+            let (score_value, measures) = score.finish_in(plan, world, i);
+            TrialOutcome {
+                score: score_value,
+                metabolism: creature.metabolism,
+                shocked_ticks: score.shocked_ticks(),
+                non_finite,
+                measures,
+            }
         })
         .collect()
 }
@@ -320,20 +368,18 @@ pub(crate) fn live_trial<C: Controller>(
     mut world: World,
     controllers: &mut [CheckedController<C>],
 ) -> Vec<TrialOutcome> {
-    let mut scores: Vec<LifeScore> = (0..controllers.len())
-        .map(|_| LifeScore::new(&experiment.fitness))
-        .collect();
+    let (plan, mut scores) = start_scores(experiment, &mut world);
     let mut invalid = vec![false; controllers.len()];
     for _ in 0..experiment.evaluation.ticks {
         world.step(controllers);
         for (flag, controller) in invalid.iter_mut().zip(controllers.iter()) {
             *flag = controller.non_finite;
         }
-        if !record_tick(&world, &invalid, &mut scores) {
+        if !record_tick(&world, &invalid, &mut scores, &plan) {
             break;
         }
     }
-    outcomes(&world, &scores, &invalid)
+    outcomes(&world, &scores, &invalid, &plan)
 }
 
 /// Combines an individual's trials (in trial order) into its evaluation.
@@ -356,9 +402,16 @@ pub fn aggregate(experiment: &Experiment, trials: &[TrialOutcome]) -> Evaluation
             Aggregate::Min => trials.iter().map(|t| t.score).fold(f64::INFINITY, f64::min),
         })
     };
+    let measures = experiment
+        .behaviour
+        .measures
+        .iter()
+        .map(|m| trials.iter().map(|t| t.measures[m.index()]).sum::<f64>() / n)
+        .collect();
     Evaluation {
         fitness,
         metabolism,
+        measures,
     }
 }
 
@@ -466,4 +519,89 @@ pub fn evaluate_population(
         }
     }
     Ok(evaluations)
+}
+
+/// Builds `trials` worlds for one creature each from `rng_of(t)`, in trial order (e.g. the
+/// validation worlds, or `compare`'s held-out worlds), validating the specifications once.
+pub fn worlds_from(
+    experiment: &Experiment,
+    trials: u64,
+    generation: Generation,
+    rng_of: impl Fn(TrialIndex) -> Rng,
+) -> Result<Vec<World>, EvaluationError> {
+    if trials == 0 {
+        return Ok(Vec::new());
+    }
+    let specs = valid_specs(experiment, generation, TrialIndex(0))?;
+    (0..trials)
+        .map(|t| {
+            World::build(specs, 1, rng_of(TrialIndex(t)))
+                .map_err(|error| world_error(generation, TrialIndex(t), error))
+        })
+        .collect()
+}
+
+/// Evaluates each of `genomes` alone in every one of `worlds` (built for one creature, e.g.
+/// by [`worlds_from`]), in parallel on the current rayon pool, with the same trial path as
+/// evolution (lockstep for stateless brains). Results in genome order, each aggregated
+/// serially over the worlds in order: the same bits for any number of threads.
+pub fn evaluate_in_worlds(
+    experiment: &Experiment,
+    topology: &Topology,
+    genomes: &[Genome],
+    worlds: &[World],
+) -> Result<Vec<Evaluation>, EvaluationError> {
+    let trials = worlds.len() as u64;
+    let per_genome: Vec<Vec<TrialOutcome>> = if lockstep::stateless(topology) {
+        let chunks = lockstep::chunks(trials);
+        let jobs: Vec<(usize, std::ops::Range<u64>)> = (0..genomes.len())
+            .flat_map(|g| chunks.iter().map(move |c| (g, c.clone())))
+            .collect();
+        let per_job: Vec<Vec<Vec<TrialOutcome>>> = jobs
+            .par_iter()
+            .with_max_len(JOBS_APART)
+            .map(|(g, chunk)| {
+                lockstep::run_trials_in(
+                    experiment,
+                    topology,
+                    std::slice::from_ref(&genomes[*g]),
+                    Generation(0),
+                    *g as u64,
+                    chunk.clone(),
+                    Some(worlds),
+                )
+            })
+            .collect::<Result<_, _>>()?;
+        let mut lives: Vec<Vec<TrialOutcome>> = vec![Vec::new(); genomes.len()];
+        for ((g, _), job) in jobs.iter().zip(per_job) {
+            lives[*g].extend(job.into_iter().map(|o| o[0]));
+        }
+        lives
+    } else {
+        let jobs: Vec<(usize, usize)> = (0..genomes.len())
+            .flat_map(|g| (0..worlds.len()).map(move |t| (g, t)))
+            .collect();
+        let outcomes: Vec<TrialOutcome> = jobs
+            .par_iter()
+            .with_max_len(JOBS_APART)
+            .map(|&(g, t)| {
+                run_trial_in(
+                    experiment,
+                    topology,
+                    std::slice::from_ref(&genomes[g]),
+                    g as u64,
+                    worlds[t].clone(),
+                )
+                .map(|o| o[0])
+            })
+            .collect::<Result<_, _>>()?;
+        outcomes
+            .chunks(worlds.len().max(1))
+            .map(<[TrialOutcome]>::to_vec)
+            .collect()
+    };
+    Ok(per_genome
+        .iter()
+        .map(|lives| aggregate(experiment, lives))
+        .collect())
 }

@@ -15,10 +15,10 @@ use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
 use crate::brain::{Brain, BrainController};
 use crate::evo::evaluate::{
-    build_trial_world, controllers, finite_command, outcomes, record_tick, valid_specs,
-    EvaluationError, TrialOutcome,
+    build_trial_world, controllers, finite_command, outcomes, record_tick, start_scores,
+    valid_specs, EvaluationError, TrialOutcome,
 };
-use crate::evo::fitness::LifeScore;
+use crate::evo::fitness::{LifePlan, LifeScore};
 use crate::experiment::Experiment;
 use crate::seed::{Generation, TrialIndex};
 use crate::sim::controller::MotorCommand;
@@ -232,9 +232,15 @@ pub(crate) fn live_trials<B: BatchController>(
     let n = worlds.len();
     let width = worlds.first().map_or(0, |w| w.layout().len());
     let mut lockstep = Lockstep::new(n, k, width);
-    let mut scores: Vec<LifeScore> = (0..n * k)
-        .map(|_| LifeScore::new(&experiment.fitness))
-        .collect();
+    // One plan per world (the worlds of one experiment share their areas, but each world
+    // tracks its own bites), and its creatures' scores side by side.
+    let mut plans: Vec<LifePlan> = Vec::with_capacity(n);
+    let mut scores: Vec<LifeScore> = Vec::with_capacity(n * k);
+    for world in &mut worlds {
+        let (plan, world_scores) = start_scores(experiment, world);
+        plans.push(plan);
+        scores.extend(world_scores);
+    }
     let mut invalid = vec![false; n * k];
     let mut running = vec![true; n];
     for _ in 0..experiment.evaluation.ticks {
@@ -245,7 +251,12 @@ pub(crate) fn live_trials<B: BatchController>(
         for (w, world) in worlds.iter().enumerate() {
             if running[w] {
                 let range = w * k..(w + 1) * k;
-                running[w] = record_tick(world, &invalid[range.clone()], &mut scores[range]);
+                running[w] = record_tick(
+                    world,
+                    &invalid[range.clone()],
+                    &mut scores[range],
+                    &plans[w],
+                );
             }
         }
     }
@@ -254,7 +265,7 @@ pub(crate) fn live_trials<B: BatchController>(
         .enumerate()
         .map(|(w, world)| {
             let range = w * k..(w + 1) * k;
-            outcomes(world, &scores[range.clone()], &invalid[range])
+            outcomes(world, &scores[range.clone()], &invalid[range], &plans[w])
         })
         .collect()
 }

@@ -12,6 +12,7 @@ pub mod select;
 pub mod spec;
 pub mod state;
 pub mod stats;
+pub mod validation;
 pub mod vary;
 
 pub use init::initial_population;

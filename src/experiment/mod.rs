@@ -4,7 +4,10 @@
 
 pub mod tables;
 
-pub use tables::{Aggregate, EvaluationSpec, FitnessMode, FitnessSpec, OutputSpec};
+pub use tables::{
+    Aggregate, Balance, BehaviourSpec, EvaluationSpec, FitnessMode, FitnessSpec, GoalAt, Measure,
+    OutputSpec, ValidationSpec, MEASURES,
+};
 
 use crate::brain::output_count;
 use crate::brain::spec::{BrainSpec, Topology};
@@ -54,6 +57,12 @@ pub struct Experiment {
     /// How a life is scored (`[fitness]`).
     #[serde(default)]
     pub fitness: FitnessSpec,
+    /// Behaviour measures reported next to fitness (`[behaviour]`; default: none).
+    #[serde(default, skip_serializing_if = "BehaviourSpec::is_default")]
+    pub behaviour: BehaviourSpec,
+    /// Champions chosen on validation worlds (`[validation]`; default: off).
+    #[serde(default, skip_serializing_if = "ValidationSpec::is_default")]
+    pub validation: ValidationSpec,
     /// Checkpointing and run folders (`[output]`).
     #[serde(default)]
     pub output: OutputSpec,
@@ -144,6 +153,9 @@ impl Experiment {
         self.evolution.validate()?;
         self.evaluation.validate()?;
         self.fitness.validate()?;
+        self.fitness.validate_against_world(&self.world)?;
+        self.behaviour.validate(&self.world)?;
+        self.validation.validate()?;
         self.output.validate()?;
         // PGPE evaluates its centre as one more individual: groups must divide that count.
         self.evaluation

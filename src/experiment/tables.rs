@@ -1,7 +1,11 @@
 //! The experiment tables that belong to evaluation rather than to the world, the brain or
-//! the genetic algorithm: `[evaluation]`, `[fitness]` and `[output]`.
+//! the genetic algorithm: `[evaluation]`, `[fitness]`, `[behaviour]`, `[validation]` and
+//! `[output]`.
 
-use crate::validate::{all_finite, count_within, finite, non_negative, InvalidValue, Valid};
+use crate::sim::spec::WorldSpec;
+use crate::validate::{
+    all_finite, count_within, finite, non_negative, positive, InvalidValue, Valid,
+};
 use serde::{Deserialize, Serialize};
 
 /// Most trials per individual: beyond this a generation would take days.
@@ -117,17 +121,114 @@ pub enum FitnessMode {
     Integrated,
 }
 
+/// How the weighted metabolic components `wᵢ·mᵢ` become the metabolic gain of `[fitness]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Balance {
+    /// `Σᵢ wᵢ·mᵢ` (default).
+    #[default]
+    Sum,
+    /// `minᵢ wᵢ·mᵢ` over the components with a non-zero weight: only the scarcest counts,
+    /// so a balanced diet is needed (all components 0 weight: 0).
+    Min,
+}
+
+/// When the distance to `[fitness] goal` is taken.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum GoalAt {
+    /// Where the creature is at the end of its life (default).
+    #[default]
+    End,
+    /// The closest it came over its life (partial credit for having been near).
+    Closest,
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0 && x.is_sign_positive()
+}
+
+fn is_default<T: Default + PartialEq>(x: &T) -> bool {
+    *x == T::default()
+}
+
 /// `[fitness]`: the score of one trial (report §5.3 leaves it open; SPEC-NOTES).
+///
+/// The score of a life is
+///
+/// ```text
+/// score = gain
+///       + alive_bonus × ticks_alive
+///       + area_bonus × ticks_in_area
+///       + goal_bonus × max(0, 1 − d / goal_range)
+///       + distinct_food_bonus × distinct_food
+///       − shock_penalty × shocked_ticks
+///       − death_penalty × (1 if dead at the end, else 0)
+/// ```
+///
+/// where `gain` is the metabolic part (`mode`, `balance`, `imbalance_penalty`). Every term
+/// but `gain` is off by default, so an experiment without the new keys scores as before.
+/// Ticks are counted as [`crate::evo::fitness::LifeScore`] records them: a tick counts when
+/// the creature is alive (and its brain's output finite) at its end.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct FitnessSpec {
     /// Weight of each metabolic component fA, fB, fC, fD (default: [1, 1, 1, 1]). Negative
     /// weights make a food type poisonous.
     pub weights: [f64; 4],
-    /// `"final"` or `"integrated"` (default: final).
+    /// `"final"` or `"integrated"` (default: final). Final: `gain = B(m_end)`; integrated:
+    /// `gain = Σ_ticks B(m_t)`, where `B` is the balance below.
     pub mode: FitnessMode,
     /// Subtracted once per tick on which the shock sensor is on (default: 0).
     pub shock_penalty: f64,
+    /// How the weighted components `wᵢ·mᵢ` combine into `B(m)`: `"sum"` (Σᵢ wᵢ·mᵢ) or `"min"`
+    /// (minᵢ wᵢ·mᵢ over components with wᵢ ≠ 0) (default: sum).
+    #[serde(skip_serializing_if = "is_default")]
+    pub balance: Balance,
+    /// Imbalance penalty p: `B(m)` becomes `B(m) − p × (maxᵢ wᵢ·mᵢ − minᵢ wᵢ·mᵢ)` over the
+    /// components with wᵢ ≠ 0, applied wherever `B` is (the end of life, or every tick when
+    /// integrated) (default: 0).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub imbalance_penalty: f64,
+    /// Added once per tick alive: `alive_bonus × ticks_alive` (default: 0).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub alive_bonus: f64,
+    /// Subtracted once when the creature is dead at the end of the trial (killed by a
+    /// predator) (default: 0).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub death_penalty: f64,
+    /// The `[[world.areas]]` entry (by `name`) that `area_bonus` pays for (default: none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub area: Option<String>,
+    /// Added per tick alive whose end finds the creature's centre inside `area` (bounds
+    /// included): `area_bonus × ticks_in_area` (default: 0; needs `area`).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub area_bonus: f64,
+    /// A `[[world.areas]]` entry (by `name`) to end close to (default: none). The distance d
+    /// is from the creature's centre to the nearest point of the rectangle (0 inside).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub goal: Option<String>,
+    /// A point `[x, y]` in LU to end close to, instead of `goal` (default: none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub goal_point: Option<[f64; 2]>,
+    /// Goal shaping: adds `goal_bonus × max(0, 1 − d / goal_range)`: the full bonus at the
+    /// goal, falling linearly to 0 at `goal_range` LU away (default: 0; needs `goal` or
+    /// `goal_point`).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub goal_bonus: f64,
+    /// The distance in LU at which the goal bonus reaches 0 (default: absent = the arena's
+    /// diagonal, so every place but the farthest corner earns some).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub goal_range: Option<f64>,
+    /// `"end"` (d at the end of life) or `"closest"` (the smallest d over the life,
+    /// measured at the end of each tick alive, the start included) (default: end).
+    #[serde(skip_serializing_if = "is_default")]
+    pub goal_at: GoalAt,
+    /// Added once per distinct food object the creature took substance from at least once
+    /// over its life: `distinct_food_bonus × distinct_food` (default: 0). Rewards moving on
+    /// over parking on one regrowing object.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub distinct_food_bonus: f64,
 }
 
 impl Default for FitnessSpec {
@@ -136,16 +237,322 @@ impl Default for FitnessSpec {
             weights: [1.0; 4],
             mode: FitnessMode::Final,
             shock_penalty: 0.0,
+            balance: Balance::Sum,
+            imbalance_penalty: 0.0,
+            alive_bonus: 0.0,
+            death_penalty: 0.0,
+            area: None,
+            area_bonus: 0.0,
+            goal: None,
+            goal_point: None,
+            goal_bonus: 0.0,
+            goal_range: None,
+            goal_at: GoalAt::End,
+            distinct_food_bonus: 0.0,
         }
     }
 }
 
 impl FitnessSpec {
-    /// Checks the table.
+    /// Checks the table on its own.
     pub fn validate(&self) -> Valid {
         all_finite("fitness.weights", &self.weights)?;
         non_negative("fitness.shock_penalty", self.shock_penalty)?;
-        finite("fitness.shock_penalty", self.shock_penalty)
+        finite("fitness.shock_penalty", self.shock_penalty)?;
+        non_negative("fitness.imbalance_penalty", self.imbalance_penalty)?;
+        finite("fitness.alive_bonus", self.alive_bonus)?;
+        non_negative("fitness.death_penalty", self.death_penalty)?;
+        finite("fitness.area_bonus", self.area_bonus)?;
+        finite("fitness.goal_bonus", self.goal_bonus)?;
+        finite("fitness.distinct_food_bonus", self.distinct_food_bonus)?;
+        if let Some(p) = self.goal_point {
+            all_finite("fitness.goal_point", &p)?;
+        }
+        if let Some(r) = self.goal_range {
+            positive("fitness.goal_range", r)?;
+        }
+        if self.area_bonus != 0.0 && self.area.is_none() {
+            return Err(InvalidValue::new(
+                "fitness.area_bonus",
+                "is set, but `fitness.area` names no area to pay for; add `area = \"<name>\"`",
+            ));
+        }
+        if self.goal.is_some() && self.goal_point.is_some() {
+            return Err(InvalidValue::new(
+                "fitness.goal_point",
+                "and `fitness.goal` are both set; keep one of them",
+            ));
+        }
+        if self.goal_bonus != 0.0 && self.goal.is_none() && self.goal_point.is_none() {
+            return Err(InvalidValue::new(
+                "fitness.goal_bonus",
+                "is set, but there is no goal; add `goal = \"<area name>\"` or `goal_point = [x, y]`",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Checks the area names against the world's areas.
+    pub fn validate_against_world(&self, world: &WorldSpec) -> Valid {
+        if let Some(name) = &self.area {
+            area_index(world, "fitness.area", name)?;
+        }
+        if let Some(name) = &self.goal {
+            area_index(world, "fitness.goal", name)?;
+        }
+        Ok(())
+    }
+
+    /// Is every term beyond the metabolic gain and the shock penalty off? Then a life's score
+    /// needs nothing but the metabolism and the shock flag of each tick.
+    pub fn is_plain(&self) -> bool {
+        self.balance == Balance::Sum
+            && self.imbalance_penalty == 0.0
+            && self.alive_bonus == 0.0
+            && self.death_penalty == 0.0
+            && self.area_bonus == 0.0
+            && self.goal_bonus == 0.0
+            && self.distinct_food_bonus == 0.0
+    }
+}
+
+/// The index in `[[world.areas]]` of the area named `name`; the error names `key`.
+pub fn area_index(world: &WorldSpec, key: &str, name: &str) -> Result<usize, InvalidValue> {
+    let mut found = world
+        .areas
+        .iter()
+        .enumerate()
+        .filter(|(_, a)| a.name.as_deref() == Some(name));
+    let Some((index, _)) = found.next() else {
+        let names: Vec<&str> = world
+            .areas
+            .iter()
+            .filter_map(|a| a.name.as_deref())
+            .collect();
+        return Err(InvalidValue::new(
+            key,
+            format!(
+                "no [[world.areas]] entry is named `{name}` (named areas: {}); give the area \
+                 `name = \"{name}\"`",
+                if names.is_empty() {
+                    "none".to_string()
+                } else {
+                    names.join(", ")
+                }
+            ),
+        ));
+    };
+    if found.next().is_some() {
+        return Err(InvalidValue::new(
+            key,
+            format!("several [[world.areas]] entries are named `{name}`; names must differ"),
+        ));
+    }
+    Ok(index)
+}
+
+/// A behaviour measure: a number per trial, next to fitness, that says whether the behaviour
+/// an experiment is about happened (`[behaviour] measures`). Each is averaged over an
+/// individual's trials.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Measure {
+    /// Ticks the creature was alive at the end of (and its brain's output finite).
+    TicksAlive,
+    /// Distinct food objects it took substance from at least once.
+    DistinctFood,
+    /// Food types A–D of which it received some substance (0–4).
+    FoodTypes,
+    /// 1 when its centre was inside `[behaviour] area` at the end of some tick alive (or at
+    /// the start), else 0.
+    AreaReached,
+    /// Ticks alive at whose end its centre was inside `[behaviour] area`.
+    TimeInArea,
+    /// 1 when some door of the world was open at the end of some tick it was alive, else 0.
+    DoorOpened,
+    /// Distinct food objects lying inside `[behaviour] area` that it took substance from.
+    FoodInAreaEaten,
+    /// Of the ticks alive at whose end a threat was near (a ground or air predator's centre
+    /// within `[behaviour] threat_radius` LU of its centre), the share it spent inside a safe
+    /// area; 1 when no threat came near.
+    ShelterWhileThreat,
+    /// Air predator passes over it survived: a pass is a run of ticks at whose end its
+    /// centre is within the air predator's strike radius; it is survived when the creature
+    /// was inside a safe area at the end of every tick of the pass and lived through it
+    /// (a pass still going at the end of the trial counts when so far survived).
+    StrikesSurvived,
+    /// Contacts with aversive objects: ticks at whose end its body touches an aversive
+    /// object and did not at the end of the tick before (each contact counted once).
+    AversiveContacts,
+    /// Ticks on which the shock sensor was on (aversive objects, walls with `wall_shock`,
+    /// shocking predators).
+    ShockedTicks,
+}
+
+/// Every measure, in the order their columns and lines appear.
+pub const MEASURES: [Measure; 11] = [
+    Measure::TicksAlive,
+    Measure::DistinctFood,
+    Measure::FoodTypes,
+    Measure::AreaReached,
+    Measure::TimeInArea,
+    Measure::DoorOpened,
+    Measure::FoodInAreaEaten,
+    Measure::ShelterWhileThreat,
+    Measure::StrikesSurvived,
+    Measure::AversiveContacts,
+    Measure::ShockedTicks,
+];
+
+impl Measure {
+    /// Its name in files and columns (`distinct_food`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Measure::TicksAlive => "ticks_alive",
+            Measure::DistinctFood => "distinct_food",
+            Measure::FoodTypes => "food_types",
+            Measure::AreaReached => "area_reached",
+            Measure::TimeInArea => "time_in_area",
+            Measure::DoorOpened => "door_opened",
+            Measure::FoodInAreaEaten => "food_in_area_eaten",
+            Measure::ShelterWhileThreat => "shelter_while_threat",
+            Measure::StrikesSurvived => "strikes_survived",
+            Measure::AversiveContacts => "aversive_contacts",
+            Measure::ShockedTicks => "shocked_ticks",
+        }
+    }
+
+    /// Its position in [`MEASURES`] (and in a trial's array of measure values).
+    pub fn index(self) -> usize {
+        MEASURES.iter().position(|&m| m == self).unwrap_or(0)
+    }
+
+    /// Does it need `[behaviour] area`?
+    pub fn needs_area(self) -> bool {
+        matches!(
+            self,
+            Measure::AreaReached | Measure::TimeInArea | Measure::FoodInAreaEaten
+        )
+    }
+}
+
+/// `[behaviour]`: which behaviour measures an experiment reports (in `fitness.csv`,
+/// `compare`, `replay` and `summary`). Measures never change fitness or evolution.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct BehaviourSpec {
+    /// The measures, by name, e.g. `["ticks_alive", "distinct_food"]` (default: none). See
+    /// [`Measure`] for each one's definition.
+    pub measures: Vec<Measure>,
+    /// The `[[world.areas]]` entry (by `name`) of `area_reached`, `time_in_area` and
+    /// `food_in_area_eaten` (default: none).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub area: Option<String>,
+    /// How close in LU a predator's centre must come to the creature's centre for
+    /// `shelter_while_threat` to count the tick as threatened (default: 40).
+    pub threat_radius: f64,
+}
+
+/// `[behaviour] threat_radius` when not given.
+pub const DEFAULT_THREAT_RADIUS: f64 = 40.0;
+
+impl Default for BehaviourSpec {
+    fn default() -> Self {
+        BehaviourSpec {
+            measures: Vec::new(),
+            area: None,
+            threat_radius: DEFAULT_THREAT_RADIUS,
+        }
+    }
+}
+
+impl BehaviourSpec {
+    /// No measure asked for and nothing else set: the table is left out of written files.
+    pub fn is_default(&self) -> bool {
+        *self == BehaviourSpec::default()
+    }
+
+    /// Checks the table against the world it measures.
+    pub fn validate(&self, world: &WorldSpec) -> Valid {
+        positive("behaviour.threat_radius", self.threat_radius)?;
+        for (i, m) in self.measures.iter().enumerate() {
+            if self.measures[..i].contains(m) {
+                return Err(InvalidValue::new(
+                    "behaviour.measures",
+                    format!("names `{}` twice", m.name()),
+                ));
+            }
+            if m.needs_area() && self.area.is_none() {
+                return Err(InvalidValue::new(
+                    "behaviour.area",
+                    format!(
+                        "is needed by the measure `{}`; add `area = \"<name of a [[world.areas]] entry>\"`",
+                        m.name()
+                    ),
+                ));
+            }
+        }
+        if let Some(name) = &self.area {
+            area_index(world, "behaviour.area", name)?;
+        }
+        Ok(())
+    }
+}
+
+/// `[validation]`: choosing the champion on validation worlds (default: off). Every `every`
+/// generations the generation's `top` best individuals (by training fitness) are evaluated on
+/// `trials` fixed validation worlds, the same every time and never trained on (their own seed
+/// stream, distinct from the training worlds and from `compare`'s held-out worlds); `best.json`
+/// is then the best on validation so far.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ValidationSpec {
+    /// Validate every this many generations, and always after the last (default: 0 = off).
+    pub every: u64,
+    /// How many of the generation's best individuals to validate (default: 3).
+    pub top: u64,
+    /// Validation worlds per candidate (default: 10).
+    pub trials: u64,
+}
+
+impl Default for ValidationSpec {
+    fn default() -> Self {
+        ValidationSpec {
+            every: 0,
+            top: 3,
+            trials: 10,
+        }
+    }
+}
+
+impl ValidationSpec {
+    /// Is validation on?
+    pub fn enabled(&self) -> bool {
+        self.every > 0
+    }
+
+    /// Off and nothing else set: the table is left out of written files.
+    pub fn is_default(&self) -> bool {
+        *self == ValidationSpec::default()
+    }
+
+    /// Checks the table.
+    pub fn validate(&self) -> Valid {
+        count_within(
+            "validation.every",
+            self.every,
+            0,
+            u32::MAX as u64,
+            "generations",
+        )?;
+        count_within("validation.top", self.top, 1, 10_000, "individuals")?;
+        count_within(
+            "validation.trials",
+            self.trials,
+            1,
+            MAX_TRIALS,
+            "validation worlds",
+        )
     }
 }
 

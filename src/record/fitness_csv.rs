@@ -101,13 +101,15 @@ pub enum FitnessCsvError {
         /// The cause (in the message too, so not also a `source()`).
         error: io::Error,
     },
-    /// The first line is not [`HEADER`].
-    #[error("fitness csv {path}: not a berry-evolve fitness csv: the first line is `{found}`, expected `{HEADER}`")]
+    /// The first line is not [`HEADER`] (followed by the expected extra columns).
+    #[error("fitness csv {path}: not a berry-evolve fitness csv of this experiment: the first line is `{found}`, expected `{expected}`")]
     Header {
         /// The file.
         path: PathBuf,
         /// The first line (shortened).
         found: String,
+        /// The header expected.
+        expected: String,
     },
     /// A complete line that is not a valid row.
     #[error("fitness csv {path}, line {line}: {message}")]
@@ -162,6 +164,8 @@ pub struct FitnessCsv {
     lines: usize,
     /// The line being appended; the buffer is reused from row to row.
     line: Vec<u8>,
+    /// The columns after [`HEADER`]'s, by name (see [`extra_columns`]).
+    extra: Vec<String>,
 }
 
 /// The result of [`FitnessCsv::reopen_for_resume`].
@@ -178,9 +182,15 @@ pub struct Reopened {
 impl FitnessCsv {
     /// Creates (or replaces) the file at `path` holding only the header, atomically.
     pub fn create(path: &Path) -> Result<FitnessCsv, FitnessCsvError> {
-        write_atomic(path, format!("{HEADER}\n").as_bytes())
+        Self::create_with(path, &[])
+    }
+
+    /// [`FitnessCsv::create`] for a file with `extra` columns after [`HEADER`]'s (see
+    /// [`extra_columns`]); with none, the same file.
+    pub fn create_with(path: &Path, extra: &[String]) -> Result<FitnessCsv, FitnessCsvError> {
+        write_atomic(path, format!("{}\n", header(extra)).as_bytes())
             .map_err(|e| io_error(path, "write", e))?;
-        Self::open_append(path, None, 1)
+        Self::open_append(path, None, 1, extra)
     }
 
     /// Reopens the CSV of a run that resumes from a checkpoint taken after generation
@@ -195,8 +205,18 @@ impl FitnessCsv {
         path: &Path,
         last_generation: u64,
     ) -> Result<Reopened, FitnessCsvError> {
+        Self::reopen_for_resume_with(path, last_generation, &[])
+    }
+
+    /// [`FitnessCsv::reopen_for_resume`] for a file with `extra` columns (its header must
+    /// name exactly these).
+    pub fn reopen_for_resume_with(
+        path: &Path,
+        last_generation: u64,
+        extra: &[String],
+    ) -> Result<Reopened, FitnessCsvError> {
         let bytes = std::fs::read(path).map_err(|e| io_error(path, "read", e))?;
-        let parsed = parse(path, &bytes, Some(last_generation))?;
+        let parsed = parse(path, &bytes, Some(last_generation), Some(extra))?;
         let last_row = parsed.rows.last().map(|r| r.generation);
         if last_row != Some(last_generation) {
             return Err(FitnessCsvError::MissingRows {
@@ -210,7 +230,7 @@ impl FitnessCsv {
             write_atomic(path, &bytes[..parsed.kept_bytes])
                 .map_err(|e| io_error(path, "write", e))?;
         }
-        let csv = Self::open_append(path, last_row, 1 + parsed.rows.len())?;
+        let csv = Self::open_append(path, last_row, 1 + parsed.rows.len(), extra)?;
         Ok(Reopened {
             csv,
             dropped_rows: parsed.dropped_rows,
@@ -222,6 +242,7 @@ impl FitnessCsv {
         path: &Path,
         last_generation: Option<u64>,
         lines: usize,
+        extra: &[String],
     ) -> Result<FitnessCsv, FitnessCsvError> {
         let file = OpenOptions::new()
             .append(true)
@@ -233,12 +254,34 @@ impl FitnessCsv {
             last_generation,
             lines,
             line: Vec::with_capacity(512),
+            extra: extra.to_vec(),
         })
     }
 
     /// Appends `row` as one line, in a single write, and flushes it. Refuses a row whose
     /// generation is not greater than the previous row's.
     pub fn append(&mut self, row: &FitnessRow) -> Result<(), FitnessCsvError> {
+        self.append_with(row, &[])
+    }
+
+    /// [`FitnessCsv::append`] with the values of the extra columns (`None`: an empty field).
+    /// Missing values at the end are written empty; more values than columns are an error.
+    pub fn append_with(
+        &mut self,
+        row: &FitnessRow,
+        extras: &[Option<f64>],
+    ) -> Result<(), FitnessCsvError> {
+        if extras.len() > self.extra.len() {
+            return Err(io_error(
+                &self.path,
+                "write",
+                io::Error::other(format!(
+                    "{} extra values for {} extra columns",
+                    extras.len(),
+                    self.extra.len()
+                )),
+            ));
+        }
         if let Some(previous) = self.last_generation {
             if row.generation <= previous {
                 return Err(FitnessCsvError::OutOfOrder {
@@ -250,7 +293,8 @@ impl FitnessCsv {
             }
         }
         self.line.clear();
-        format_row(row, &mut self.line).map_err(|e| io_error(&self.path, "write", e))?;
+        format_row_with(row, extras, self.extra.len(), &mut self.line)
+            .map_err(|e| io_error(&self.path, "write", e))?;
         self.file
             .write_all(&self.line)
             .and_then(|()| self.file.flush())
@@ -283,7 +327,7 @@ impl FitnessCsv {
 /// reported as [`FitnessCsvError::PartialLine`].
 pub fn read_rows(path: &Path) -> Result<Vec<FitnessRow>, FitnessCsvError> {
     let bytes = std::fs::read(path).map_err(|e| io_error(path, "read", e))?;
-    let parsed = parse(path, &bytes, None)?;
+    let parsed = parse(path, &bytes, None, Some(&[]))?;
     if let Some(line) = parsed.partial_line {
         return Err(FitnessCsvError::PartialLine {
             path: path.to_path_buf(),
@@ -291,6 +335,93 @@ pub fn read_rows(path: &Path) -> Result<Vec<FitnessRow>, FitnessCsvError> {
         });
     }
     Ok(parsed.rows)
+}
+
+/// A fitness CSV read whole, with whatever extra columns its header names.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Table {
+    /// The extra columns' names, in order.
+    pub extra: Vec<String>,
+    /// The rows, in order.
+    pub rows: Vec<FitnessRow>,
+    /// Per row, the extra columns' values (`None`: empty).
+    pub extras: Vec<Vec<Option<f64>>>,
+}
+
+impl Table {
+    /// The values of extra column `name`, one per row (`None` when the column is absent or
+    /// the field empty).
+    pub fn column(&self, name: &str) -> Vec<Option<f64>> {
+        match self.extra.iter().position(|c| c == name) {
+            Some(k) => self.extras.iter().map(|e| e[k]).collect(),
+            None => vec![None; self.rows.len()],
+        }
+    }
+}
+
+/// Reads every row of the fitness CSV at `path` as [`read_rows`] does, accepting any extra
+/// columns after [`HEADER`]'s.
+pub fn read_table(path: &Path) -> Result<Table, FitnessCsvError> {
+    let bytes = std::fs::read(path).map_err(|e| io_error(path, "read", e))?;
+    let parsed = parse(path, &bytes, None, None)?;
+    if let Some(line) = parsed.partial_line {
+        return Err(FitnessCsvError::PartialLine {
+            path: path.to_path_buf(),
+            line,
+        });
+    }
+    Ok(Table {
+        extra: parsed.extra,
+        rows: parsed.rows,
+        extras: parsed.extras,
+    })
+}
+
+/// The header line for `extra` columns after [`HEADER`]'s.
+pub fn header(extra: &[String]) -> String {
+    let mut h = HEADER.to_string();
+    for c in extra {
+        h.push(',');
+        h.push_str(c);
+    }
+    h
+}
+
+/// The extra columns of `experiment`'s fitness CSV, after [`HEADER`]'s: for each behaviour
+/// measure `m` it names, `best_<m>` (the generation's best individual's) and `mean_<m>` (the
+/// population mean); with `[validation]` on, `validation_best` (the best validation fitness
+/// among the candidates validated after this generation, empty in generations without
+/// validation) and `validation_<m>` (that candidate's measures). None for an experiment
+/// without either: the file is then exactly the plain format.
+pub fn extra_columns(experiment: &crate::experiment::Experiment) -> Vec<String> {
+    let measures = &experiment.behaviour.measures;
+    let mut columns = Vec::new();
+    for m in measures {
+        columns.push(format!("best_{}", m.name()));
+        columns.push(format!("mean_{}", m.name()));
+    }
+    if experiment.validation.enabled() {
+        columns.push("validation_best".to_string());
+        for m in measures {
+            columns.push(format!("validation_{}", m.name()));
+        }
+    }
+    columns
+}
+
+/// [`to_bytes`] with extra columns: `extras[i]` holds row i's values (missing rows or values
+/// are written empty).
+pub fn to_bytes_with(
+    extra: &[String],
+    rows: &[FitnessRow],
+    extras: &[Vec<Option<f64>>],
+) -> io::Result<Vec<u8>> {
+    let mut text = format!("{}\n", header(extra)).into_bytes();
+    for (i, row) in rows.iter().enumerate() {
+        let values = extras.get(i).map_or(&[][..], |v| &v[..]);
+        format_row_with(row, values, extra.len(), &mut text)?;
+    }
+    Ok(text)
 }
 
 /// `rows` (header first) as the bytes of a fitness CSV, in the format `append` writes.
@@ -306,6 +437,45 @@ pub fn to_bytes(rows: &[FitnessRow]) -> io::Result<Vec<u8>> {
 pub fn write_all(path: &Path, rows: &[FitnessRow]) -> Result<(), FitnessCsvError> {
     let text = to_bytes(rows).map_err(|e| io_error(path, "write", e))?;
     write_atomic(path, &text).map_err(|e| io_error(path, "write", e))
+}
+
+/// Appends `row` and `columns` extra fields (`extras`, then empty ones) to `out` as one CSV
+/// line with its `\n`. Extra values are written as the row's floats are (shortest
+/// round-trip decimal, via `ryu`).
+fn format_row_with(
+    row: &FitnessRow,
+    extras: &[Option<f64>],
+    columns: usize,
+    out: &mut Vec<u8>,
+) -> io::Result<()> {
+    format_row(row, out)?;
+    if columns == 0 {
+        return Ok(());
+    }
+    out.pop(); // the `\n`
+    for k in 0..columns {
+        out.push(b',');
+        if let Some(Some(v)) = extras.get(k) {
+            out.extend_from_slice(float_text(*v).as_bytes());
+        }
+    }
+    out.push(b'\n');
+    Ok(())
+}
+
+/// A float as the csv serializer writes it: `ryu`'s shortest round-trip text (`3.0`, `0.1`),
+/// `NaN`, `inf` or `-inf`.
+fn float_text(v: f64) -> String {
+    let mut w = csv::WriterBuilder::new()
+        .has_headers(false)
+        .terminator(csv::Terminator::Any(b'\n'))
+        .from_writer(Vec::new());
+    // A single float always serialises; the fallback never shows.
+    if w.serialize([v]).is_err() {
+        return v.to_string();
+    }
+    let bytes = w.into_inner().unwrap_or_default();
+    String::from_utf8_lossy(&bytes).trim_end().to_string()
 }
 
 /// Appends `row` to `out` as one CSV line with its `\n`.
@@ -337,19 +507,47 @@ struct Parsed {
     dropped_rows: usize,
     /// The line number of a partial last line, if any.
     partial_line: Option<usize>,
+    /// The extra columns' names.
+    extra: Vec<String>,
+    /// Per kept row, its extra values.
+    extras: Vec<Vec<Option<f64>>>,
 }
 
 /// Parses `bytes`. With `keep_up_to`, stops keeping rows at the first one whose first field is
 /// a greater generation; the rest of the file is counted as dropped but not checked (it is
 /// discarded).
-fn parse(path: &Path, bytes: &[u8], keep_up_to: Option<u64>) -> Result<Parsed, FitnessCsvError> {
+///
+/// With `expect_extra`, the header must be exactly [`header`] of those columns; without, any
+/// header that starts with [`HEADER`] and goes on with `,name` columns is accepted.
+fn parse(
+    path: &Path,
+    bytes: &[u8],
+    keep_up_to: Option<u64>,
+    expect_extra: Option<&[String]>,
+) -> Result<Parsed, FitnessCsvError> {
     let bad_row = |line: usize, message: String| FitnessCsvError::BadRow {
         path: path.to_path_buf(),
         line,
         message,
     };
     let header_end = bytes.iter().position(|&b| b == b'\n');
-    let header_ok = header_end.is_some_and(|end| &bytes[..end] == HEADER.as_bytes());
+    let extra: Option<Vec<String>> = header_end.and_then(|end| {
+        let line = &bytes[..end];
+        match expect_extra {
+            Some(extra) => (line == header(extra).as_bytes()).then(|| extra.to_vec()),
+            None => {
+                let rest = line.strip_prefix(HEADER.as_bytes())?;
+                if rest.is_empty() {
+                    return Some(Vec::new());
+                }
+                let rest = std::str::from_utf8(rest.strip_prefix(b",")?).ok()?;
+                let names: Vec<String> = rest.split(',').map(str::to_string).collect();
+                names.iter().all(|n| !n.is_empty()).then_some(names)
+            }
+        }
+    });
+    let header_ok = extra.is_some();
+    let extra = extra.unwrap_or_default();
     let Some(header_end) = header_end.filter(|_| header_ok) else {
         let first = bytes.split(|&b| b == b'\n').next().unwrap_or_default();
         let first = String::from_utf8_lossy(first);
@@ -361,6 +559,7 @@ fn parse(path: &Path, bytes: &[u8], keep_up_to: Option<u64>) -> Result<Parsed, F
         return Err(FitnessCsvError::Header {
             path: path.to_path_buf(),
             found,
+            expected: header(expect_extra.unwrap_or(&[])),
         });
     };
 
@@ -369,6 +568,8 @@ fn parse(path: &Path, bytes: &[u8], keep_up_to: Option<u64>) -> Result<Parsed, F
         kept_bytes: header_end + 1,
         dropped_rows: 0,
         partial_line: None,
+        extra,
+        extras: Vec::new(),
     };
     let mut start = header_end + 1;
     let mut line_number = 1;
@@ -394,7 +595,7 @@ fn parse(path: &Path, bytes: &[u8], keep_up_to: Option<u64>) -> Result<Parsed, F
             start = end;
             continue;
         }
-        let row = parse_row(line).map_err(|m| bad_row(line_number, m))?;
+        let (row, values) = parse_row(line, &parsed.extra).map_err(|m| bad_row(line_number, m))?;
         if let Some(previous) = parsed.rows.last() {
             if row.generation <= previous.generation {
                 return Err(FitnessCsvError::OutOfOrder {
@@ -406,6 +607,7 @@ fn parse(path: &Path, bytes: &[u8], keep_up_to: Option<u64>) -> Result<Parsed, F
             }
         }
         parsed.rows.push(row);
+        parsed.extras.push(values);
         parsed.kept_bytes = end;
         start = end;
     }
@@ -419,7 +621,7 @@ fn leading_generation(line: &[u8]) -> Option<u64> {
 }
 
 /// Parses one complete line (with its `\n`).
-fn parse_row(line: &[u8]) -> Result<FitnessRow, String> {
+fn parse_row(line: &[u8], extra: &[String]) -> Result<(FitnessRow, Vec<Option<f64>>), String> {
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(false)
         .terminator(csv::Terminator::Any(b'\n'))
@@ -430,13 +632,29 @@ fn parse_row(line: &[u8]) -> Result<FitnessRow, String> {
         Ok(false) => return Err("empty line".into()),
         Err(e) => return Err(e.to_string()),
     }
-    if record.len() != COLUMNS {
+    if record.len() != COLUMNS + extra.len() {
         return Err(format!(
-            "{} fields, expected {COLUMNS} ({HEADER})",
-            record.len()
+            "{} fields, expected {} ({})",
+            record.len(),
+            COLUMNS + extra.len(),
+            header(extra)
         ));
     }
-    record.deserialize(None).map_err(|e| match e.kind() {
+    let mut values = Vec::with_capacity(extra.len());
+    for (k, name) in extra.iter().enumerate() {
+        let field = &record[COLUMNS + k];
+        values.push(if field.is_empty() {
+            None
+        } else {
+            Some(
+                field
+                    .parse::<f64>()
+                    .map_err(|e| format!("column {} (`{name}`): {e}", COLUMNS + k + 1))?,
+            )
+        });
+    }
+    let plain: csv::StringRecord = record.iter().take(COLUMNS).collect();
+    let row = plain.deserialize(None).map_err(|e| match e.kind() {
         csv::ErrorKind::Deserialize { err, .. } => match err.field() {
             Some(i) => format!(
                 "column {} (`{}`): {}",
@@ -447,7 +665,8 @@ fn parse_row(line: &[u8]) -> Result<FitnessRow, String> {
             None => err.to_string(),
         },
         _ => e.to_string(),
-    })
+    })?;
+    Ok((row, values))
 }
 
 #[cfg(test)]

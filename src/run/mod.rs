@@ -9,15 +9,18 @@ use crate::evo::state::{
     evaluate, first_generation, improved_champion_for, next_generation_of, Champion,
     EvaluatedGeneration, GenerationSummary, SearchState,
 };
+use crate::evo::validation::{self, ValidatedChampion};
 use crate::experiment::{Experiment, ExperimentError};
 use crate::record::atomic::{remove_stale_temp_files, write_atomic};
 use crate::record::checkpoint::{self, CheckpointError, CheckpointErrorKind, ContentError};
-use crate::record::fitness_csv::{FitnessCsv, FitnessRow};
+use crate::record::fitness_csv::{extra_columns, FitnessCsv, FitnessRow};
 use crate::record::genome_file::{GenomeFile, GenomeFileError, Origin};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use thiserror::Error;
+
+mod validated;
 
 /// File names inside a run folder.
 pub const EXPERIMENT_FILE: &str = "experiment.toml";
@@ -45,6 +48,13 @@ pub struct CheckpointPayload {
     /// checkpoints keep their bytes).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub search: Option<SearchState>,
+    /// Per completed generation, the values of the fitness CSV's extra columns (behaviour
+    /// measures, validation); empty when the experiment has none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub history_extra: Vec<Vec<Option<f64>>>,
+    /// The best individual on validation so far (`[validation]` on).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub validated_best: Option<ValidatedChampion>,
 }
 
 /// Why a run could not start, continue or finish.
@@ -237,7 +247,7 @@ pub fn start(
     let experiment_path = dir.join(EXPERIMENT_FILE);
     write_atomic(&experiment_path, experiment.to_toml().as_bytes())
         .map_err(io_err(&experiment_path))?;
-    let csv = FitnessCsv::create(&dir.join(FITNESS_FILE))?;
+    let csv = FitnessCsv::create_with(&dir.join(FITNESS_FILE), &extra_columns(&experiment))?;
     let topology = experiment.topology();
     let (population, search) = first_generation(&experiment, &topology);
     drive(
@@ -250,6 +260,9 @@ pub fn start(
             best_ever: None,
             next_generation: 0,
             search,
+            history_extra: Vec::new(),
+            validated_best: None,
+            validation_worlds: None,
         },
         population,
         options,
@@ -318,14 +331,16 @@ pub fn resume(
         .map_err(io_err(&experiment_path))?;
     let last_generation = payload.last.generation;
     let csv_path = dir.join(FITNESS_FILE);
+    let columns = extra_columns(&experiment);
     let csv = if csv_path.exists() || payload.history.len() as u64 != last_generation + 1 {
-        FitnessCsv::reopen_for_resume(&csv_path, last_generation)?.csv
+        FitnessCsv::reopen_for_resume_with(&csv_path, last_generation, &columns)?.csv
     } else {
         // A deleted fitness.csv is rebuilt from the rows the checkpoint carries (the same
         // bytes: the same rows through the same writer).
-        let mut csv = FitnessCsv::create(&csv_path)?;
-        for row in &payload.history {
-            csv.append(row)?;
+        let mut csv = FitnessCsv::create_with(&csv_path, &columns)?;
+        for (i, row) in payload.history.iter().enumerate() {
+            let extras = payload.history_extra.get(i).map_or(&[][..], |e| &e[..]);
+            csv.append_with(row, extras)?;
         }
         csv
     };
@@ -337,6 +352,9 @@ pub fn resume(
         history: payload.history,
         best_ever: payload.best_ever,
         next_generation: last_generation + 1,
+        history_extra: payload.history_extra,
+        validated_best: payload.validated_best,
+        validation_worlds: None,
         experiment,
         search: payload.search.clone(),
     };
@@ -516,6 +534,10 @@ struct Loop {
     next_generation: u64,
     /// The search distribution that sampled the generation being evaluated (PGPE).
     search: Option<SearchState>,
+    history_extra: Vec<Vec<Option<f64>>>,
+    validated_best: Option<ValidatedChampion>,
+    /// The validation worlds, built at the first validation of this process.
+    validation_worlds: Option<Vec<crate::sim::world::World>>,
 }
 
 impl Loop {
@@ -544,6 +566,9 @@ impl Loop {
     }
 
     fn write_best(&self) -> Result<(), RunError> {
+        if self.experiment.validation.enabled() {
+            return self.write_validated_best();
+        }
         if let Some(c) = &self.best_ever {
             let file = GenomeFile::new(
                 &self.experiment,
@@ -572,6 +597,8 @@ impl Loop {
             best_ever: self.best_ever.clone(),
             history: self.history.clone(),
             search: self.search.clone(),
+            history_extra: self.history_extra.clone(),
+            validated_best: self.validated_best.clone(),
         };
         Ok(checkpoint::write_checkpoint(
             &self.dir.join(CHECKPOINT_DIR),
@@ -646,12 +673,32 @@ fn drive(
                 .write_best()
                 .map_err(|e| output_failed(&state.dir, e))?;
         }
+        let (extras, validated) = pool.install(|| {
+            validation::after_generation(
+                &state.experiment,
+                &state.topology,
+                &evaluated,
+                &summary,
+                total,
+                Vec::new(),
+                &mut state.validation_worlds,
+            )
+        })?;
+        if let Some(v) = validation::improved(state.validated_best.as_ref(), validated.as_ref()) {
+            state.validated_best = Some(v);
+            state
+                .write_best()
+                .map_err(|e| output_failed(&state.dir, e))?;
+        }
         let row = state.row(&evaluated, &summary);
         state
             .csv
-            .append(&row)
+            .append_with(&row, &extras)
             .map_err(|e| output_failed(&state.dir, e.into()))?;
         state.history.push(row);
+        if !extras.is_empty() {
+            state.history_extra.push(extras);
+        }
         progress.generation(&row);
         let is_last = generation + 1 >= total;
         let stop_requested = options.stop.is_some_and(|s| s.load(Ordering::SeqCst));

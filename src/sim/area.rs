@@ -105,6 +105,7 @@ mod tests {
     #[test]
     fn inside_is_inclusive() {
         let a = Area::from_spec(&AreaSpec {
+            name: None,
             region: [10.0, 20.0, 30.0, 40.0],
             kind: AreaKind::Safe,
             odour: [0.0; 8],

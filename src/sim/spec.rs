@@ -147,6 +147,10 @@ pub enum AreaKind {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AreaSpec {
+    /// A name that `[fitness]` and `[behaviour]` refer to the area by (default: none).
+    /// Names must differ from one another; a name changes nothing in the world.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
     /// `[x0, y0, x1, y1]` in LU inside the arena, x0 <= x1, y0 <= y1 (required). A point is
     /// inside when x0 <= x <= x1 and y0 <= y <= y1 (bounds included).
     #[serde(deserialize_with = "exact::array")]

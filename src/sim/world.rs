@@ -200,6 +200,10 @@ pub struct World {
     gadgets: bool,
     /// What [`World::apply`] reads of the above on every move, copied side by side.
     rules: CreatureRules,
+    /// Per creature and food object (`creature * food.len() + k`): has the creature taken
+    /// substance from the object? Empty (and not kept) unless [`World::track_bites`] asked
+    /// for it, so that eating costs nothing more when no one needs it.
+    bitten: Vec<bool>,
 }
 
 /// The world's constants that a creature's move, contacts and metabolism read on every tick
@@ -562,6 +566,7 @@ impl World {
             waypoints,
             flyers,
             rules,
+            bitten: Vec::new(),
         })
     }
 
@@ -889,8 +894,12 @@ impl World {
             for &k in near {
                 let f = &mut self.food[k as usize];
                 if circles_touch(position, radius, f.position, f.radius) {
-                    for (r, g) in received.iter_mut().zip(f.take_bite()) {
+                    let bite = f.take_bite();
+                    for (r, g) in received.iter_mut().zip(bite) {
                         *r += g;
+                    }
+                    if !self.bitten.is_empty() && bite.iter().any(|&g| g > 0.0) {
+                        self.bitten[i * self.listed.len() + k as usize] = true;
                     }
                     if !self.listed[k as usize] && f.regrows_now() {
                         self.listed[k as usize] = true;
@@ -1449,6 +1458,33 @@ impl World {
         f.position = position;
         f.velocity = velocity;
         self.things[f.thing].position = position;
+    }
+
+    /// Locked doors (`[[world.doors]]`), in file order: how many.
+    pub fn door_count(&self) -> usize {
+        self.doors.len()
+    }
+
+    /// From now on, notes which food objects each creature takes substance from (for
+    /// behaviour measures and fitness terms that count distinct objects; see
+    /// [`World::bitten`]). Off unless asked for: eating then does nothing more.
+    pub fn track_bites(&mut self) {
+        if self.bitten.is_empty() {
+            self.bitten = vec![false; self.creatures.len() * self.food.len()];
+        }
+    }
+
+    /// For each food object (in [`World::food`] order), has creature `creature` taken some
+    /// substance from it since [`World::track_bites`]? Empty when bites are not tracked.
+    ///
+    /// # Panics
+    /// When `creature` is out of range while bites are tracked.
+    pub fn bitten(&self, creature: usize) -> &[bool] {
+        if self.bitten.is_empty() {
+            return &[];
+        }
+        let n = self.food.len();
+        &self.bitten[creature * n..(creature + 1) * n]
     }
 
     /// Ends creature `creature`'s life now: it no longer senses, moves, eats, blocks, or is
