@@ -39,9 +39,13 @@ def trace(binary, experiment, genome, trials):
     text = open(experiment).read()
     # A copy with `trials` trials: trial k's world depends only on the seed, the generation
     # and k, so these are compare's held-out worlds.
-    text, n = re.subn(r"(?m)^trials\s*=\s*\d+", f"trials = {trials}", text)
-    if n != 1:
-        sys.exit(f"{experiment}: expected one `trials = N` line")
+    # (Only the [evaluation] table's: [validation] has a `trials` key too.)
+    start = text.find("[evaluation]")
+    head, tail = text[:start], text[start:]
+    tail, n = re.subn(r"(?m)^trials\s*=\s*\d+", f"trials = {trials}", tail, count=1)
+    if start < 0 or n != 1:
+        sys.exit(f"{experiment}: expected a `trials = N` line in [evaluation]")
+    text = head + tail
     with tempfile.TemporaryDirectory() as tmp:
         exp = os.path.join(tmp, "experiment.toml")
         open(exp, "w").write(text)
