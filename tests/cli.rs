@@ -379,7 +379,8 @@ fn kept_champion_replays_to_its_recorded_fitness() {
     let genome = root.join("genomes/foraging-champion-seed2.json");
     let recorded: serde_json::Value = serde_json::from_slice(&read(&genome)).unwrap();
     let recorded = recorded["origin"]["fitness"].as_f64().unwrap();
-    let experiment = root.join("experiments/foraging.toml");
+    // The champion was evolved in the 0.3.5 foraging world, kept as a fixture.
+    let experiment = root.join("tests/fixtures/foraging-v035.toml");
     let replay = |extra: &[&str]| {
         let mut args = vec![
             "replay",

@@ -148,13 +148,20 @@ fn genome_files_refuse_non_finite_and_wrong_sizes() {
 }
 
 #[test]
-fn every_shipped_genome_fits_the_main_experiment() {
+fn every_shipped_genome_fits_its_experiment() {
+    // genomes/<experiment>-baseline.json fits experiments/<experiment>.toml; the others are
+    // foragers for the main experiment.
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let experiment = Experiment::load(&root.join("experiments/foraging.toml")).unwrap();
     let mut count = 0;
     for entry in std::fs::read_dir(root.join("genomes")).unwrap() {
         let path = entry.unwrap().path();
         if path.extension().is_some_and(|e| e == "json") {
+            let name = path.file_name().unwrap().to_str().unwrap();
+            let toml = match name.strip_suffix("-baseline.json") {
+                Some(experiment) => format!("experiments/{experiment}.toml"),
+                None => "experiments/foraging.toml".to_owned(),
+            };
+            let experiment = Experiment::load(&root.join(&toml)).unwrap_or_else(|e| panic!("{e}"));
             let file = GenomeFile::load(&path).unwrap_or_else(|e| panic!("{e}"));
             file.topology_for(&experiment, &path)
                 .unwrap_or_else(|e| panic!("{e}"));
