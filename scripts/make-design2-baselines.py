@@ -1,0 +1,88 @@
+#!/usr/bin/env python3
+"""Writes the hand-designed baselines of the design2 experiments to genomes/<name>-baseline.json.
+
+Each is a Braitenberg vehicle as a single-layer network (mlp, hidden = []): every motor is
+tanh(sum of weighted inputs + bias) scaled by max_rpt; the layout of inputs comes from
+`berry-evolve inspect EXPERIMENT.toml` (the names must match the experiment's inputs).
+
+Steering convention (as in scripts/make-braitenberg-forager.py): a stronger input on the right
+that speeds up the LEFT wheel turns the creature right. So "towards odour k" is crossed wiring
+(left motor += g * right_k - g * left_k) and "away from odour k" is the opposite sign.
+
+Usage: python3 scripts/make-design2-baselines.py   (writes all five files under genomes/)
+"""
+import json
+import os
+import subprocess
+import sys
+
+BIN = os.environ.get("BERRY_EVOLVE", "target/release/berry-evolve")
+
+
+def layout(experiment):
+    out = subprocess.run([BIN, "inspect", experiment], capture_output=True, text=True,
+                         check=True).stdout
+    names = []
+    for line in out.splitlines():
+        line = line.strip()
+        if line.startswith("[") and "]" in line:
+            names.append(line.split("]", 1)[1].strip())
+    return names
+
+
+def vehicle(names, towards=(), away=(), whisker=1.5, forward=0.5, eat_brake=0.0,
+            extra=()):
+    """towards/away: (odour component 1..8, gain); extra: (input, left weight, right weight)."""
+    index = {n: i for i, n in enumerate(names)}
+    rows = {}
+    for side in ("left", "right"):
+        other = "right" if side == "left" else "left"
+        row = [0.0] * len(names)
+        for k, g in towards:
+            row[index[f"smell_{other}_{k}"]] += g
+            row[index[f"smell_{side}_{k}"]] -= g
+        for k, g in away:
+            row[index[f"smell_{other}_{k}"]] -= g
+            row[index[f"smell_{side}_{k}"]] += g
+        row[index["whisker_left"]] = whisker if side == "left" else -whisker
+        row[index["whisker_right"]] = -whisker if side == "left" else whisker
+        for food in "abcd":
+            if f"food_{food}" in index:
+                row[index[f"food_{food}"]] = -eat_brake
+        row[index["bias"]] = forward
+        rows[side] = row
+    for name, wl, wr in extra:
+        rows["left"][index[name]] += wl
+        rows["right"][index[name]] += wr
+    return rows["left"] + rows["right"] + [0.0, 0.0]
+
+
+def write(name, names, parameters, description):
+    genome = {
+        "format": 1,
+        "brain": {"kind": "mlp", "hidden": []},
+        "inputs": names,
+        "outputs": ["motor_left", "motor_right"],
+        "parameters": parameters,
+        "origin": {"description": f"hand-designed baseline for experiments/{name}.toml "
+                                  f"(scripts/make-design2-baselines.py): {description}"},
+    }
+    with open(f"genomes/{name}-baseline.json", "w") as f:
+        json.dump(genome, f, indent=2)
+        f.write("\n")
+
+
+def main():
+    n = layout("experiments/t-maze.toml")
+    # Drive up the stem, turn off walls (the left whisker a little stronger, so that a head-on
+    # wall turns it right rather than stalling), and near the junction steer hard towards the
+    # goal's odour (component 1): the smell difference across the body there is about 0.03.
+    write("t-maze", n,
+          vehicle(n, towards=[(1, 40)], whisker=0.5, forward=0.8,
+                  extra=[("whisker_left", 0.3, -0.3)]),
+          "forward drive, whisker turn-away, steer towards the goal's smell")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
