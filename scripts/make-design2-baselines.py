@@ -81,6 +81,26 @@ def main():
           vehicle(n, towards=[(1, 40)], whisker=0.5, forward=0.8,
                   extra=[("whisker_left", 0.3, -0.3)]),
           "forward drive, whisker turn-away, steer towards the goal's smell")
+    n = layout("experiments/predator-arena.toml")
+    # Forage by smell (component 1), flee the predator's smell (component 7) harder than the
+    # food pulls, turn off walls, brake while eating.
+    write("predator-arena", n,
+          vehicle(n, towards=[(1, 4.0)], away=[(7, 8.0)], whisker=1.5, forward=0.5,
+                  eat_brake=0.5),
+          "forage by smell, flee the predator's smell, whisker turn-away, brake while eating")
+    n = layout("experiments/air-raid.toml")
+    # Forage by smell (component 1); while an air predator's smell (component 7) is on, head for
+    # a shelter's smell (component 8) and stop inside a shelter (area input).
+    write("air-raid", n,
+          vehicle(n, towards=[(1, 4.0), (8, 6.0)], whisker=1.5, forward=0.5, eat_brake=0.5,
+                  extra=[("area_1", -0.4, -0.4), ("area_2", -0.4, -0.4)]),
+          "forage by smell, drift towards shelters' smell, whisker turn-away, slow in a shelter")
+    n = layout("experiments/locked-room.toml")
+    # Head for the trigger's scent (component 8) and for food (component 1, which leaks out
+    # of the doorway once the door is open); whisker turn-away; brake while eating.
+    write("locked-room", n,
+          vehicle(n, towards=[(8, 30.0), (7, 10.0), (1, 20.0)], whisker=1.0, forward=0.6, eat_brake=0.5),
+          "steer to the trigger's scent, then to the food's smell, whisker turn-away")
     return 0
 
 
