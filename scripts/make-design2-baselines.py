@@ -101,6 +101,15 @@ def main():
     write("locked-room", n,
           vehicle(n, towards=[(8, 30.0), (7, 10.0), (1, 20.0)], whisker=1.0, forward=0.6, eat_brake=0.5),
           "steer to the trigger's scent, then to the food's smell, whisker turn-away")
+    n = layout("experiments/landmark-arena.toml")
+    # Compass: hold the east landmark 45 degrees to the left (sin of its bearing = -0.707), so
+    # the creature heads south-east towards the patch; then forage by smell, whisker
+    # turn-away, brake while eating.
+    k = 1.0
+    write("landmark-arena", n,
+          vehicle(n, towards=[(1, 4.0)], whisker=1.5, forward=0.5, eat_brake=0.5,
+                  extra=[("landmark_1_sin", k, -k), ("bias", 0.707 * k, -0.707 * k)]),
+          "landmark compass towards the south-east patch, forage by smell, whisker turn-away")
     return 0
 
 
