@@ -55,6 +55,9 @@ pub enum Purpose {
     Baseline = 5,
     /// The `simulate` demo command's worlds.
     Demo = 6,
+    /// A distribution-based search (PGPE): the Gaussian noise that samples generation g
+    /// around the centre (the GA uses `Initialisation` and `Variation` instead).
+    Search = 7,
 }
 
 /// SplitMix64's output function: a bijective 64-bit mixer with full avalanche.

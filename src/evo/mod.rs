@@ -1,4 +1,4 @@
-//! Evolution: the generational genetic algorithm that evolves brain genomes. This part holds
+//! Evolution: the generational genetic algorithm (or PGPE, [`pgpe`]) that evolves brain genomes. This part holds
 //! the `[evolution]` table, the random generation 0, selection, variation (crossover and
 //! mutation) and fitness statistics; every random draw comes from a stream passed in, in a
 //! documented order, so a run reproduces bit for bit from its seed.
@@ -7,6 +7,7 @@ pub mod evaluate;
 pub mod fitness;
 pub mod init;
 pub mod lockstep;
+pub mod pgpe;
 pub mod select;
 pub mod spec;
 pub mod state;
@@ -14,6 +15,8 @@ pub mod stats;
 pub mod vary;
 
 pub use init::initial_population;
-pub use spec::{CrossoverSpec, EvolutionSpec, MutationSpec, SelectionSpec, SelfAdaptation};
+pub use spec::{
+    Algorithm, CrossoverSpec, EvolutionSpec, MutationSpec, PgpeSpec, SelectionSpec, SelfAdaptation,
+};
 pub use stats::FitnessStats;
 pub use vary::next_generation;

@@ -22,6 +22,10 @@
 //! self_adaptive = false      # tau and min_sigma only with self_adaptive = true
 //! ```
 //!
+//! `algorithm = "pgpe"` replaces the genetic algorithm by PGPE with ClipUp (see
+//! [`crate::evo::pgpe`] and [`PgpeSpec`]): then only `population` (even), `generations` and the
+//! `[evolution.pgpe]` table apply, and the GA's keys must be left out.
+//!
 //! Every key has a default. A key that only matters for a setting the table did not choose
 //! (`rank_pressure` with `kind = "tournament"`, `probability` with crossover `kind = "none"`,
 //! `tau` with `self_adaptive = false`) is an error rather than silently ignored, so that a
@@ -44,10 +48,15 @@ pub const MAX_GENERATIONS: u64 = 1_000_000_000;
 /// self-adapted step size, finite.
 pub const MAX_MAGNITUDE: f64 = 1.0e6;
 
-/// `[evolution]`: the generational genetic algorithm.
+/// `[evolution]`: the search algorithm (the generational genetic algorithm by default).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct EvolutionSpec {
+    /// `algorithm`: `"ga"` (the generational genetic algorithm, default) or `"pgpe"`
+    /// (Sehnke et al.'s PGPE with ClipUp, [`crate::evo::pgpe`]). Not written back when "ga",
+    /// so GA experiments keep their bytes and config hash.
+    #[serde(skip_serializing_if = "Algorithm::is_ga")]
+    pub algorithm: Algorithm,
     /// Individuals per generation (default: 64; 2 to 1 000 000).
     pub population: usize,
     /// How many generations a run evaluates, counting the random initial population as the
@@ -67,11 +76,34 @@ pub struct EvolutionSpec {
     /// How offspring are mutated (`[evolution.mutation]`; default: each gene with
     /// probability 0.1 gets Gaussian noise of standard deviation 0.1).
     pub mutation: MutationSpec,
+    /// PGPE's settings (`[evolution.pgpe]`; only with `algorithm = "pgpe"`, where a missing
+    /// table means every default of [`PgpeSpec`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pgpe: Option<PgpeSpec>,
+}
+
+/// The search algorithms `[evolution] algorithm` chooses from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Algorithm {
+    /// The generational genetic algorithm (elitism, selection, crossover, mutation).
+    #[default]
+    Ga,
+    /// PGPE with symmetric sampling, centred-rank fitness shaping and ClipUp.
+    Pgpe,
+}
+
+impl Algorithm {
+    /// True for the genetic algorithm (the default, not written back).
+    pub fn is_ga(&self) -> bool {
+        *self == Algorithm::Ga
+    }
 }
 
 impl Default for EvolutionSpec {
     fn default() -> Self {
         EvolutionSpec {
+            algorithm: Algorithm::Ga,
             population: 64,
             generations: 50,
             elitism: 2,
@@ -79,11 +111,29 @@ impl Default for EvolutionSpec {
             selection: SelectionSpec::default(),
             crossover: CrossoverSpec::default(),
             mutation: MutationSpec::default(),
+            pgpe: None,
         }
     }
 }
 
 impl EvolutionSpec {
+    /// PGPE's settings when `algorithm = "pgpe"` (the table's, or every default).
+    pub fn pgpe_settings(&self) -> Option<PgpeSpec> {
+        match self.algorithm {
+            Algorithm::Ga => None,
+            Algorithm::Pgpe => Some(self.pgpe.unwrap_or_default()),
+        }
+    }
+
+    /// Individuals evaluated per generation: the population, plus PGPE's centre, which is
+    /// evaluated as one more individual (the last) so that it can become the champion.
+    pub fn evaluated_per_generation(&self) -> usize {
+        match self.algorithm {
+            Algorithm::Ga => self.population,
+            Algorithm::Pgpe => self.population + 1,
+        }
+    }
+
     /// Checks every value; keys start with `evolution.`.
     pub fn validate(&self) -> Valid {
         count_within(
@@ -112,7 +162,133 @@ impl EvolutionSpec {
         magnitude("evolution.init_range", self.init_range)?;
         self.selection.validate(self.population)?;
         self.crossover.validate()?;
-        self.mutation.validate()
+        self.mutation.validate()?;
+        match self.algorithm {
+            Algorithm::Ga => {
+                if self.pgpe.is_some() {
+                    return Err(InvalidValue::new(
+                        "evolution.pgpe",
+                        "is only used with algorithm = \"pgpe\", but this table has algorithm = \"ga\"; remove it or set algorithm = \"pgpe\"",
+                    ));
+                }
+                Ok(())
+            }
+            Algorithm::Pgpe => {
+                if self.population % 2 != 0 {
+                    return Err(InvalidValue::new(
+                        "evolution.population",
+                        format!(
+                            "pgpe samples in mirrored pairs, so the population must be even, got {}",
+                            self.population
+                        ),
+                    ));
+                }
+                // The GA's keys would be silently ignored: refuse them (a key written with
+                // its default value cannot be told apart and is accepted).
+                let ga = EvolutionSpec::default();
+                for (differs, key) in [
+                    (self.elitism != ga.elitism, "elitism"),
+                    (self.init_range != ga.init_range, "init_range"),
+                    (self.selection != ga.selection, "selection"),
+                    (self.crossover != ga.crossover, "crossover"),
+                    (self.mutation != ga.mutation, "mutation"),
+                ] {
+                    if differs {
+                        return Err(InvalidValue::new(
+                            format!("evolution.{key}"),
+                            "is only used with algorithm = \"ga\", but this table has algorithm = \"pgpe\"; remove it",
+                        ));
+                    }
+                }
+                self.pgpe_settings().unwrap_or_default().validate()
+            }
+        }
+    }
+}
+
+/// `[evolution.pgpe]`: PGPE (Sehnke et al. 2010) with ClipUp (Toklu et al. 2020), as
+/// EvoJAX's `PGPE(optimizer = "clipup")`; the defaults are EvoJAX's.
+///
+/// ```toml
+/// [evolution]
+/// algorithm = "pgpe"
+/// population = 64                # even: 32 mirrored pairs, plus the centre evaluated too
+///
+/// [evolution.pgpe]
+/// center_learning_rate = 0.15    # ClipUp step size
+/// max_speed = 0.15               # ClipUp's largest centre step per generation (L2 norm)
+/// momentum = 0.9                 # ClipUp momentum
+/// stdev_init = 0.1               # every parameter's initial standard deviation
+/// stdev_learning_rate = 0.1
+/// stdev_max_change = 0.2         # relative change of a standard deviation per generation
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PgpeSpec {
+    /// `center_learning_rate`: ClipUp's step size α, the length (L2, parameter units) of the
+    /// normalised gradient step added to the velocity each generation (default: 0.15; greater
+    /// than 0, at most 10^6).
+    pub center_learning_rate: f64,
+    /// `max_speed`: ClipUp's largest velocity, i.e. the largest move of the centre per
+    /// generation in L2 norm (default: 0.15, EvoJAX's; the ClipUp paper suggests
+    /// 2 × center_learning_rate; greater than 0, at most 10^6).
+    pub max_speed: f64,
+    /// `momentum`: ClipUp's momentum μ, the share of the velocity kept from one generation to
+    /// the next (default: 0.9; 0 to below 1).
+    pub momentum: f64,
+    /// `stdev_init`: the initial standard deviation of every parameter, in parameter units
+    /// (default: 0.1; greater than 0, at most 10^6).
+    pub stdev_init: f64,
+    /// `stdev_learning_rate`: the learning rate of the standard deviations' plain gradient
+    /// step (default: 0.1; 0 to 10^6; 0 keeps them fixed).
+    pub stdev_learning_rate: f64,
+    /// `stdev_max_change`: a standard deviation changes by at most this share of itself per
+    /// generation (default: 0.2; 0 to below 1).
+    pub stdev_max_change: f64,
+}
+
+impl Default for PgpeSpec {
+    fn default() -> Self {
+        PgpeSpec {
+            center_learning_rate: 0.15,
+            max_speed: 0.15,
+            momentum: 0.9,
+            stdev_init: 0.1,
+            stdev_learning_rate: 0.1,
+            stdev_max_change: 0.2,
+        }
+    }
+}
+
+impl PgpeSpec {
+    /// Checks the table; keys start with `evolution.pgpe.`.
+    pub fn validate(&self) -> Valid {
+        for (key, value) in [
+            ("center_learning_rate", self.center_learning_rate),
+            ("max_speed", self.max_speed),
+            ("stdev_init", self.stdev_init),
+        ] {
+            let key = format!("evolution.pgpe.{key}");
+            magnitude(&key, value)?;
+            if value == 0.0 {
+                return Err(InvalidValue::new(key, "must be greater than 0, got 0"));
+            }
+        }
+        magnitude(
+            "evolution.pgpe.stdev_learning_rate",
+            self.stdev_learning_rate,
+        )?;
+        for (key, value) in [
+            ("momentum", self.momentum),
+            ("stdev_max_change", self.stdev_max_change),
+        ] {
+            let key = format!("evolution.pgpe.{key}");
+            within(&key, value, 0.0, 1.0)?;
+            if value == 1.0 {
+                return Err(InvalidValue::new(key, "must be below 1, got 1"));
+            }
+        }
+        Ok(())
     }
 }
 

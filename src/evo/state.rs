@@ -1,11 +1,13 @@
 //! The state of an evolution between generations: the last evaluated generation, the best
-//! individual ever seen, and how to make the next generation from them. Pure: no files, no
-//! clocks; the run module saves and restores this state.
+//! individual ever seen, the search distribution (PGPE only, [`SearchState`]), and how to make
+//! the next generation from them. Pure: no files, no clocks; the run module saves and restores
+//! this state.
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
 use crate::evo::evaluate::{evaluate_population, Evaluation, EvaluationError};
 use crate::evo::init::initial_population;
+use crate::evo::pgpe::{self, PgpeState};
 use crate::evo::stats::FitnessStats;
 use crate::evo::vary::next_generation;
 use crate::experiment::Experiment;
@@ -113,6 +115,75 @@ impl EvaluatedGeneration {
     }
 }
 
+/// What an algorithm carries from one generation to the next besides the evaluated
+/// generation itself: nothing for the GA (its state is its population), the search
+/// distribution that sampled the generation for PGPE. Saved in checkpoints.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SearchState {
+    /// PGPE's centre, standard deviations and ClipUp velocity.
+    Pgpe(PgpeState),
+}
+
+/// Generation 0 of the experiment's algorithm and the search state that sampled it: the
+/// GA's random population ([`first_population`]), or PGPE's samples around its initial
+/// centre followed by the centre.
+pub fn first_generation(
+    experiment: &Experiment,
+    topology: &Topology,
+) -> (Vec<Genome>, Option<SearchState>) {
+    match experiment.evolution.pgpe_settings() {
+        None => (first_population(experiment, topology), None),
+        Some(spec) => {
+            let state = PgpeState::initial(&spec, topology.parameter_count());
+            let genomes = pgpe::sample(
+                experiment.seed(),
+                Generation(0),
+                &state,
+                experiment.evolution.population,
+            );
+            (genomes, Some(SearchState::Pgpe(state)))
+        }
+    }
+}
+
+/// Generation g + 1 of the experiment's algorithm from evaluated generation g and the search
+/// state that sampled it: the GA's [`offspring`], or PGPE's update (on the samples' fitness,
+/// the centre's left out) and new samples. A PGPE experiment without a state (a run switched
+/// from the GA with `--allow-config-change`) starts its centre at generation g's best
+/// individual.
+pub fn next_generation_of(
+    experiment: &Experiment,
+    parents: &EvaluatedGeneration,
+    search: Option<&SearchState>,
+) -> (Vec<Genome>, Option<SearchState>) {
+    let Some(spec) = experiment.evolution.pgpe_settings() else {
+        return (offspring(experiment, parents), None);
+    };
+    let population = experiment.evolution.population;
+    let fitness = parents.selection_fitness();
+    let next = match search {
+        Some(SearchState::Pgpe(state)) if fitness.len() == population + 1 => pgpe::step(
+            experiment.seed(),
+            &spec,
+            state,
+            Generation(parents.generation),
+            &fitness[..population],
+        ),
+        _ => {
+            let best = parents.summary().best_individual.unwrap_or(0);
+            PgpeState::centred_on(&spec, &parents.individuals[best].genome.parameters)
+        }
+    };
+    let genomes = pgpe::sample(
+        experiment.seed(),
+        Generation(parents.generation + 1),
+        &next,
+        population,
+    );
+    (genomes, Some(SearchState::Pgpe(next)))
+}
+
 /// Generation 0: drawn from the seed's initialisation stream.
 pub fn first_population(experiment: &Experiment, topology: &Topology) -> Vec<Genome> {
     let mut rng = stream(
@@ -163,6 +234,33 @@ pub fn evaluate(
             .zip(evaluations)
             .map(|(genome, evaluation)| Individual { genome, evaluation })
             .collect(),
+    })
+}
+
+/// The new champion under the experiment's algorithm: for the GA any individual
+/// ([`improved_champion`]); for PGPE only the centre, the last individual, since the centre is
+/// the solution the search converges to and a sample is the centre plus noise.
+pub fn improved_champion_for(
+    experiment: &Experiment,
+    previous: Option<&Champion>,
+    generation: &EvaluatedGeneration,
+    summary: &GenerationSummary,
+) -> Option<Champion> {
+    if experiment.evolution.pgpe_settings().is_none() {
+        return improved_champion(previous, generation, summary);
+    }
+    let c = generation.individuals.len().checked_sub(1)?;
+    let centre = &generation.individuals[c];
+    let fitness = centre.evaluation.fitness?;
+    if previous.is_some_and(|p| fitness <= p.fitness) {
+        return None;
+    }
+    Some(Champion {
+        genome: centre.genome.clone(),
+        fitness,
+        metabolism: centre.evaluation.metabolism,
+        generation: generation.generation,
+        individual: c as u64,
     })
 }
 

@@ -145,8 +145,9 @@ impl Experiment {
         self.evaluation.validate()?;
         self.fitness.validate()?;
         self.output.validate()?;
+        // PGPE evaluates its centre as one more individual: groups must divide that count.
         self.evaluation
-            .validate_against_population(self.evolution.population)?;
+            .validate_against_population(self.evolution.evaluated_per_generation())?;
         let parameters = self.topology().parameter_count() as u64;
         let total = parameters.saturating_mul(self.evolution.population as u64);
         if total > MAX_GENERATION_PARAMETERS {

@@ -6,8 +6,8 @@
 use crate::brain::spec::Topology;
 use crate::evo::evaluate::EvaluationError;
 use crate::evo::state::{
-    evaluate, first_population, improved_champion, offspring, Champion, EvaluatedGeneration,
-    GenerationSummary,
+    evaluate, first_generation, improved_champion_for, next_generation_of, Champion,
+    EvaluatedGeneration, GenerationSummary, SearchState,
 };
 use crate::experiment::{Experiment, ExperimentError};
 use crate::record::atomic::{remove_stale_temp_files, write_atomic};
@@ -41,6 +41,10 @@ pub struct CheckpointPayload {
     pub best_ever: Option<Champion>,
     /// One fitness row per completed generation.
     pub history: Vec<FitnessRow>,
+    /// The search distribution that sampled `last` (PGPE only; absent for the GA, so GA
+    /// checkpoints keep their bytes).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub search: Option<SearchState>,
 }
 
 /// Why a run could not start, continue or finish.
@@ -235,7 +239,7 @@ pub fn start(
         .map_err(io_err(&experiment_path))?;
     let csv = FitnessCsv::create(&dir.join(FITNESS_FILE))?;
     let topology = experiment.topology();
-    let population = first_population(&experiment, &topology);
+    let (population, search) = first_generation(&experiment, &topology);
     drive(
         Loop {
             experiment,
@@ -245,6 +249,7 @@ pub fn start(
             history: Vec::new(),
             best_ever: None,
             next_generation: 0,
+            search,
         },
         population,
         options,
@@ -333,6 +338,7 @@ pub fn resume(
         best_ever: payload.best_ever,
         next_generation: last_generation + 1,
         experiment,
+        search: payload.search.clone(),
     };
     if state.next_generation >= state.experiment.evolution.generations {
         // Nothing left to evaluate: make sure the final files match the finished run.
@@ -345,7 +351,9 @@ pub fn resume(
             checkpoint: Some(checkpoint),
         });
     }
-    let population = offspring(&state.experiment, &payload.last);
+    let (population, search) =
+        next_generation_of(&state.experiment, &payload.last, payload.search.as_ref());
+    state.search = search;
     drive(state, population, options, progress)
 }
 
@@ -415,14 +423,31 @@ fn check_payload_shape(path: &Path, payload: &CheckpointPayload) -> Result<(), R
     if let Err(e) = payload.experiment.validate() {
         return refuse(format!("its experiment is not valid: {e}"));
     }
-    let population = payload.experiment.evolution.population;
+    let population = payload.experiment.evolution.evaluated_per_generation();
     let individuals = payload.last.individuals.len();
     if individuals != population {
         return refuse(format!(
-            "the last generation holds {individuals} individuals, its experiment's population is {population}"
+            "the last generation holds {individuals} individuals, its experiment evaluates {population} per generation"
         ));
     }
     let parameters = payload.experiment.topology().parameter_count();
+    match (
+        &payload.search,
+        payload.experiment.evolution.pgpe_settings(),
+    ) {
+        (None, None) => {}
+        (Some(SearchState::Pgpe(state)), Some(_)) => {
+            if let Some(problem) = state.problem(parameters) {
+                return refuse(problem);
+            }
+        }
+        (Some(_), None) => {
+            return refuse("it holds a pgpe state, but its experiment uses the ga".into())
+        }
+        (None, Some(_)) => {
+            return refuse("its experiment uses pgpe, but it holds no pgpe state".into())
+        }
+    }
     let genomes = payload
         .last
         .individuals
@@ -489,11 +514,13 @@ struct Loop {
     history: Vec<FitnessRow>,
     best_ever: Option<Champion>,
     next_generation: u64,
+    /// The search distribution that sampled the generation being evaluated (PGPE).
+    search: Option<SearchState>,
 }
 
 impl Loop {
     fn row(&self, generation: &EvaluatedGeneration, summary: &GenerationSummary) -> FitnessRow {
-        let population = self.experiment.evolution.population as u64;
+        let population = self.experiment.evolution.evaluated_per_generation() as u64;
         FitnessRow {
             generation: generation.generation,
             evaluations: population * (generation.generation + 1),
@@ -544,6 +571,7 @@ impl Loop {
             last: last.clone(),
             best_ever: self.best_ever.clone(),
             history: self.history.clone(),
+            search: self.search.clone(),
         };
         Ok(checkpoint::write_checkpoint(
             &self.dir.join(CHECKPOINT_DIR),
@@ -606,7 +634,12 @@ fn drive(
         let evaluated =
             pool.install(|| evaluate(&state.experiment, &state.topology, generation, population))?;
         let summary = evaluated.summary();
-        let improved = improved_champion(state.best_ever.as_ref(), &evaluated, &summary);
+        let improved = improved_champion_for(
+            &state.experiment,
+            state.best_ever.as_ref(),
+            &evaluated,
+            &summary,
+        );
         if let Some(champion) = improved {
             state.best_ever = Some(champion);
             state
@@ -648,7 +681,10 @@ fn drive(
                 });
             }
         }
-        population = pool.install(|| offspring(&state.experiment, &evaluated));
+        let (next, search) = pool
+            .install(|| next_generation_of(&state.experiment, &evaluated, state.search.as_ref()));
+        population = next;
+        state.search = search;
         generation += 1;
     }
 }

@@ -1,0 +1,345 @@
+//! PGPE with ClipUp: `[evolution] algorithm = "pgpe"`, a distribution-based alternative to the
+//! genetic algorithm.
+//!
+//! PGPE, policy gradients with parameter-based exploration: F. Sehnke, C. Osendorfer,
+//! T. Rückstieß, A. Graves, J. Peters, J. Schmidhuber, "Parameter-exploring policy gradients",
+//! Neural Networks 23(4), 551–559, 2010 (symmetric sampling, §4.1; the standard-deviation
+//! update, eq. 9). ClipUp: N. E. Toklu, P. Liskowski, R. K. Srivastava, "ClipUp: a simple and
+//! powerful optimizer for distribution-based policy evolution", PPSN XVI, 2020. The arithmetic
+//! follows EvoJAX's `PGPE` with `optimizer = "clipup"` (`evojax/algo/pgpe.py`), and the defaults
+//! are EvoJAX's (see [`PgpeSpec`]).
+//!
+//! Why this algorithm here: the GA's failure in the vehicle space (docs/search.md) is noisy
+//! ranking and small undirected steps. PGPE estimates an ascent direction from every
+//! evaluation of a generation, not only from the tournament winners; a mirrored pair c ± ε
+//! meets the same trial worlds (common random numbers), so the difference of its two scores
+//! cancels most of the world's luck; centred ranks make the step independent of the fitness
+//! scale and of outliers; ClipUp bounds the centre's move in parameter units and its momentum
+//! averages the noisy directions over generations; and every parameter's standard deviation
+//! adapts. It is EvoJAX's and evotorch's PGPE, so results can be compared with theirs.
+//!
+//! # One generation
+//!
+//! The state θ_g = (centre c, standard deviations σ, velocity v) samples generation g: with
+//! population N (even) and K = N/2 pairs, scaled noises ε_k = σ ⊙ z_k (z_k standard normal),
+//! individuals 2k = c + ε_k and 2k + 1 = c − ε_k, and individual N = c itself (evaluated only
+//! so that the centre can be the champion; its fitness does not enter the update). After the
+//! evaluation, with fitness f_0 .. f_{N−1} of the samples:
+//!
+//! 1. centred ranks u_i = r_i / (N − 1) − 0.5, r_i the rank of f_i from 0 (worst) to N − 1
+//!    (best); tied values get the mean of their ranks (so a generation that scores the same
+//!    everywhere moves nothing), and a non-finite brain ranks with −∞;
+//! 2. for each pair d_k = u_{2k} − u_{2k+1}, a_k = (u_{2k} + u_{2k+1}) / 2, and the baseline
+//!    b = mean of all u;
+//! 3. g_c = (1/K) Σ_k ε_k · d_k · 0.5, g_σ = (1/K) Σ_k (a_k − b) · (ε_k² − σ²) / σ
+//!    (per parameter, summed over k in increasing order);
+//! 4. ClipUp: ĝ = g_c / ‖g_c‖ (0 when ‖g_c‖ is 0), v ← μ v + α ĝ, and if ‖v‖ > v_max then
+//!    v ← v · v_max / ‖v‖; c ← c + v (EvoJAX stores −v and subtracts it: the same bits);
+//! 5. σ ← clamp(σ + η_σ g_σ, σ − κσ, σ + κσ), then kept within [10^-12, 10^6] so that it stays
+//!    positive and finite for any run length.
+//!
+//! The initial state is EvoJAX's: c = 0, σ = `stdev_init` everywhere, v = 0.
+//!
+//! # Draw order (part of the reproducibility contract)
+//!
+//! Generation g's noise comes from `stream(seed, Purpose::Search, g, 0, 0)`: for k = 0 .. K − 1
+//! and each parameter j in order, one `gaussian()` z and ε_kj = σ_j · z. The update of step 4
+//! draws nothing: it regenerates ε from the same stream, so a checkpoint needs only θ_g and the
+//! evaluated generation, and a resumed run continues with the same bits.
+
+use crate::brain::genome::Genome;
+use crate::evo::spec::{PgpeSpec, MAX_MAGNITUDE};
+use crate::seed::{gaussian, stream, Generation, IndividualId, Purpose, Rng, Seed, TrialIndex};
+use serde::{Deserialize, Serialize};
+
+/// The smallest standard deviation: far below any useful step, it only keeps σ positive (the
+/// update divides by it) in runs long enough to shrink it geometrically towards 0.
+pub const MIN_STDEV: f64 = 1.0e-12;
+
+/// The search distribution that samples one generation: θ_g of the module documentation.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PgpeState {
+    /// The centre c, one value per parameter: the current solution (the champion candidate).
+    pub centre: Vec<f64>,
+    /// The standard deviations σ, one per parameter, all positive.
+    pub stdev: Vec<f64>,
+    /// ClipUp's velocity v: the last move of the centre.
+    pub velocity: Vec<f64>,
+}
+
+impl PgpeState {
+    /// The initial state for `parameters` parameters: c = 0, σ = `stdev_init`, v = 0.
+    pub fn initial(spec: &PgpeSpec, parameters: usize) -> PgpeState {
+        PgpeState {
+            centre: vec![0.0; parameters],
+            stdev: vec![spec.stdev_init; parameters],
+            velocity: vec![0.0; parameters],
+        }
+    }
+
+    /// A state centred on `centre` (e.g. when a run switches from the GA to PGPE: its best
+    /// individual), with σ = `stdev_init` and v = 0.
+    pub fn centred_on(spec: &PgpeSpec, centre: &[f64]) -> PgpeState {
+        PgpeState {
+            centre: centre.to_vec(),
+            stdev: vec![spec.stdev_init; centre.len()],
+            velocity: vec![0.0; centre.len()],
+        }
+    }
+
+    /// Why this state cannot sample genomes of `parameters` parameters (wrong lengths, a
+    /// non-finite value, a non-positive standard deviation), or `None` if it can.
+    pub fn problem(&self, parameters: usize) -> Option<String> {
+        for (name, values) in [
+            ("centre", &self.centre),
+            ("stdev", &self.stdev),
+            ("velocity", &self.velocity),
+        ] {
+            if values.len() != parameters {
+                return Some(format!(
+                    "the pgpe {name} has {} values, the experiment's brain has {parameters} parameters",
+                    values.len()
+                ));
+            }
+            if values.iter().any(|x| !x.is_finite()) {
+                return Some(format!("the pgpe {name} holds a non-finite value"));
+            }
+        }
+        if self.stdev.iter().any(|&s| s <= 0.0) {
+            return Some("the pgpe stdev holds a value that is not positive".to_string());
+        }
+        None
+    }
+}
+
+/// The stream of generation `generation`'s noise.
+pub fn noise_stream(seed: Seed, generation: Generation) -> Rng {
+    stream(
+        seed,
+        Purpose::Search,
+        generation,
+        IndividualId(0),
+        TrialIndex(0),
+    )
+}
+
+/// The K = `population / 2` scaled noises ε_k = σ ⊙ z_k of generation `generation`, drawn as
+/// the module documentation says.
+pub fn noises(
+    seed: Seed,
+    generation: Generation,
+    state: &PgpeState,
+    population: usize,
+) -> Vec<Vec<f64>> {
+    let mut rng = noise_stream(seed, generation);
+    (0..population / 2)
+        .map(|_| {
+            state
+                .stdev
+                .iter()
+                .map(|&s| s * gaussian(&mut rng))
+                .collect()
+        })
+        .collect()
+}
+
+/// The individuals of a generation sampled with `noises`: c + ε_k and c − ε_k for each k in
+/// order, then the centre itself (N + 1 genomes, no step sizes).
+pub fn individuals(state: &PgpeState, noises: &[Vec<f64>]) -> Vec<Genome> {
+    let genome = |parameters: Vec<f64>| Genome {
+        parameters,
+        step_size: None,
+    };
+    let mut out = Vec::with_capacity(2 * noises.len() + 1);
+    for e in noises {
+        out.push(genome(
+            state.centre.iter().zip(e).map(|(c, e)| c + e).collect(),
+        ));
+        out.push(genome(
+            state.centre.iter().zip(e).map(|(c, e)| c - e).collect(),
+        ));
+    }
+    out.push(genome(state.centre.clone()));
+    out
+}
+
+/// Generation `generation` sampled from `state`: `population` samples, then the centre.
+pub fn sample(
+    seed: Seed,
+    generation: Generation,
+    state: &PgpeState,
+    population: usize,
+) -> Vec<Genome> {
+    individuals(state, &noises(seed, generation, state, population))
+}
+
+/// The value a fitness is ranked by: NaN with −∞, −0.0 equal to +0.0.
+fn key(fitness: f64) -> f64 {
+    if fitness.is_nan() {
+        f64::NEG_INFINITY
+    } else {
+        fitness + 0.0
+    }
+}
+
+/// Centred ranks u_i = r_i / (n − 1) − 0.5 (step 1 of the module documentation): r_i from 0
+/// (worst) to n − 1 (best), tied values sharing the mean of their ranks. A single value gets 0.
+pub fn centred_ranks(fitness: &[f64]) -> Vec<f64> {
+    let n = fitness.len();
+    let keys: Vec<f64> = fitness.iter().map(|&f| key(f)).collect();
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_unstable_by(|&a, &b| keys[a].total_cmp(&keys[b]).then(a.cmp(&b)));
+    let mut ranks = vec![0.0; n];
+    let mut start = 0;
+    while start < n {
+        let mut end = start + 1;
+        while end < n && keys[order[end]] == keys[order[start]] {
+            end += 1;
+        }
+        // Positions start .. end − 1 tie: each gets their mean.
+        let rank = (start + end - 1) as f64 / 2.0;
+        for &i in &order[start..end] {
+            ranks[i] = rank;
+        }
+        start = end;
+    }
+    if n < 2 {
+        return vec![0.0; n];
+    }
+    let top = (n - 1) as f64;
+    ranks.iter().map(|r| r / top - 0.5).collect()
+}
+
+/// The centre's and the standard deviations' gradient estimates g_c and g_σ (step 3) from
+/// the samples' centred ranks `u` (2K values, pair k at 2k and 2k + 1) and the noises.
+pub fn gradients(u: &[f64], noises: &[Vec<f64>], stdev: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let pairs = noises.len();
+    let n = stdev.len();
+    let mut grad_centre = vec![0.0; n];
+    let mut grad_stdev = vec![0.0; n];
+    if pairs == 0 {
+        return (grad_centre, grad_stdev);
+    }
+    let mut sum = 0.0;
+    for &x in &u[..2 * pairs] {
+        sum += x;
+    }
+    let baseline = sum / (2 * pairs) as f64;
+    for (k, e) in noises.iter().enumerate() {
+        let (plus, minus) = (u[2 * k], u[2 * k + 1]);
+        let difference = plus - minus;
+        let average = (plus + minus) / 2.0;
+        for j in 0..n {
+            grad_centre[j] += e[j] * difference * 0.5;
+            grad_stdev[j] += (average - baseline) * (e[j] * e[j] - stdev[j] * stdev[j]) / stdev[j];
+        }
+    }
+    let k = pairs as f64;
+    for j in 0..n {
+        grad_centre[j] /= k;
+        grad_stdev[j] /= k;
+    }
+    (grad_centre, grad_stdev)
+}
+
+/// The L2 norm, summed in index order.
+fn norm(v: &[f64]) -> f64 {
+    let mut sum = 0.0;
+    for x in v {
+        sum += x * x;
+    }
+    sum.sqrt()
+}
+
+/// θ_{g+1} from θ_g, the noises that sampled generation g and the samples' fitness
+/// (`fitness[i]` for individual i < N; the centre's is not passed), steps 1–5.
+///
+/// # Panics
+/// If `fitness` does not hold two values per noise.
+pub fn update(
+    spec: &PgpeSpec,
+    state: &PgpeState,
+    noises: &[Vec<f64>],
+    fitness: &[f64],
+) -> PgpeState {
+    assert_eq!(
+        fitness.len(),
+        2 * noises.len(),
+        "pgpe needs the fitness of both samples of every pair"
+    );
+    let u = centred_ranks(fitness);
+    let (grad_centre, grad_stdev) = gradients(&u, noises, &state.stdev);
+    let length = norm(&grad_centre);
+    let mut velocity: Vec<f64> = state
+        .velocity
+        .iter()
+        .zip(&grad_centre)
+        .map(|(&v, &g)| {
+            let direction = if length > 0.0 { g / length } else { 0.0 };
+            spec.momentum * v + direction * spec.center_learning_rate
+        })
+        .collect();
+    let speed = norm(&velocity);
+    if speed > spec.max_speed {
+        for v in &mut velocity {
+            *v = *v * spec.max_speed / speed;
+        }
+    }
+    let centre = state
+        .centre
+        .iter()
+        .zip(&velocity)
+        .map(|(c, v)| c + v)
+        .collect();
+    let stdev = state
+        .stdev
+        .iter()
+        .zip(&grad_stdev)
+        .map(|(&s, &g)| {
+            let allowed = s.abs() * spec.stdev_max_change;
+            (s + spec.stdev_learning_rate * g)
+                .max(s - allowed)
+                .min(s + allowed)
+                .min(MAX_MAGNITUDE)
+                .max(MIN_STDEV)
+        })
+        .collect();
+    PgpeState {
+        centre,
+        stdev,
+        velocity,
+    }
+}
+
+/// θ_{g+1}: [`update`] with generation `generation`'s noises regenerated from the seed.
+pub fn step(
+    seed: Seed,
+    spec: &PgpeSpec,
+    state: &PgpeState,
+    generation: Generation,
+    fitness: &[f64],
+) -> PgpeState {
+    let noises = noises(seed, generation, state, fitness.len());
+    update(spec, state, &noises, fitness)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn centred_ranks_share_ties_and_span_minus_half_to_half() {
+        assert_eq!(
+            centred_ranks(&[3.0, 1.0, 2.0, 0.0, 5.0]),
+            [0.25, -0.25, 0.0, -0.5, 0.5]
+        );
+        // Ties share the mean rank; all equal means no preference at all.
+        assert_eq!(centred_ranks(&[1.0, 1.0, 0.0, 2.0]), [0.0, 0.0, -0.5, 0.5]);
+        assert_eq!(centred_ranks(&[4.0; 6]), [0.0; 6]);
+        assert_eq!(
+            centred_ranks(&[f64::NAN, -0.0, 0.0, 1.0]),
+            [-0.5, 0.0, 0.0, 0.5]
+        );
+        assert_eq!(centred_ranks(&[7.0]), [0.0]);
+    }
+}
