@@ -74,12 +74,11 @@ def write(name, names, parameters, description):
 
 def main():
     n = layout("experiments/t-maze.toml")
-    # Drive up the stem, turn off walls (the left whisker a little stronger, so that a head-on
-    # wall turns it right rather than stalling), and near the junction steer hard towards the
-    # goal's odour (component 1): the smell difference across the body there is about 0.03.
+    # Drive up the stem, turn off walls, and steer gently towards the goal's odour (component
+    # 1): at the junction it appears first in the receptor on the goal's side (the other one
+    # is still behind the corner), so the creature turns into the rewarded arm.
     write("t-maze", n,
-          vehicle(n, towards=[(1, 40)], whisker=0.5, forward=0.8,
-                  extra=[("whisker_left", 0.3, -0.3)]),
+          vehicle(n, towards=[(1, 2.0)], whisker=0.3, forward=0.8),
           "forward drive, whisker turn-away, steer towards the goal's smell")
     n = layout("experiments/predator-arena.toml")
     # Forage by smell (component 1), flee the predator's smell (component 7) harder than the
