@@ -95,20 +95,11 @@ def main():
                   extra=[("area_1", -0.4, -0.4), ("area_2", -0.4, -0.4)]),
           "forage by smell, drift towards shelters' smell, whisker turn-away, slow in a shelter")
     n = layout("experiments/locked-room.toml")
-    # Head for the trigger's scent (component 8) and for food (component 1, which leaks out
-    # of the doorway once the door is open); whisker turn-away; brake while eating.
+    # Follow the beacons' odour (component 8: the trigger, then, once it is eaten and silent,
+    # the door's) and the food's smell (component 1) gently, whisker turn-away.
     write("locked-room", n,
-          vehicle(n, towards=[(8, 30.0), (7, 10.0), (1, 20.0)], whisker=1.0, forward=0.6, eat_brake=0.5),
-          "steer to the trigger's scent, then to the food's smell, whisker turn-away")
-    n = layout("experiments/landmark-arena.toml")
-    # Compass: hold the east landmark 45 degrees to the left (sin of its bearing = -0.707), so
-    # the creature heads south-east towards the patch; then forage by smell, whisker
-    # turn-away, brake while eating.
-    k = 1.0
-    write("landmark-arena", n,
-          vehicle(n, towards=[(1, 4.0)], whisker=1.5, forward=0.5, eat_brake=0.5,
-                  extra=[("landmark_1_sin", k, -k), ("bias", 0.707 * k, -0.707 * k)]),
-          "landmark compass towards the south-east patch, forage by smell, whisker turn-away")
+          vehicle(n, towards=[(8, 3.0), (1, 3.0)], whisker=0.5, forward=0.8),
+          "follow the trigger's then the door's scent, then the food's smell, whisker turn-away")
     return 0
 
 
