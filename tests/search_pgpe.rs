@@ -81,7 +81,11 @@ fn pgpe_update_matches_the_hand_computed_step() {
     // clipped to 0.15 ĝ, so c'' = 0.25 ĝ.
     let again = pgpe::update(&spec(), &next, &noises, &fitness);
     close(&again.velocity, &[0.15 / s5, 0.3 / s5], "clipped velocity");
-    close(&again.centre, &[0.25 / s5, 0.5 / s5], "centre after the clip");
+    close(
+        &again.centre,
+        &[0.25 / s5, 0.5 / s5],
+        "centre after the clip",
+    );
 }
 
 #[test]
@@ -147,7 +151,12 @@ fn pgpe_first_samples_are_pinned() {
     // The next generation's centre, from a quadratic fitness, is pinned too.
     let fitness: Vec<f64> = genomes[..4]
         .iter()
-        .map(|g| -g.parameters.iter().map(|x| (x - 1.0) * (x - 1.0)).sum::<f64>())
+        .map(|g| {
+            -g.parameters
+                .iter()
+                .map(|x| (x - 1.0) * (x - 1.0))
+                .sum::<f64>()
+        })
         .collect();
     let next = pgpe::step(Seed(5), &pgpe_spec, &state, Generation(0), &fitness);
     // By hand: the scores rank pair members (s0, s1, s2, s3) as 2, 0, 3, 1, so
@@ -214,9 +223,21 @@ fn pgpe_table_is_validated() {
         "evolution.pgpe",
     );
     bad("stdev_init = 0.5", "stdev_init = 0.0", "greater than 0");
-    bad("stdev_init = 0.5", "stdev_init = 0.5\nmomentum = 1.0", "below 1");
-    bad("stdev_init = 0.5", "stdev_init = 0.5\nlearning_rate = 1.0", "unknown field");
-    bad("algorithm = \"pgpe\"", "algorithm = \"cma\"", "unknown variant");
+    bad(
+        "stdev_init = 0.5",
+        "stdev_init = 0.5\nmomentum = 1.0",
+        "below 1",
+    );
+    bad(
+        "stdev_init = 0.5",
+        "stdev_init = 0.5\nlearning_rate = 1.0",
+        "unknown field",
+    );
+    bad(
+        "algorithm = \"pgpe\"",
+        "algorithm = \"cma\"",
+        "unknown variant",
+    );
     // The GA's tiny experiment writes no `algorithm` key (its bytes and hash are 0.3.5's).
     let ga = Experiment::load(&fixture("tiny.toml")).unwrap();
     assert!(!ga.to_toml().contains("algorithm"));
@@ -239,7 +260,10 @@ fn outputs(dir: &Path) -> Vec<(String, Vec<u8>)> {
         ("best.json".into(), read(&dir.join("best.json"))),
         ("experiment.toml".into(), read(&dir.join("experiment.toml"))),
         (
-            format!("checkpoints/{}", last.file_name().unwrap().to_string_lossy()),
+            format!(
+                "checkpoints/{}",
+                last.file_name().unwrap().to_string_lossy()
+            ),
             read(&last),
         ),
     ]
@@ -280,7 +304,10 @@ fn pgpe_run_gives_same_bytes_with_one_or_two_threads() {
     assert!(rows[7].starts_with("7,104,"), "{}", rows[7]);
     // The checkpoint carries the distribution; best.json is a centre (individual 12).
     let cp = String::from_utf8(read(checkpoints(&a).last().unwrap())).unwrap();
-    assert!(cp.contains("\"search\":{\"pgpe\":{\"centre\":["), "no pgpe state");
+    assert!(
+        cp.contains("\"search\":{\"pgpe\":{\"centre\":["),
+        "no pgpe state"
+    );
     let best = String::from_utf8(read(&a.join("best.json"))).unwrap();
     assert!(best.contains("\"individual\": 12"), "{best}");
 }
@@ -335,5 +362,8 @@ fn ga_checkpoint_holds_no_search_state() {
         "2",
     ]);
     let cp = String::from_utf8(read(checkpoints(&ga).last().unwrap())).unwrap();
-    assert!(!cp.contains("\"search\""), "a GA checkpoint with a search state");
+    assert!(
+        !cp.contains("\"search\""),
+        "a GA checkpoint with a search state"
+    );
 }

@@ -297,11 +297,10 @@ pub fn update(
         .zip(&grad_stdev)
         .map(|(&s, &g)| {
             let allowed = s.abs() * spec.stdev_max_change;
+            // s is positive and finite, so both ranges are ordered.
             (s + spec.stdev_learning_rate * g)
-                .max(s - allowed)
-                .min(s + allowed)
-                .min(MAX_MAGNITUDE)
-                .max(MIN_STDEV)
+                .clamp(s - allowed, s + allowed)
+                .clamp(MIN_STDEV, MAX_MAGNITUDE)
         })
         .collect();
     PgpeState {
