@@ -8,10 +8,12 @@ use std::time::{Duration, Instant};
 #[test]
 fn a_run_stopped_before_its_first_checkpoint_points_to_force() {
     let tmp = tempfile::tempdir().unwrap();
-    // Generations long enough for two signals to land within the first one.
+    // Generations long enough (seconds, also on an idle fast machine) for two signals to
+    // land within the first one.
     let text = String::from_utf8(std::fs::read(fixture("slow.toml")).unwrap())
         .unwrap()
-        .replace("population = 12", "population = 400");
+        .replace("population = 12", "population = 3000")
+        .replace("trials = 2", "trials = 8");
     let exp = tmp.path().join("long.toml");
     std::fs::write(&exp, text).unwrap();
     let dir = tmp.path().join("run");
