@@ -222,7 +222,12 @@ fn an_output_that_names_an_input_is_refused_and_the_input_kept() {
         "--trace",
         link.to_str().unwrap(),
     ]);
-    assert!(err.contains("the same file as"), "{err}");
+    // replay resolves links before comparing (its message), the shared check compares
+    // device and inode (its message): either way the input is refused and kept.
+    assert!(
+        err.contains("the same file as") || err.contains("an input of this command"),
+        "{err}"
+    );
     assert!(read(&best) == before);
 
     let copy = tmp.path().join("exp.toml");
