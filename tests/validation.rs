@@ -199,7 +199,19 @@ fn validation_keeps_the_thread_count_and_resume_guarantees() {
         .find(|p| p.to_string_lossy().contains("000003"))
         .expect("generation 3's checkpoint is kept");
     std::fs::remove_file(from_three.join("best.json")).unwrap();
-    run::resume(&checkpoint, None, false, options(2), &mut Silent).unwrap();
+    // Resuming an older checkpoint moves the newer ones aside, and says so (--discard-newer).
+    run::resume_with(
+        &checkpoint,
+        run::ResumeRequest {
+            generations: None,
+            allow_config_change: false,
+            discard_newer: true,
+            shorten: false,
+        },
+        options(2),
+        &mut Silent,
+    )
+    .unwrap();
     for f in ["fitness.csv", "best.json"] {
         let a = std::fs::read(one.join(f)).unwrap();
         assert_eq!(
