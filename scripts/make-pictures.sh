@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates the README's pictures under docs/pictures/: for the main job
-# (experiments/foraging.toml) and one gadget experiment (experiments/locked-room.toml by default, GADGET=t-maze for the T-maze), a short
+# (experiments/foraging.toml) and one gadget experiment (experiments/t-maze.toml by default, GADGET=locked-room for another), a full-budget
 # run's fitness plot, a trajectory picture of its champion (trial 0) and a still of the
 # replay page at the middle of that trial (headless Chromium). PNGs are kept small
 # (resized, 64 colours).
@@ -19,8 +19,8 @@ out=docs/pictures
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 mkdir -p "$out"
-gadget=${GADGET:-locked-room}
-for pair in "foraging:${FORAGING_GENERATIONS:-20}" "$gadget:${GADGET_GENERATIONS:-15}"; do
+gadget=${GADGET:-t-maze}
+for pair in "foraging:${FORAGING_GENERATIONS:-200}" "$gadget:${GADGET_GENERATIONS:-100}"; do
   name=${pair%%:*}; gens=${pair##*:}
   run=$tmp/$name
   "$bin" run "experiments/$name.toml" --generations "$gens" --out "$run" --force --quiet
