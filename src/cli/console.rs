@@ -56,13 +56,13 @@ fn write_line(
     }
 }
 
-/// `println!` that never panics (see the module doc).
+/// The standard stdout line macro, but one that never panics (see the module doc).
 macro_rules! outln {
     () => { $crate::cli::console::out(format_args!("")) };
     ($($arg:tt)*) => { $crate::cli::console::out(format_args!($($arg)*)) };
 }
 
-/// `eprintln!` that never panics (see the module doc).
+/// The standard stderr line macro, but one that never panics (see the module doc).
 macro_rules! errln {
     () => { $crate::cli::console::err(format_args!("")) };
     ($($arg:tt)*) => { $crate::cli::console::err(format_args!($($arg)*)) };
