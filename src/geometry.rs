@@ -226,9 +226,8 @@ fn within_box(a: Vec2, b: Vec2, p: Vec2) -> bool {
 /// eq. 9–24 is replaced by orientation tests (SPEC-NOTES), which answer the same question
 /// without special cases for vertical, parallel or identical lines.
 ///
-/// Out of line, as the compiler kept it when the body was written here: with the body in
-/// `segments_meet` it would inline it into every caller (whiskers, motion, the general
-/// smell), crowding their loops.
+/// Out of line: inlined into every caller (whiskers, motion, the general smell), it would
+/// crowd their loops.
 #[inline(never)]
 pub fn segments_intersect(s0: &Segment, s1: &Segment) -> bool {
     boxes_meet(s0, s1) && segments_meet(s0, s1, || orientation(s1.a, s1.b, s0.b))

@@ -4,13 +4,12 @@
 //!
 //! # Why these kernels
 //!
-//! A brain runs once per creature per tick, and its activation functions used to be
-//! `libm::tanh` (~90 instructions a call, through `expm1`) and `libm::exp`: a quarter of the
-//! simulator's time. [`tanh`] is instead a rational function evaluated with plain f64 `+ - * /`
-//! and comparisons, which IEEE 754 rounds exactly the same way on every platform (Rust never
-//! contracts `a * b + c` into a fused multiply-add on its own), so it gives the same bits
-//! everywhere, like `libm`, at a fraction of the cost. It has no branches, so a loop over a
-//! slice ([`tanh_slice`], [`logistic_slice`]) compiles to SIMD code.
+//! A brain runs once per creature per tick, and `libm::tanh` costs about 90 instructions a
+//! call (through `expm1`). [`tanh`] is instead a rational function evaluated with plain f64
+//! `+ - * /` and comparisons, which IEEE 754 rounds exactly the same way on every platform
+//! (Rust never contracts `a * b + c` into a fused multiply-add on its own), so it gives the
+//! same bits everywhere, like `libm`, at a fraction of the cost. It has no branches, so a
+//! loop over a slice ([`tanh_slice`], [`logistic_slice`]) compiles to SIMD code.
 //!
 //! # Accuracy
 //!
@@ -557,9 +556,7 @@ fn sample_tiles<F: Real, const T: usize>(
         if F::LANES == 8 {
             // f32: blocks of 16 units (4 × 16 sums = 8 accumulator registers). With fused
             // multiply-adds a term needs no register for its product, so the tile fits the 16
-            // AVX2 registers with the two weight registers and a broadcast input. Measured
-            // with callgrind on 98 → 100 → 2 (batch of 32): 4,700 instructions per sample,
-            // against 6,800 with the earlier unfused 4 × 8 tiles; 4 × 24 saved only 1% more.
+            // AVX2 registers with the two weight registers and a broadcast input.
             j = unit_blocks::<F, T, 16>(transposed, biases, xt, ys, j);
         }
         let j = unit_blocks::<F, T, 8>(transposed, biases, xt, ys, j);

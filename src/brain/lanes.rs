@@ -454,15 +454,10 @@ pub fn finish(y: &mut [Lanes], stage: Stage, tanh: &TanhLanes) {
 /// The constants of [`super::activation::tanh`], kept in the network, so that the lane pass
 /// reads them from memory.
 ///
-/// # Why
-///
-/// The tanh has 15 constants, and with its temporaries they do not fit in the 16 AVX2
-/// registers. Written as literal constants, the compiler reloads the ones that do not fit
-/// with a broadcast from an 8-byte constant in every iteration (one more instruction each,
-/// five per 4 values); constants it cannot see are broadcast once before the loop, and the
-/// ones that do not fit are read back from the stack as memory operands of the multiplies,
-/// adds and min/max (no extra instruction). The formula is [`tanh_with`]'s, so the bits are
-/// [`super::activation::tanh`]'s.
+/// Why: with its temporaries, the tanh's 15 constants do not fit in the 16 AVX2 registers;
+/// constants the compiler cannot see are broadcast once and the spilled ones read back as
+/// memory operands, instead of re-broadcast in every iteration (docs/performance.md). The
+/// formula is [`tanh_with`]'s, so the bits are [`super::activation::tanh`]'s.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TanhLanes(TanhConstants);
 

@@ -16,29 +16,24 @@
 //! # Batches
 //!
 //! An MLP keeps no state, so one network can serve several trial worlds per tick:
-//! [`crate::brain::Brain::activate_batch`] runs n observations through each layer as one matrix-matrix
-//! product ([`super::activation::affine_batch`]). Samples go in tiles of 4 and units in
+//! [`crate::brain::Brain::activate_batch`] runs n observations through each layer as one
+//! matrix-matrix product ([`super::activation::affine_batch`]). Samples go in tiles of 4 and units in
 //! blocks of 8 (two AVX2 registers of f64); a tile × block of sums stays in registers while
 //! the inputs are walked, so each weight load serves 4 samples, and for the last 1–3 units
 //! (the motor outputs) one register holds the 4 samples' sums of one unit. Every sum keeps
 //! the order above, so each sample's outputs are bit-identical to
-//! [`crate::brain::Brain::activate`] on it alone. The scratch buffers grow to the largest batch seen and are never shrunk: once
-//! warmed up, a batch allocates nothing.
+//! [`crate::brain::Brain::activate`] on it alone. The scratch buffers grow to the largest
+//! batch seen and are never shrunk: once warmed up, a batch allocates nothing.
 //!
-//! Small f64 networks (at most [`lanes::MAX_WEIGHTS`] weights, such as the standard
+//! Small f64 networks (at most `lanes::MAX_WEIGHTS` weights, such as the standard
 //! 24 → 16 → 2 brain) run batches of 4 or more samples through the sample-lane pass instead
-//! ([`super::lanes`]): one register holds one unit's sums for 4 samples, each weight is kept
-//! repeated in 4 lanes so that it is a memory operand of the multiply, and the batch goes
-//! layer by layer in tiles of 4 samples. Same sums in the same order, so the same bits; on
-//! the standard foraging world it cut the brain from 789 to 572 instructions per
-//! creature-tick (callgrind). Its first layer also leaves out the inputs that are ±0 in
-//! every sample of the batch, where that provably keeps every bit and saves instructions
-//! ([`lanes::LiveInputs`]): on the foraging world 12 of the 24 inputs on average (smell
-//! components no odour uses, the shock, the food detectors mostly), the brain 575 → 523.
-//! In the x86-64-v3 build, tanh's constants read from memory ([`lanes::TanhLanes`]), whole
-//! tiles copied in and out without per-tile index arithmetic and the live inputs gathered
-//! in their own frame took it from 533 to 470 (with the lockstep's finiteness check hoisted,
-//! 2,130 → 2,063 per creature-tick in all).
+//! (the private module `brain::lanes`): one register holds one unit's sums for 4 samples,
+//! each weight is kept repeated in 4 lanes so that it is a memory operand of the multiply,
+//! and the batch goes layer by layer in tiles of 4 samples. Same sums in the same order, so
+//! the same bits. Its first layer also leaves out the inputs that are ±0 in every sample of
+//! the batch, where that provably keeps every bit and saves instructions
+//! (`lanes::LiveInputs`), and its tanh reads its constants from memory (`lanes::TanhLanes`).
+//! What each of these saved is in docs/performance.md.
 //!
 //! # Precision
 //!

@@ -26,11 +26,9 @@ pub struct BenchArgs {
     ])]
     pub world: Vec<PathBuf>,
     /// Worlds per simulator measurement. They run in lockstep chunks of 16 worlds, one
-    /// rayon job per chunk, as evolution runs trials. Chunks differ in cost (their creatures take
-    /// different paths: the 4 chunks of 64 worlds cost 117M–148M
-    /// instructions over 3,000 ticks), so with few chunks the 2-thread figure measures how
-    /// evenly 4 jobs split; 256 give the threads 16 jobs to share, as a generation's 64 or
-    /// more do.
+    /// rayon job per chunk, as evolution runs trials. Chunks differ in cost (their creatures
+    /// take different paths), so with few chunks the 2-thread figure measures how evenly 4
+    /// jobs split; 256 give the threads 16 jobs to share, as a generation's 64 or more do.
     #[arg(long, default_value_t = 256)]
     pub worlds: u64,
     /// Ticks per world: 256 × 2,500 = 640,000 creature-ticks per measurement (about a
@@ -260,9 +258,7 @@ fn median(mut values: Vec<f64>) -> f64 {
 /// runs another tenant's work. While that thread is busy, code that issues several
 /// instructions per cycle, as the simulator does, runs up to twice as slowly, while
 /// latency-bound code barely notices. Timing both loops next to every 1-thread run tells a
-/// slow machine from a slow program: on the 2-vCPU VM of docs/performance.md the first ran
-/// at 17–40M steps/s from one second to the next, in step with the simulator, while the
-/// second stayed at 460–530M.
+/// slow machine from a slow program (figures in docs/performance.md).
 fn machine_speeds() -> [f64; 2] {
     const STEPS: u32 = 500_000;
     let start = Instant::now();
