@@ -425,7 +425,7 @@ const SEMANTIC_CHECK_MAX_BYTES: usize = 16 << 20;
 /// (a tree costs about 17 times the bytes of a file of small numbers): its checksum is
 /// computed over the file's own bytes, which are the canonical serialization for every file
 /// this program writes, and `T` is read straight from them. Only a payload whose bytes are
-/// not canonical (whitespace, `1e5` for `100000.0`) and at most [`SEMANTIC_CHECK_MAX_BYTES`]
+/// not canonical (whitespace, `1e5` for `100000.0`) and at most `SEMANTIC_CHECK_MAX_BYTES`
 /// long is parsed into a tree and checked semantically, as the module docs describe.
 pub fn decode<T: DeserializeOwned>(bytes: &[u8]) -> Result<Checkpoint<T>, ContentError> {
     let not_json = |e: serde_json::Error| ContentError::NotJson {
