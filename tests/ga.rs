@@ -17,7 +17,7 @@
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::init::initial_population;
 use berry_evolve::evo::select::{rank_probability, ranking, truncation_count, Selector};
-use berry_evolve::evo::spec::{
+use berry_evolve::experiment::evolution::{
     CrossoverSpec, EvolutionSpec, MutationSpec, SelectionSpec, SelfAdaptation,
 };
 use berry_evolve::evo::stats::FitnessStats;

@@ -2,7 +2,12 @@
 //! evaluation, fitness, output). This module parses it strictly, validates it, and gives the
 //! effective experiment a stable hash that checkpoints and genome files carry.
 
+pub mod evolution;
 pub mod tables;
+
+pub use evolution::{
+    Algorithm, CrossoverSpec, EvolutionSpec, MutationSpec, PgpeSpec, SelectionSpec, SelfAdaptation,
+};
 
 pub use tables::{
     Aggregate, Balance, BehaviourSpec, EvaluationSpec, FitnessMode, FitnessSpec, GoalAt, Measure,
@@ -11,7 +16,6 @@ pub use tables::{
 
 use crate::brain::output_count;
 use crate::brain::spec::{BrainSpec, Topology};
-use crate::evo::spec::EvolutionSpec;
 use crate::seed::Seed;
 use crate::sim::controller::ObservationLayout;
 use crate::sim::scripted::DemoSpec;

@@ -1194,7 +1194,7 @@ fn centre_candidate(
     experiment: &Experiment,
     evaluated: &EvaluatedGeneration,
 ) -> Vec<validation::Candidate> {
-    if experiment.evolution.algorithm != crate::evo::spec::Algorithm::Pgpe {
+    if experiment.evolution.algorithm != crate::experiment::evolution::Algorithm::Pgpe {
         return Vec::new();
     }
     let Some(last) = evaluated.individuals.len().checked_sub(1) else {
