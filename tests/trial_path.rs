@@ -5,7 +5,8 @@
 //! its shocked ticks and its length are the outcome's.
 
 use berry_evolve::brain::genome::Genome;
-use berry_evolve::evo::evaluate::{aggregate, evaluate_group, evaluate_population, TrialOutcome};
+use berry_evolve::evo::evaluate::{aggregate, evaluate_group, evaluate_population};
+use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::state::first_population;
 use berry_evolve::evo::trial::{run_trial, TickObserver, TrialId};
 use berry_evolve::experiment::Experiment;

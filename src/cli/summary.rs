@@ -8,8 +8,9 @@ use crate::cli::console::outln;
 
 use anyhow::Context;
 use berry_evolve::brain::genome::Genome;
-use berry_evolve::evo::evaluate::{evaluate_in_worlds, trial_stream, worlds_from, Evaluation};
+use berry_evolve::evo::evaluate::{evaluate_in_worlds, worlds_from, Evaluation};
 use berry_evolve::evo::init::initial_population;
+use berry_evolve::evo::life::trial_stream;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::record::summary::{

@@ -7,6 +7,7 @@
 pub mod evaluate;
 pub mod fitness;
 pub mod init;
+pub mod life;
 pub mod lockstep;
 pub mod pgpe;
 pub mod select;

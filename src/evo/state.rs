@@ -5,8 +5,9 @@
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
-use crate::evo::evaluate::{evaluate_population, Evaluation, EvaluationError};
+use crate::evo::evaluate::{evaluate_population, Evaluation};
 use crate::evo::init::initial_population;
+use crate::evo::life::EvaluationError;
 use crate::evo::pgpe::{self, PgpeState};
 use crate::evo::stats::FitnessStats;
 use crate::evo::vary::next_generation;

@@ -12,7 +12,8 @@
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
-use crate::evo::evaluate::{evaluate_in_worlds, worlds_from, Evaluation, EvaluationError};
+use crate::evo::evaluate::{evaluate_in_worlds, worlds_from, Evaluation};
+use crate::evo::life::EvaluationError;
 use crate::evo::state::{EvaluatedGeneration, GenerationSummary};
 use crate::experiment::{Experiment, ValidationSpec};
 use crate::seed::{stream, Generation, IndividualId, Purpose};

@@ -6,7 +6,7 @@
 pub mod lock;
 
 use crate::brain::spec::Topology;
-use crate::evo::evaluate::EvaluationError;
+use crate::evo::life::EvaluationError;
 use crate::evo::state::{
     evaluate, first_generation, improved_champion_for, next_generation_of, Champion,
     EvaluatedGeneration, GenerationSummary, SearchState,

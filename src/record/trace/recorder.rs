@@ -20,7 +20,7 @@
 //!   moments the world checks);
 //! - `death`: a living creature is dead.
 
-use crate::evo::evaluate::TrialOutcome;
+use crate::evo::life::TrialOutcome;
 use crate::evo::trial::{TickObserver, TrialId};
 use crate::experiment::Experiment;
 use crate::geometry::{circles_touch, Vec2};
