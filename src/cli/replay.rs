@@ -72,9 +72,10 @@ impl Replay {
     ) -> anyhow::Result<Replay> {
         let mut experiment = Experiment::load(experiment_path)?;
         if let Some(seed) = seed {
-            experiment.seed = seed;
-            experiment
-                .validate()
+            experiment = experiment
+                .with_overrides()
+                .seed(seed)
+                .build()
                 .with_context(|| format!("--seed {seed}"))?;
         }
         let file = GenomeFile::load(genome_path)?;

@@ -313,9 +313,12 @@ mod tests {
 
     fn tiny(ticks: u64) -> Experiment {
         let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-        let mut experiment = Experiment::load(&root.join("tests/fixtures/tiny.toml")).unwrap();
-        experiment.evaluation.ticks = ticks;
-        experiment
+        Experiment::load(&root.join("tests/fixtures/tiny.toml"))
+            .unwrap()
+            .with_overrides()
+            .ticks(ticks)
+            .build()
+            .unwrap()
     }
 
     /// Non-finite commands mark exactly the lives `run_trial`'s check marks, stand the

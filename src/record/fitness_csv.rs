@@ -396,7 +396,7 @@ pub fn header(extra: &[String]) -> String {
 /// among the candidates validated after this generation, empty in generations without
 /// validation) and `validation_<m>` (that candidate's measures). None for an experiment
 /// without either: the file is then exactly the plain format.
-pub fn extra_columns(experiment: &crate::experiment::Experiment) -> Vec<String> {
+pub fn extra_columns(experiment: &crate::experiment::ExperimentConfig) -> Vec<String> {
     let measures = &experiment.behaviour.measures;
     let mut columns = Vec::new();
     for m in measures {
