@@ -20,6 +20,7 @@ use crate::evo::lockstep;
 use crate::evo::trial;
 use crate::experiment::{Aggregate, Experiment};
 use crate::seed::{Generation, Rng, TrialIndex};
+use crate::sim::metabolism::Metabolism;
 use crate::sim::world::World;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -38,7 +39,7 @@ pub struct Evaluation {
     pub fitness: Option<f64>,
     /// Mean over trials of the metabolic vector at the end of life (the per-food components
     /// kept alongside the score).
-    pub metabolism: [f64; 4],
+    pub metabolism: Metabolism,
     /// Mean over trials of each behaviour measure the experiment's `[behaviour]` names, in
     /// its order (empty when it names none, and then left out of checkpoints).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]

@@ -12,6 +12,7 @@ use crate::evo::fitness::{LifePlan, LifeScore, MEASURE_COUNT};
 use crate::experiment::Experiment;
 use crate::seed::{stream, Generation, IndividualId, Purpose, Rng, TrialIndex};
 use crate::sim::controller::{Controller, MotorCommand};
+use crate::sim::metabolism::Metabolism;
 use crate::sim::world::{ValidSpecs, World};
 use crate::sim::PlacementError;
 use thiserror::Error;
@@ -45,7 +46,7 @@ pub struct TrialOutcome {
     /// The trial's score under `[fitness]`.
     pub score: f64,
     /// The metabolic vector at the end of life.
-    pub metabolism: [f64; 4],
+    pub metabolism: Metabolism,
     /// Ticks on which the shock sensor was on.
     pub shocked_ticks: u64,
     /// True when the brain produced a NaN or infinite output: the life was stopped.

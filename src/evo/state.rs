@@ -13,6 +13,7 @@ use crate::evo::stats::FitnessStats;
 use crate::evo::vary::next_generation;
 use crate::experiment::Experiment;
 use crate::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
+use crate::sim::metabolism::Metabolism;
 use serde::{Deserialize, Serialize};
 
 /// A genome and how it did.
@@ -32,7 +33,7 @@ pub struct Champion {
     /// Its fitness in the generation it was evaluated in.
     pub fitness: f64,
     /// Its mean final metabolic vector over that generation's trials.
-    pub metabolism: [f64; 4],
+    pub metabolism: Metabolism,
     /// The generation it belongs to.
     pub generation: u64,
     /// Its index in that generation.
@@ -56,9 +57,9 @@ pub struct GenerationSummary {
     /// Index of the best individual (highest fitness, ties to the lower index).
     pub best_individual: Option<usize>,
     /// Population mean of each metabolic component.
-    pub mean_metabolism: [f64; 4],
+    pub mean_metabolism: Metabolism,
     /// The best individual's metabolic components.
-    pub best_metabolism: [f64; 4],
+    pub best_metabolism: Metabolism,
     /// Individuals whose brain produced a non-finite output.
     pub non_finite: u64,
 }

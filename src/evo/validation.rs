@@ -17,6 +17,7 @@ use crate::evo::life::EvaluationError;
 use crate::evo::state::{EvaluatedGeneration, GenerationSummary};
 use crate::experiment::{Experiment, ValidationSpec};
 use crate::seed::{stream, Generation, IndividualId, Purpose};
+use crate::sim::metabolism::Metabolism;
 use crate::sim::world::World;
 use serde::{Deserialize, Serialize};
 
@@ -33,7 +34,7 @@ pub struct Candidate {
     /// Its training fitness, when it has one.
     pub training_fitness: Option<f64>,
     /// Its mean final metabolic vector in training, when it has one.
-    pub training_metabolism: Option<[f64; 4]>,
+    pub training_metabolism: Option<Metabolism>,
 }
 
 /// The best candidate on validation, with its validation evaluation.
@@ -53,7 +54,7 @@ pub struct ValidatedChampion {
     pub training_fitness: Option<f64>,
     /// Its mean final metabolic vector in training, when it has one.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub training_metabolism: Option<[f64; 4]>,
+    pub training_metabolism: Option<Metabolism>,
 }
 
 impl ValidatedChampion {

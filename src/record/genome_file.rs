@@ -5,6 +5,7 @@ use crate::brain::genome::Genome;
 use crate::brain::spec::{BrainSpec, Topology};
 use crate::experiment::Experiment;
 use crate::record::atomic::write_atomic;
+use crate::sim::metabolism::Metabolism;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -37,7 +38,7 @@ pub struct Origin {
     pub fitness: Option<f64>,
     /// Its mean final metabolic vector there.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub metabolism: Option<[f64; 4]>,
+    pub metabolism: Option<Metabolism>,
 }
 
 /// A genome file.
