@@ -203,14 +203,11 @@ pub enum ExperimentError {
 impl Experiment {
     /// Reads and validates an experiment file.
     pub fn load(path: &Path) -> Result<Experiment, ExperimentError> {
-        let text = crate::record::input::read_regular_text(
-            path,
-            crate::record::input::MAX_EXPERIMENT_BYTES,
-        )
-        .map_err(|error| ExperimentError::Read {
-            path: path.to_path_buf(),
-            error,
-        })?;
+        let text = crate::input::read_regular_text(path, crate::input::MAX_EXPERIMENT_BYTES)
+            .map_err(|error| ExperimentError::Read {
+                path: path.to_path_buf(),
+                error,
+            })?;
         Experiment::from_toml(&text, path)
     }
 
@@ -243,7 +240,7 @@ impl Experiment {
                     .to_string()
                     .trim_end()
                     .lines()
-                    .map(|line| crate::record::input::cut(line, 300))
+                    .map(|line| crate::input::cut(line, 300))
                     .collect::<Vec<_>>()
                     .join("\n"),
             })?;
@@ -284,7 +281,7 @@ impl ExperimentConfig {
                 format!(
                     "`{}` is not a plain folder name (it names the run folder results/<name>/); \
                      use letters, digits, '-', '_' and '.', not only dots",
-                    crate::record::input::cut(&self.name, 40)
+                    crate::input::cut(&self.name, 40)
                 ),
             ));
         }

@@ -124,11 +124,12 @@ impl GenomeFile {
     /// Reads and checks a genome file (format, finite values, parameter count).
     pub fn load(path: &Path) -> Result<GenomeFile, GenomeFileError> {
         let bytes =
-            crate::record::input::read_regular(path, crate::record::input::MAX_GENOME_BYTES)
-                .map_err(|error| GenomeFileError::Io {
+            crate::input::read_regular(path, crate::input::MAX_GENOME_BYTES).map_err(|error| {
+                GenomeFileError::Io {
                     path: path.to_path_buf(),
                     error,
-                })?;
+                }
+            })?;
         GenomeFile::from_slice(&bytes, path)
     }
 

@@ -13,11 +13,11 @@ use crate::evo::state::{
 };
 use crate::evo::validation::{self, ValidatedChampion};
 use crate::experiment::{Experiment, ExperimentConfig, ExperimentError};
+use crate::input::{read_regular, read_regular_text, MAX_CSV_BYTES, MAX_EXPERIMENT_BYTES};
 use crate::record::atomic::{remove_stale_temp_files, write_atomic};
 use crate::record::checkpoint::{self, CheckpointError, CheckpointErrorKind, ContentError};
 use crate::record::fitness_csv::{extra_columns, FitnessCsv, FitnessRow};
 use crate::record::genome_file::{GenomeFile, GenomeFileError, Origin};
-use crate::record::input::{read_regular, read_regular_text, MAX_CSV_BYTES, MAX_EXPERIMENT_BYTES};
 use lock::{LockError, RunLock};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
