@@ -29,6 +29,7 @@ pub mod cpu;
 pub mod evo;
 pub mod experiment;
 pub mod geometry;
+pub mod input;
 pub mod record;
 pub mod run;
 pub mod seed;

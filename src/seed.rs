@@ -39,7 +39,11 @@ pub struct IndividualId(pub u64);
 pub struct TrialIndex(pub u64);
 
 /// What a stream is used for. The discriminants are part of the reproducibility contract:
-/// changing one changes every run, so new purposes get new numbers.
+/// changing one changes every run, so new purposes get new numbers. 4 is unassigned: it was
+/// `TrialDynamics`, which nothing ever drew from (what is random while a trial runs, sensor
+/// noise, wanderers, predators, draws on from the world's own [`Purpose::TrialWorld`]
+/// stream), so removing it changed no stream; each discriminant is written out, so the others
+/// kept their numbers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[repr(u64)]
 pub enum Purpose {
@@ -47,10 +51,10 @@ pub enum Purpose {
     Initialisation = 1,
     /// Selection, crossover and mutation that make generation g + 1 from generation g.
     Variation = 2,
-    /// Building a trial world: random placement of objects and creatures.
+    /// Building a trial world (random placement of objects and creatures) and, from the
+    /// world's own generator, everything random while its trial runs (sensor noise, wanderers,
+    /// predators).
     TrialWorld = 3,
-    /// Everything random while a trial runs: sensor noise, wanderers, predators.
-    TrialDynamics = 4,
     /// Random genomes drawn as a baseline for comparisons (never used by evolution itself).
     Baseline = 5,
     /// The `simulate` demo command's worlds.

@@ -46,14 +46,14 @@ fn every_shipped_experiment_loads_and_round_trips_through_toml() {
 fn config_hash_ignores_run_length_and_output_but_not_the_seed() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/tiny.toml");
     let base = Experiment::load(&path).unwrap();
-    let mut longer = base.clone();
+    let mut longer = base.config().clone();
     longer.evolution.generations += 10;
     longer.output.checkpoint_every = 1;
     assert_eq!(base.config_hash(), longer.config_hash());
-    let mut reseeded = base.clone();
+    let mut reseeded = base.config().clone();
     reseeded.seed += 1;
     assert_ne!(base.config_hash(), reseeded.config_hash());
-    let mut retuned = base.clone();
+    let mut retuned = base.config().clone();
     retuned.evolution.mutation.sigma *= 2.0;
     assert_ne!(base.config_hash(), retuned.config_hash());
     assert_eq!(base.config_hash().len(), 64);

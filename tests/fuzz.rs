@@ -198,8 +198,12 @@ fn experiment_loader_never_panics_on_random_or_mutated_toml() {
 fn real_checkpoint() -> Vec<u8> {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("run");
-    let mut experiment = Experiment::from_toml(&tiny(), Path::new("tiny.toml")).unwrap();
-    experiment.evolution.generations = 2;
+    let experiment = Experiment::from_toml(&tiny(), Path::new("tiny.toml"))
+        .unwrap()
+        .with_overrides()
+        .generations(2)
+        .build()
+        .unwrap();
     let summary = run::start(
         experiment,
         &dir,
@@ -346,8 +350,12 @@ fn genome_loader_never_panics_on_random_or_mutated_json() {
 /// A finished 2-generation run of tiny.toml: (its final checkpoint, its fitness.csv).
 fn real_run(tmp: &Path) -> (Vec<u8>, Vec<u8>) {
     let base = tmp.join("base");
-    let mut experiment = Experiment::from_toml(&tiny(), Path::new("tiny.toml")).unwrap();
-    experiment.evolution.generations = 2;
+    let experiment = Experiment::from_toml(&tiny(), Path::new("tiny.toml"))
+        .unwrap()
+        .with_overrides()
+        .generations(2)
+        .build()
+        .unwrap();
     let summary = run::start(
         experiment,
         &base,

@@ -17,11 +17,11 @@
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::init::initial_population;
 use berry_evolve::evo::select::{rank_probability, ranking, truncation_count, Selector};
-use berry_evolve::evo::spec::{
-    CrossoverSpec, EvolutionSpec, MutationSpec, SelectionSpec, SelfAdaptation,
-};
 use berry_evolve::evo::stats::FitnessStats;
 use berry_evolve::evo::vary::{mutate, next_generation, recombine};
+use berry_evolve::experiment::evolution::{
+    CrossoverSpec, EvolutionSpec, MutationSpec, SelectionSpec, SelfAdaptation,
+};
 use berry_evolve::seed::{
     below, gaussian, stream, uniform, unit, Generation, IndividualId, Purpose, Rng, Seed,
     TrialIndex,

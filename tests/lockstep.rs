@@ -95,16 +95,24 @@ fn check(experiment: &Experiment, population: &[Genome], generation: u64) {
 
 #[test]
 fn foraging_matches_the_per_trial_path() {
-    let mut experiment = load("experiments/foraging.toml");
+    let experiment = load("experiments/foraging.toml");
     assert!(lockstep::stateless(&experiment.topology()));
-    experiment.evolution.population = 6;
-    // More trials than one chunk holds, so that a partial chunk follows a full one.
-    experiment.evaluation.trials = CHUNK_TRIALS + 3;
-    experiment.evaluation.ticks = 150;
+    let experiment = experiment
+        .with_overrides()
+        .edit(|c| c.evolution.population = 6)
+        // More trials than one chunk holds, so that a partial chunk follows a full one.
+        .trials(CHUNK_TRIALS + 3)
+        .ticks(150)
+        .build()
+        .unwrap();
     let population = first_population(&experiment, &experiment.topology());
     check(&experiment, &population, 0);
     // Without common random numbers every group has its own worlds.
-    experiment.evaluation.common_random_numbers = false;
+    let experiment = experiment
+        .with_overrides()
+        .common_random_numbers(false)
+        .build()
+        .unwrap();
     check(&experiment, &population, 4);
 }
 
@@ -112,9 +120,12 @@ fn foraging_matches_the_per_trial_path() {
 fn groups_sharing_a_world_match_the_per_trial_path() {
     // No shipped experiment has group_size > 1: tiny with groups of 3 and 4.
     for group_size in [3, 4] {
-        let mut experiment = tiny("", ("", ""));
-        experiment.evaluation.group_size = group_size;
-        experiment.evaluation.trials = 5;
+        let experiment = tiny("", ("", ""))
+            .with_overrides()
+            .edit(|c| c.evaluation.group_size = group_size)
+            .trials(5)
+            .build()
+            .unwrap();
         let population = first_population(&experiment, &experiment.topology());
         assert_eq!(population.len() % group_size as usize, 0);
         check(&experiment, &population, 1);
@@ -124,19 +135,25 @@ fn groups_sharing_a_world_match_the_per_trial_path() {
 #[test]
 fn deaths_and_early_stops_match_the_per_trial_path() {
     // Lethal ground predators kill some creatures part-way through their lives.
-    let mut experiment = load("experiments/predator-arena.toml");
-    experiment.evaluation.trials = CHUNK_TRIALS + 1;
-    experiment.evaluation.ticks = 300;
-    experiment.evaluation.group_size = 2;
+    let experiment = load("experiments/predator-arena.toml")
+        .with_overrides()
+        .trials(CHUNK_TRIALS + 1)
+        .ticks(300)
+        .edit(|c| c.evaluation.group_size = 2)
+        .build()
+        .unwrap();
     let population = first_population(&experiment, &experiment.topology());
     check(&experiment, &population, 0);
     // An air predator that strikes everyone in the first tick: every world stops at once,
     // each creature keeping its initial metabolism.
-    let mut experiment = tiny(
+    let experiment = tiny(
         "[[world.air_predators]]\nspeed = 1\nstrike_radius = 1000\neffect = \"lethal\"\n",
         ("", ""),
-    );
-    experiment.evaluation.group_size = 3;
+    )
+    .with_overrides()
+    .edit(|c| c.evaluation.group_size = 3)
+    .build()
+    .unwrap();
     let topology = experiment.topology();
     let population = first_population(&experiment, &topology);
     check(&experiment, &population, 0);
@@ -153,12 +170,15 @@ fn deaths_and_early_stops_match_the_per_trial_path() {
         assert_eq!(outcome.metabolism, [5.0, 5.0, 0.0, 0.0]);
     }
     // A slower, smaller strike: creatures die at different ticks, some never.
-    let mut experiment = tiny(
+    let experiment = tiny(
         "[[world.air_predators]]\nspeed = 2\nstrike_radius = 25\neffect = \"lethal\"\n",
         ("", ""),
-    );
-    experiment.evaluation.group_size = 2;
-    experiment.evaluation.trials = CHUNK_TRIALS + 2;
+    )
+    .with_overrides()
+    .edit(|c| c.evaluation.group_size = 2)
+    .trials(CHUNK_TRIALS + 2)
+    .build()
+    .unwrap();
     let population = first_population(&experiment, &experiment.topology());
     check(&experiment, &population, 3);
 }

@@ -111,8 +111,7 @@ fn overflowing_brains_get_a_finite_fitness_or_are_counted_as_non_finite() {
 fn a_run_whose_population_overflows_continues_with_a_clean_fitness_csv() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path().join("run");
-    let mut experiment = relu_tiny();
-    experiment.evolution.generations = 2;
+    let experiment = relu_tiny().with_overrides().generations(2).build().unwrap();
     let summary = run::start(
         experiment,
         &dir,

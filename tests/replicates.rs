@@ -116,8 +116,12 @@ fn each_seed_of_a_batch_is_the_single_seed_run() {
     let rows: Vec<Vec<&str>> = held_out.lines().map(|l| l.split(',').collect()).collect();
     assert_eq!(rows[0], ["who", "seed", "genome", "fitness"]);
     assert_eq!(rows.len(), 1 + 2 + 2, "{held_out}");
-    let mut experiment = Experiment::load(&batch.join("seed-2/experiment.toml")).unwrap();
-    experiment.evaluation.trials = 3;
+    let experiment = Experiment::load(&batch.join("seed-2/experiment.toml"))
+        .unwrap()
+        .with_overrides()
+        .trials(3)
+        .build()
+        .unwrap();
     for (row, seed) in rows[1..3].iter().zip(["2", "3"]) {
         assert_eq!(row[0], "seed");
         assert_eq!(row[1], seed);

@@ -6,7 +6,7 @@ mod cli_common;
 use cli_common::{fixture, read, run_ok};
 
 use berry_evolve::evo::pgpe::{self, PgpeState};
-use berry_evolve::evo::spec::{Algorithm, PgpeSpec};
+use berry_evolve::experiment::evolution::{Algorithm, PgpeSpec};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::{gaussian, stream, Generation, IndividualId, Purpose, Seed, TrialIndex};
 use std::path::{Path, PathBuf};

@@ -144,12 +144,11 @@ fn staged_events_are_found_by_diffing_the_world() {
 
 /// The experiment at `path` with at most 2 trials.
 fn small(path: &Path) -> Experiment {
-    let mut e = Experiment::load(path).unwrap();
+    let mut e = Experiment::load(path).unwrap().into_config();
     e.evaluation.trials = e.evaluation.trials.min(2);
     e.evolution.population = (e.evaluation.group_size as usize).max(8);
     e.evolution.elitism = 0;
-    e.validate().unwrap();
-    e
+    Experiment::try_from(e).unwrap()
 }
 
 #[test]

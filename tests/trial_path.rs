@@ -5,7 +5,8 @@
 //! its shocked ticks and its length are the outcome's.
 
 use berry_evolve::brain::genome::Genome;
-use berry_evolve::evo::evaluate::{aggregate, evaluate_group, evaluate_population, TrialOutcome};
+use berry_evolve::evo::evaluate::{aggregate, evaluate_group, evaluate_population};
+use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::state::first_population;
 use berry_evolve::evo::trial::{run_trial, TickObserver, TrialId};
 use berry_evolve::experiment::Experiment;
@@ -59,14 +60,12 @@ pub fn shipped_experiments() -> Vec<PathBuf> {
 /// The experiment at `path`, small enough for a test: at most 8 individuals (whole groups)
 /// and 3 trials.
 fn small(path: &Path) -> Experiment {
-    let mut e = Experiment::load(path).unwrap();
+    let mut e = Experiment::load(path).unwrap().into_config();
     let k = e.evaluation.group_size;
     e.evolution.population = ((8 / k).max(1) * k) as usize;
     e.evolution.elitism = e.evolution.elitism.min(1);
     e.evaluation.trials = e.evaluation.trials.min(3);
-    e.validate()
-        .unwrap_or_else(|err| panic!("{}: {err}", path.display()));
-    e
+    Experiment::try_from(e).unwrap_or_else(|err| panic!("{}: {err}", path.display()))
 }
 
 #[test]

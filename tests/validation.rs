@@ -3,7 +3,8 @@
 //! their own set; results do not depend on threads or on stopping and resuming.
 
 use berry_evolve::brain::genome::Genome;
-use berry_evolve::evo::evaluate::{evaluate_in_worlds, trial_stream, Evaluation};
+use berry_evolve::evo::evaluate::{evaluate_in_worlds, Evaluation};
+use berry_evolve::evo::life::trial_stream;
 use berry_evolve::evo::state::{first_population, EvaluatedGeneration, Individual};
 use berry_evolve::evo::validation::{
     is_due, top_candidates, top_individuals, validate, validation_worlds,

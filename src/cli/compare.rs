@@ -112,13 +112,12 @@ pub fn measures_text(experiment: &Experiment, values: &[f64]) -> String {
 
 /// Runs the subcommand.
 pub fn run(args: CompareArgs) -> anyhow::Result<()> {
-    let mut experiment = Experiment::load(&args.experiment)?;
+    let mut overrides = Experiment::load(&args.experiment)?.with_overrides();
     if let Some(t) = args.trials {
-        experiment.evaluation.trials = t;
+        overrides = overrides.trials(t);
     }
     // Every genome meets the same worlds: common random numbers, group 0.
-    experiment.evaluation.common_random_numbers = true;
-    experiment.validate()?;
+    let experiment = overrides.common_random_numbers(true).build()?;
     let generation = Generation(args.generation.unwrap_or(HELD_OUT_GENERATION));
     outln!(
         "experiment `{}`: {} trials x {} ticks of generation {}'s worlds",

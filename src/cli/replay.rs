@@ -8,7 +8,8 @@ use crate::cli::console::{errln, outln};
 use anyhow::Context;
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::brain::spec::Topology;
-use berry_evolve::evo::evaluate::{aggregate, TrialOutcome};
+use berry_evolve::evo::evaluate::aggregate;
+use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::trial::{self, NoObserver};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::genome_file::GenomeFile;
@@ -71,9 +72,10 @@ impl Replay {
     ) -> anyhow::Result<Replay> {
         let mut experiment = Experiment::load(experiment_path)?;
         if let Some(seed) = seed {
-            experiment.seed = seed;
-            experiment
-                .validate()
+            experiment = experiment
+                .with_overrides()
+                .seed(seed)
+                .build()
                 .with_context(|| format!("--seed {seed}"))?;
         }
         let file = GenomeFile::load(genome_path)?;

@@ -127,14 +127,14 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         let seeds = parse_seeds(spec)?;
         return run_seeds(&args, &seeds);
     }
-    let mut experiment = Experiment::load(&args.experiment)?;
+    let mut overrides = Experiment::load(&args.experiment)?.with_overrides();
     if let Some(seed) = args.seed {
-        experiment.seed = seed;
+        overrides = overrides.seed(seed);
     }
     if let Some(g) = args.generations {
-        experiment.evolution.generations = g;
+        overrides = overrides.generations(g);
     }
-    experiment.validate().with_context(|| {
+    let experiment = overrides.build().with_context(|| {
         format!(
             "{} with the command-line overrides",
             args.experiment.display()
@@ -222,19 +222,18 @@ pub fn parse_seeds(spec: &str) -> anyhow::Result<Vec<u64>> {
 
 /// `run --seeds`: each seed in turn in `<out>/seed-<s>/`, one line per seed on stdout.
 fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
-    let mut experiment = Experiment::load(&args.experiment)?;
-    if let Some(g) = args.generations {
-        experiment.evolution.generations = g;
-    }
+    let experiment = Experiment::load(&args.experiment)?;
     let base = match &args.out {
         Some(out) => out.clone(),
         None => PathBuf::from("results").join(&experiment.name),
     };
     let stop = stop_flag(None)?;
     for &seed in seeds {
-        let mut e = experiment.clone();
-        e.seed = seed;
-        e.validate().with_context(|| {
+        let mut overrides = experiment.with_overrides().seed(seed);
+        if let Some(g) = args.generations {
+            overrides = overrides.generations(g);
+        }
+        let e = overrides.build().with_context(|| {
             format!(
                 "{} with seed {seed} and the command-line overrides",
                 args.experiment.display()

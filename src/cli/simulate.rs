@@ -34,7 +34,11 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
     }
     let mut experiment = Experiment::load(&args.file)?;
     if let Some(seed) = args.seed {
-        experiment.seed = seed;
+        experiment = experiment
+            .with_overrides()
+            .seed(seed)
+            .build()
+            .with_context(|| format!("--seed {seed}"))?;
     }
     anyhow::ensure!(
         args.ticks <= berry_evolve::experiment::tables::MAX_TICKS,

@@ -8,8 +8,9 @@ use crate::cli::console::outln;
 
 use anyhow::Context;
 use berry_evolve::brain::genome::Genome;
-use berry_evolve::evo::evaluate::{evaluate_in_worlds, trial_stream, worlds_from, Evaluation};
+use berry_evolve::evo::evaluate::{evaluate_in_worlds, worlds_from, Evaluation};
 use berry_evolve::evo::init::initial_population;
+use berry_evolve::evo::life::trial_stream;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::record::summary::{
@@ -74,13 +75,12 @@ pub fn run(args: SummaryArgs) -> anyhow::Result<()> {
         Some(p) => p.clone(),
         None => folders[0].1.join(berry_evolve::run::EXPERIMENT_FILE),
     };
-    let mut experiment = Experiment::load(&experiment_path)?;
+    let mut overrides = Experiment::load(&experiment_path)?.with_overrides();
     if let Some(t) = args.trials {
-        experiment.evaluation.trials = t;
+        overrides = overrides.trials(t);
     }
     // Every genome meets the same worlds, as in compare.
-    experiment.evaluation.common_random_numbers = true;
-    experiment.validate()?;
+    let experiment = overrides.common_random_numbers(true).build()?;
     let generation = Generation(HELD_OUT_GENERATION);
     // The worlds compare uses: group 0 of the held-out generation, one creature each.
     let worlds = worlds_from(&experiment, experiment.evaluation.trials, generation, |t| {

@@ -13,63 +13,23 @@
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
-use crate::brain::{Brain, BrainController};
-use crate::evo::fitness::{LifePlan, LifeScore, MEASURE_COUNT};
+use crate::evo::life::{
+    build_trial_world, checked_controllers, valid_specs, world_error, EvaluationError, TrialOutcome,
+};
 use crate::evo::lockstep;
 use crate::evo::trial;
 use crate::experiment::{Aggregate, Experiment};
-use crate::seed::{stream, Generation, IndividualId, Purpose, Rng, TrialIndex};
-use crate::sim::controller::{Controller, MotorCommand};
-use crate::sim::world::{ValidSpecs, World};
-use crate::sim::PlacementError;
+use crate::seed::{Generation, Rng, TrialIndex};
+use crate::sim::metabolism::Metabolism;
+use crate::sim::world::World;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
 
 /// Jobs per leaf of rayon's split of a generation's job list: 1, so that a thread that runs
 /// out of work can take any job not yet started. With rayon's default split a leaf holds
 /// several jobs that one thread runs in turn, and at the end of a generation the other
 /// thread idles while that leaf finishes. The results are collected in job order either way.
 pub const JOBS_APART: usize = 1;
-use rayon::prelude::*;
-use serde::{Deserialize, Serialize};
-use thiserror::Error;
-
-/// Why an evaluation could not run at all (as opposed to a creature doing badly).
-#[derive(Debug, Error)]
-pub enum EvaluationError {
-    /// The genome does not fit the experiment's brain topology.
-    #[error("individual {individual}: {error}")]
-    Brain {
-        /// Index in the population.
-        individual: u64,
-        /// What the brain said.
-        error: crate::brain::BrainError,
-    },
-    /// The trial world could not be built (e.g. placement impossible at this density).
-    #[error("generation {generation}, trial {trial}: cannot build the world: {error}")]
-    World {
-        /// Generation of the trial.
-        generation: u64,
-        /// Trial index.
-        trial: u64,
-        /// The placement failure.
-        error: crate::sim::PlacementError,
-    },
-}
-
-/// One individual's life in one trial world.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TrialOutcome {
-    /// The trial's score under `[fitness]`.
-    pub score: f64,
-    /// The metabolic vector at the end of life.
-    pub metabolism: [f64; 4],
-    /// Ticks on which the shock sensor was on.
-    pub shocked_ticks: u64,
-    /// True when the brain produced a NaN or infinite output: the life was stopped.
-    pub non_finite: bool,
-    /// The behaviour measures, one per [`crate::experiment::MEASURES`] entry (0 for those
-    /// the experiment's `[behaviour]` does not name).
-    pub measures: [f64; MEASURE_COUNT],
-}
 
 /// An individual's evaluation over all its trials.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -79,7 +39,7 @@ pub struct Evaluation {
     pub fitness: Option<f64>,
     /// Mean over trials of the metabolic vector at the end of life (the per-food components
     /// kept alongside the score).
-    pub metabolism: [f64; 4],
+    pub metabolism: Metabolism,
     /// Mean over trials of each behaviour measure the experiment's `[behaviour]` names, in
     /// its order (empty when it names none, and then left out of checkpoints).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -91,201 +51,6 @@ impl Evaluation {
     pub fn selection_fitness(&self) -> f64 {
         self.fitness.unwrap_or(f64::MIN)
     }
-}
-
-/// The random stream that builds trial `trial` of generation `generation` for `group`.
-/// With common random numbers every group of a generation gets the same stream.
-pub fn trial_stream(
-    experiment: &Experiment,
-    generation: Generation,
-    group: u64,
-    trial: TrialIndex,
-) -> Rng {
-    let who = if experiment.evaluation.common_random_numbers {
-        IndividualId(0)
-    } else {
-        IndividualId(group)
-    };
-    stream(
-        experiment.seed(),
-        Purpose::TrialWorld,
-        generation,
-        who,
-        trial,
-    )
-}
-
-/// The command a creature gets from `command`: itself when every field is finite, else None
-/// (the creature stands still for that tick and its life is marked invalid). The one check
-/// both evaluation paths apply, so that they agree to the bit.
-#[inline]
-#[allow(clippy::eq_op)] // x − x is the finiteness test, on purpose
-pub(crate) fn finite_command(command: MotorCommand) -> Option<MotorCommand> {
-    // x − x is 0 for a finite x and NaN for ±∞ and NaN, and a NaN term makes the sum NaN:
-    // the three tests in one comparison, without a branch each.
-    let (l, r, e) = (command.left, command.right, command.eat);
-    ((l - l) + (r - r) + (e - e) == 0.0).then_some(command)
-}
-
-/// A controller that notices non-finite outputs instead of letting NaN reach the world: the
-/// creature stands still for that tick and the life is marked invalid.
-pub(crate) struct CheckedController<C> {
-    pub(crate) inner: C,
-    pub(crate) non_finite: bool,
-}
-
-impl<C: Controller> Controller for CheckedController<C> {
-    fn act(&mut self, observation: &[f64]) -> MotorCommand {
-        finite_command(self.inner.act(observation)).unwrap_or_else(|| {
-            self.non_finite = true;
-            MotorCommand::default()
-        })
-    }
-}
-
-/// Builds the controller of every genome of group `group` (errors name the individual).
-pub(crate) fn controllers(
-    experiment: &Experiment,
-    topology: &Topology,
-    genomes: &[Genome],
-    group: u64,
-) -> Result<Vec<BrainController>, EvaluationError> {
-    genomes
-        .iter()
-        .enumerate()
-        .map(|(k, genome)| {
-            let brain = Brain::new(topology, &genome.parameters).map_err(|error| {
-                EvaluationError::Brain {
-                    individual: group * genomes.len() as u64 + k as u64,
-                    error,
-                }
-            })?;
-            Ok(BrainController::new(
-                brain,
-                experiment.creature.max_rpt,
-                experiment.creature.eats_by_action(),
-            ))
-        })
-        .collect()
-}
-
-/// Builds trial `trial`'s world for `creatures` creatures of group `group`.
-pub(crate) fn trial_world(
-    experiment: &Experiment,
-    creatures: usize,
-    generation: Generation,
-    group: u64,
-    trial: TrialIndex,
-) -> Result<World, EvaluationError> {
-    let specs = valid_specs(experiment, generation, trial)?;
-    build_trial_world(specs, experiment, creatures, generation, group, trial)
-}
-
-/// The experiment's world and creature specifications, validated (the error names `trial`).
-pub(crate) fn valid_specs(
-    experiment: &Experiment,
-    generation: Generation,
-    trial: TrialIndex,
-) -> Result<ValidSpecs<'_>, EvaluationError> {
-    ValidSpecs::new(&experiment.world, &experiment.creature)
-        .map_err(|error| world_error(generation, trial, error))
-}
-
-/// [`trial_world`] from specifications validated once for several trials.
-pub(crate) fn build_trial_world(
-    specs: ValidSpecs<'_>,
-    experiment: &Experiment,
-    creatures: usize,
-    generation: Generation,
-    group: u64,
-    trial: TrialIndex,
-) -> Result<World, EvaluationError> {
-    let rng = trial_stream(experiment, generation, group, trial);
-    World::build(specs, creatures, rng).map_err(|error| world_error(generation, trial, error))
-}
-
-fn world_error(
-    generation: Generation,
-    trial: TrialIndex,
-    error: PlacementError,
-) -> EvaluationError {
-    EvaluationError::World {
-        generation: generation.0,
-        trial: trial.0,
-        error,
-    }
-}
-
-/// The score bookkeeping after one tick: every living creature whose life is still valid
-/// (`invalid[i]` false) records the tick. Returns whether any did; when none did, the trial
-/// is over (nothing it could still record).
-/// What `plan` watches beyond the metabolism and the shock flag is recorded too, only when
-/// it watches something.
-#[inline]
-pub(crate) fn record_tick(
-    world: &World,
-    invalid: &[bool],
-    scores: &mut [LifeScore],
-    plan: &LifePlan,
-) -> bool {
-    let mut anyone_alive = false;
-    let watch = plan.needs_world_every_tick();
-    for (i, ((creature, score), &invalid)) in world
-        .creatures()
-        .iter()
-        .zip(scores)
-        .zip(invalid)
-        .enumerate()
-    {
-        if !invalid && creature.alive {
-            score.record_tick(&creature.metabolism, creature.shocked);
-            if watch {
-                score.record_world(plan, world, i);
-            }
-            anyone_alive = true;
-        }
-    }
-    anyone_alive
-}
-
-/// The plan of a trial in `world` and one fresh score per creature: what both evaluation
-/// paths set up before the first tick (bite tracking turned on in `world` when needed).
-pub(crate) fn start_scores(
-    experiment: &Experiment,
-    world: &mut World,
-) -> (LifePlan, Vec<LifeScore>) {
-    let plan = LifePlan::new(experiment, world);
-    plan.prepare(world);
-    let scores = (0..world.creatures().len())
-        .map(|i| LifeScore::start(&plan, world, i))
-        .collect();
-    (plan, scores)
-}
-
-/// Every creature's outcome at the end of a trial.
-pub(crate) fn outcomes(
-    world: &World,
-    scores: &[LifeScore],
-    invalid: &[bool],
-    plan: &LifePlan,
-) -> Vec<TrialOutcome> {
-    world
-        .creatures()
-        .iter()
-        .zip(scores)
-        .zip(invalid)
-        .enumerate()
-        .map(|(i, ((creature, score), &non_finite))| {
-            let (score_value, measures) = score.finish_in(plan, world, i);
-            TrialOutcome {
-                score: score_value,
-                metabolism: creature.metabolism,
-                shocked_ticks: score.shocked_ticks(),
-                non_finite,
-                measures,
-            }
-        })
-        .collect()
 }
 
 /// Lives one trial for a group of genomes sharing one world; returns one outcome per genome.
@@ -321,23 +86,12 @@ fn run_trial_in(
     world: World,
 ) -> Result<Vec<TrialOutcome>, EvaluationError> {
     let mut controllers = checked_controllers(experiment, topology, genomes, group)?;
-    Ok(live_trial(experiment, world, &mut controllers))
-}
-
-/// One [`CheckedController`] per genome of group `group`.
-pub(crate) fn checked_controllers(
-    experiment: &Experiment,
-    topology: &Topology,
-    genomes: &[Genome],
-    group: u64,
-) -> Result<Vec<CheckedController<BrainController>>, EvaluationError> {
-    Ok(controllers(experiment, topology, genomes, group)?
-        .into_iter()
-        .map(|inner| CheckedController {
-            inner,
-            non_finite: false,
-        })
-        .collect())
+    Ok(trial::live(
+        experiment,
+        world,
+        &mut controllers,
+        trial::NoObserver,
+    ))
 }
 
 /// The trial worlds of generation `generation`, built once, when every group lives the same
@@ -365,16 +119,6 @@ pub(crate) fn shared_worlds(
         .map(|t| build_trial_world(specs, experiment, creatures, generation, 0, TrialIndex(t)))
         .collect::<Result<Vec<_>, _>>()
         .map(Some)
-}
-
-/// Steps `world` for at most `ticks` ticks with `controllers` (one per creature), stopping
-/// after the first tick in which no creature recorded a score.
-pub(crate) fn live_trial<C: Controller>(
-    experiment: &Experiment,
-    world: World,
-    controllers: &mut [CheckedController<C>],
-) -> Vec<TrialOutcome> {
-    trial::live(experiment, world, controllers, trial::NoObserver)
 }
 
 /// Combines an individual's trials (in trial order) into its evaluation.

@@ -12,6 +12,7 @@ use crate::experiment::{Balance, Experiment, FitnessMode, FitnessSpec, GoalAt, M
 use crate::geometry::{circles_touch, Vec2};
 use crate::sim::area::Area;
 use crate::sim::gadgets::Role;
+use crate::sim::metabolism::Metabolism;
 use crate::sim::world::{Creature, World};
 
 /// How many behaviour measures there are ([`MEASURES`]); a trial's measure values are an
@@ -303,7 +304,7 @@ impl LifeScore {
     /// Records one lived tick: the metabolic vector after it and whether the creature was
     /// shocked on it.
     #[inline]
-    pub fn record_tick(&mut self, metabolism: &[f64; 4], shocked: bool) {
+    pub fn record_tick(&mut self, metabolism: &Metabolism, shocked: bool) {
         if self.mode == FitnessMode::Integrated {
             self.integral += if self.plain_gain {
                 weighted(&self.weights, metabolism)
@@ -396,7 +397,7 @@ impl LifeScore {
     /// The life's score under a plain plan ([`LifeScore::new`]), given the metabolic vector
     /// at its end: the metabolic gain minus the shock penalty (the other terms are added by
     /// [`LifeScore::finish_in`]).
-    pub fn finish(&self, final_metabolism: &[f64; 4]) -> f64 {
+    pub fn finish(&self, final_metabolism: &Metabolism) -> f64 {
         let gain = match self.mode {
             FitnessMode::Final if self.plain_gain => weighted(&self.weights, final_metabolism),
             FitnessMode::Final => balanced_gain(

@@ -1,7 +1,7 @@
 //! Initialisation: the random generation 0.
 
 use crate::brain::genome::Genome;
-use crate::evo::spec::EvolutionSpec;
+use crate::experiment::evolution::EvolutionSpec;
 use crate::seed::{uniform, Rng};
 
 /// Draws `spec.population` genomes of `parameter_count` parameters each, every parameter

@@ -9,16 +9,16 @@
 //! which writes the observation straight into its place in the batch (the same bits as
 //! `observe`, without a copy). A stateless brain's batch gives every observation
 //! the bits it gives alone, so each world's trial is the same bits as
-//! [`crate::evo::evaluate::run_trial`]'s, whatever the chunk size or the other worlds.
+//! [`crate::evo::trial::run_trial`]'s, whatever the chunk size or the other worlds.
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
 use crate::brain::{Brain, BrainController};
-use crate::evo::evaluate::{
+use crate::evo::fitness::{LifePlan, LifeScore};
+use crate::evo::life::{
     build_trial_world, controllers, finite_command, outcomes, record_tick, start_scores,
     valid_specs, EvaluationError, TrialOutcome,
 };
-use crate::evo::fitness::{LifePlan, LifeScore};
 use crate::experiment::Experiment;
 use crate::seed::{Generation, TrialIndex};
 use crate::sim::controller::MotorCommand;
@@ -105,7 +105,7 @@ impl Lockstep {
     /// One tick of every world `w` with `running[w]`: creature i of each is driven by
     /// `controllers[i]`, one batch per creature index. A non-finite command sets
     /// `invalid[w * creatures + i]` and the creature gets [`MotorCommand::default`] for that
-    /// tick, as [`crate::evo::evaluate::run_trial`] does.
+    /// tick, as [`crate::evo::trial::run_trial`] does.
     ///
     /// # Panics
     /// When the slices do not match the sizes given to [`Lockstep::new`] (a programming
@@ -175,7 +175,7 @@ impl Lockstep {
 
 /// Lives trials `trials` (a chunk, see [`chunks`]) of group `group` in lockstep; returns,
 /// per trial in order, one outcome per genome: the same bits as
-/// [`crate::evo::evaluate::run_trial`] for each trial.
+/// [`crate::evo::trial::run_trial`] for each trial.
 ///
 /// # Panics
 /// When the brains are not [stateless](stateless) (a programming error: check first).
@@ -192,9 +192,8 @@ pub fn run_trials(
     )
 }
 
-/// [`run_trials`], cloning the trials' worlds from `shared` (see
-/// [`crate::evo::evaluate::shared_worlds`]: the same worlds, built once for every group)
-/// when given, else building them.
+/// [`run_trials`], cloning the trials' worlds from `shared` (evaluation's shared worlds: the
+/// same worlds, built once for every group) when given, else building them.
 pub(crate) fn run_trials_in(
     experiment: &Experiment,
     topology: &Topology,
@@ -222,7 +221,7 @@ pub(crate) fn run_trials_in(
 
 /// Steps `worlds` in lockstep for at most `ticks` ticks with `controllers` (one per
 /// creature); each world stops after the first tick in which none of its creatures recorded
-/// a score, as [`crate::evo::evaluate::run_trial`]'s does.
+/// a score, as [`crate::evo::trial::run_trial`]'s does.
 pub(crate) fn live_trials<B: BatchController>(
     experiment: &Experiment,
     mut worlds: Vec<World>,
@@ -273,8 +272,8 @@ pub(crate) fn live_trials<B: BatchController>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::evo::evaluate::trial_world;
-    use crate::evo::evaluate::{live_trial, CheckedController};
+    use crate::evo::life::{trial_world, CheckedController};
+    use crate::evo::trial::{live, NoObserver};
     use crate::sim::controller::Controller;
     use std::path::Path;
 
@@ -314,9 +313,12 @@ mod tests {
 
     fn tiny(ticks: u64) -> Experiment {
         let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-        let mut experiment = Experiment::load(&root.join("tests/fixtures/tiny.toml")).unwrap();
-        experiment.evaluation.ticks = ticks;
-        experiment
+        Experiment::load(&root.join("tests/fixtures/tiny.toml"))
+            .unwrap()
+            .with_overrides()
+            .ticks(ticks)
+            .build()
+            .unwrap()
     }
 
     /// Non-finite commands mark exactly the lives `run_trial`'s check marks, stand the
@@ -341,7 +343,7 @@ mod tests {
                         non_finite: false,
                     })
                     .collect();
-                let alone = live_trial(&experiment, world, &mut checked);
+                let alone = live(&experiment, world, &mut checked, NoObserver);
                 assert_eq!(alone.len(), together.len());
                 for (a, b) in alone.iter().zip(together) {
                     assert_eq!(a.score.to_bits(), b.score.to_bits());

@@ -1,15 +1,16 @@
-//! Evolution: the generational genetic algorithm (or PGPE, [`pgpe`]) that evolves brain genomes. This part holds
-//! the `[evolution]` table, the random generation 0, selection, variation (crossover and
-//! mutation) and fitness statistics; every random draw comes from a stream passed in, in a
-//! documented order, so a run reproduces bit for bit from its seed.
+//! Evolution: the generational genetic algorithm (or PGPE, [`pgpe`]) that evolves brain
+//! genomes. This part holds the random generation 0, selection, variation (crossover and
+//! mutation), trials and their evaluation, and fitness statistics; the `[evolution]` table it
+//! reads is [`crate::experiment::evolution`]. Every random draw comes from a stream passed in,
+//! in a documented order, so a run reproduces bit for bit from its seed.
 
 pub mod evaluate;
 pub mod fitness;
 pub mod init;
+pub mod life;
 pub mod lockstep;
 pub mod pgpe;
 pub mod select;
-pub mod spec;
 pub mod state;
 pub mod stats;
 pub mod trial;
@@ -17,8 +18,5 @@ pub mod validation;
 pub mod vary;
 
 pub use init::initial_population;
-pub use spec::{
-    Algorithm, CrossoverSpec, EvolutionSpec, MutationSpec, PgpeSpec, SelectionSpec, SelfAdaptation,
-};
 pub use stats::FitnessStats;
 pub use vary::next_generation;

@@ -48,7 +48,7 @@
 //! evaluated generation, and a resumed run continues with the same bits.
 
 use crate::brain::genome::Genome;
-use crate::evo::spec::{PgpeSpec, MAX_MAGNITUDE};
+use crate::experiment::evolution::{PgpeSpec, MAX_MAGNITUDE};
 use crate::seed::{gaussian, stream, Generation, IndividualId, Purpose, Rng, Seed, TrialIndex};
 use serde::{Deserialize, Serialize};
 

@@ -19,7 +19,7 @@
 //! - rank: one `unit()`, scaled by the total weight and located in the cumulative weights of
 //!   ranks 0 (worst) .. n − 1 (best), summed serially.
 
-use crate::evo::spec::SelectionSpec;
+use crate::experiment::evolution::SelectionSpec;
 use crate::seed::{below, unit, Rng};
 use std::cmp::Ordering;
 

@@ -5,13 +5,15 @@
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
-use crate::evo::evaluate::{evaluate_population, Evaluation, EvaluationError};
+use crate::evo::evaluate::{evaluate_population, Evaluation};
 use crate::evo::init::initial_population;
+use crate::evo::life::EvaluationError;
 use crate::evo::pgpe::{self, PgpeState};
 use crate::evo::stats::FitnessStats;
 use crate::evo::vary::next_generation;
 use crate::experiment::Experiment;
 use crate::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
+use crate::sim::metabolism::Metabolism;
 use serde::{Deserialize, Serialize};
 
 /// A genome and how it did.
@@ -31,7 +33,7 @@ pub struct Champion {
     /// Its fitness in the generation it was evaluated in.
     pub fitness: f64,
     /// Its mean final metabolic vector over that generation's trials.
-    pub metabolism: [f64; 4],
+    pub metabolism: Metabolism,
     /// The generation it belongs to.
     pub generation: u64,
     /// Its index in that generation.
@@ -55,9 +57,9 @@ pub struct GenerationSummary {
     /// Index of the best individual (highest fitness, ties to the lower index).
     pub best_individual: Option<usize>,
     /// Population mean of each metabolic component.
-    pub mean_metabolism: [f64; 4],
+    pub mean_metabolism: Metabolism,
     /// The best individual's metabolic components.
-    pub best_metabolism: [f64; 4],
+    pub best_metabolism: Metabolism,
     /// Individuals whose brain produced a non-finite output.
     pub non_finite: u64,
 }

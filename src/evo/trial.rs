@@ -1,8 +1,11 @@
 //! The one trial path: build a trial's world, live it tick by tick, score every life. Scoring
-//! ([`crate::evo::evaluate::run_trial`], [`crate::evo::evaluate::evaluate_group`]), replay
-//! and traces all call [`run_trial`], so a traced life is the scored life by construction;
-//! only the lockstep path ([`crate::evo::lockstep`], tested bit-identical to this one) steps
-//! its worlds itself.
+//! ([`crate::evo::evaluate::run_trial`], [`crate::evo::evaluate::evaluate_group`], and
+//! evaluation in shared worlds through `live`), replay (`berry-evolve replay`) and traces
+//! (`record::trace`'s recorder is a [`TickObserver`]) all live a trial through this file, so a
+//! traced life is the scored life by construction. Only the lockstep path
+//! ([`crate::evo::lockstep`], tested bit-identical to this one) steps its worlds itself, built
+//! from the same parts ([`crate::evo::life`]: the world, the checked controllers, the score
+//! bookkeeping).
 //!
 //! A caller watches the trial through a [`TickObserver`]: [`TickObserver::start`] sees the
 //! world as built (tick 0), [`TickObserver::tick`] the world after every tick (the last one
@@ -13,7 +16,7 @@
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
-use crate::evo::evaluate::{
+use crate::evo::life::{
     checked_controllers, outcomes, record_tick, start_scores, trial_world, CheckedController,
     EvaluationError, TrialOutcome,
 };
@@ -79,7 +82,7 @@ impl<O: TickObserver + ?Sized> TickObserver for &mut O {
 /// Lives trial `trial` of generation `generation` for group `group` (`genomes`, one creature
 /// each, sharing one world) and returns one outcome per genome, showing every tick to
 /// `observer`. A pure function of its arguments: the world comes from the trial's own seed
-/// stream ([`crate::evo::evaluate::trial_stream`]), brains are built anew for this trial.
+/// stream ([`crate::evo::life::trial_stream`]), brains are built anew for this trial.
 pub fn run_trial<O: TickObserver>(
     experiment: &Experiment,
     topology: &Topology,

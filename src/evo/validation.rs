@@ -12,10 +12,12 @@
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
-use crate::evo::evaluate::{evaluate_in_worlds, worlds_from, Evaluation, EvaluationError};
+use crate::evo::evaluate::{evaluate_in_worlds, worlds_from, Evaluation};
+use crate::evo::life::EvaluationError;
 use crate::evo::state::{EvaluatedGeneration, GenerationSummary};
 use crate::experiment::{Experiment, ValidationSpec};
 use crate::seed::{stream, Generation, IndividualId, Purpose};
+use crate::sim::metabolism::Metabolism;
 use crate::sim::world::World;
 use serde::{Deserialize, Serialize};
 
@@ -32,7 +34,7 @@ pub struct Candidate {
     /// Its training fitness, when it has one.
     pub training_fitness: Option<f64>,
     /// Its mean final metabolic vector in training, when it has one.
-    pub training_metabolism: Option<[f64; 4]>,
+    pub training_metabolism: Option<Metabolism>,
 }
 
 /// The best candidate on validation, with its validation evaluation.
@@ -52,7 +54,7 @@ pub struct ValidatedChampion {
     pub training_fitness: Option<f64>,
     /// Its mean final metabolic vector in training, when it has one.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub training_metabolism: Option<[f64; 4]>,
+    pub training_metabolism: Option<Metabolism>,
 }
 
 impl ValidatedChampion {

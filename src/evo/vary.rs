@@ -29,7 +29,7 @@
 
 use crate::brain::genome::Genome;
 use crate::evo::select::Selector;
-use crate::evo::spec::{CrossoverSpec, EvolutionSpec, MutationSpec, MAX_MAGNITUDE};
+use crate::experiment::evolution::{CrossoverSpec, EvolutionSpec, MutationSpec, MAX_MAGNITUDE};
 use crate::seed::{below, chance, gaussian, unit, Rng};
 
 /// Makes the next generation: exactly `spec.population` genomes, the `spec.elitism` best

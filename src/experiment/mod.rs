@@ -1,8 +1,21 @@
 //! Experiments: one TOML file describes a whole run (world, creature, brain, evolution,
-//! evaluation, fitness, output). This module parses it strictly, validates it, and gives the
-//! effective experiment a stable hash that checkpoints and genome files carry.
+//! evaluation, fitness, output). This module parses it strictly into the raw
+//! [`ExperimentConfig`], validates that into an [`Experiment`], and gives the effective
+//! experiment a stable hash that checkpoints and genome files carry.
+//!
+//! An [`Experiment`] exists only validated: [`Experiment::load`], [`Experiment::from_toml`] and
+//! `Experiment::try_from(config)` validate, and a command-line override goes through
+//! [`Experiment::with_overrides`], whose [`Overrides::build`] validates the changed experiment
+//! again. Its fields are read through [`std::ops::Deref`] to the configuration (there is no
+//! `DerefMut`), so the hundreds of places that read `experiment.evaluation.ticks` read it as
+//! before while none can assign it.
 
+pub mod evolution;
 pub mod tables;
+
+pub use evolution::{
+    Algorithm, CrossoverSpec, EvolutionSpec, MutationSpec, PgpeSpec, SelectionSpec, SelfAdaptation,
+};
 
 pub use tables::{
     Aggregate, Balance, BehaviourSpec, EvaluationSpec, FitnessMode, FitnessSpec, GoalAt, Measure,
@@ -11,7 +24,6 @@ pub use tables::{
 
 use crate::brain::output_count;
 use crate::brain::spec::{BrainSpec, Topology};
-use crate::evo::spec::EvolutionSpec;
 use crate::seed::Seed;
 use crate::sim::controller::ObservationLayout;
 use crate::sim::scripted::DemoSpec;
@@ -30,11 +42,11 @@ pub const MAX_SEED: u64 = i64::MAX as u64;
 /// limit alone (population, units per layer, layers) still allows petabytes together.
 pub const MAX_GENERATION_PARAMETERS: u64 = 250_000_000;
 
-/// A whole experiment, exactly as its TOML file says (after defaults). Unknown keys anywhere
-/// are errors, so a misspelt option can never be silently ignored.
+/// A whole experiment, exactly as its TOML file says (after defaults), not yet validated.
+/// Unknown keys anywhere are errors, so a misspelt option can never be silently ignored.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Experiment {
+pub struct ExperimentConfig {
     /// Name of the experiment; names the run folder `results/<name>/seed-<seed>/`.
     pub name: String,
     /// Master seed: every random draw of the run derives from it (0 ≤ seed < 2^63).
@@ -71,6 +83,93 @@ pub struct Experiment {
     pub demo: DemoSpec,
 }
 
+/// A validated experiment: every table checked, and the constraints between tables. The only
+/// ways to get one validate ([`Experiment::load`], [`Experiment::from_toml`],
+/// `Experiment::try_from(config)`, [`Overrides::build`]); fields are read through `Deref`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Experiment {
+    config: ExperimentConfig,
+}
+
+impl TryFrom<ExperimentConfig> for Experiment {
+    type Error = InvalidValue;
+
+    /// Validates `config` ([`ExperimentConfig::validate`]).
+    fn try_from(config: ExperimentConfig) -> Result<Experiment, InvalidValue> {
+        config.validate()?;
+        Ok(Experiment { config })
+    }
+}
+
+impl std::ops::Deref for Experiment {
+    type Target = ExperimentConfig;
+
+    fn deref(&self) -> &ExperimentConfig {
+        &self.config
+    }
+}
+
+/// A changed copy of an experiment on its way to validation: the command-line overrides
+/// (`--seed`, `--generations`, `--trials`, common random numbers, a shorter life), each a
+/// plain assignment, then [`Overrides::build`] checks the whole experiment again.
+#[derive(Debug, Clone)]
+#[must_use = "an override takes effect only through build()"]
+pub struct Overrides {
+    config: ExperimentConfig,
+}
+
+impl Overrides {
+    /// The master seed.
+    pub fn seed(mut self, seed: u64) -> Overrides {
+        self.config.seed = seed;
+        self
+    }
+
+    /// How many generations to run (`evolution.generations`).
+    pub fn generations(mut self, generations: u64) -> Overrides {
+        self.config.evolution.generations = generations;
+        self
+    }
+
+    /// Trials per individual (`evaluation.trials`).
+    pub fn trials(mut self, trials: u64) -> Overrides {
+        self.config.evaluation.trials = trials;
+        self
+    }
+
+    /// Ticks per trial (`evaluation.ticks`).
+    pub fn ticks(mut self, ticks: u64) -> Overrides {
+        self.config.evaluation.ticks = ticks;
+        self
+    }
+
+    /// Whether every group of a generation lives the same trial worlds
+    /// (`evaluation.common_random_numbers`).
+    pub fn common_random_numbers(mut self, on: bool) -> Overrides {
+        self.config.evaluation.common_random_numbers = on;
+        self
+    }
+
+    /// Where and how often results are saved (`[output]`).
+    pub fn output(mut self, output: OutputSpec) -> Overrides {
+        self.config.output = output;
+        self
+    }
+
+    /// Any other change (tests, a tool that varies one table): `change` edits the
+    /// configuration, [`Overrides::build`] validates it like the rest.
+    pub fn edit(mut self, change: impl FnOnce(&mut ExperimentConfig)) -> Overrides {
+        change(&mut self.config);
+        self
+    }
+
+    /// The overridden experiment, validated again; the error names the key and the reason,
+    /// as for a file.
+    pub fn build(self) -> Result<Experiment, InvalidValue> {
+        Experiment::try_from(self.config)
+    }
+}
+
 /// Why an experiment file could not be used. Every variant names the file.
 #[derive(Debug, Error)]
 pub enum ExperimentError {
@@ -104,14 +203,11 @@ pub enum ExperimentError {
 impl Experiment {
     /// Reads and validates an experiment file.
     pub fn load(path: &Path) -> Result<Experiment, ExperimentError> {
-        let text = crate::record::input::read_regular_text(
-            path,
-            crate::record::input::MAX_EXPERIMENT_BYTES,
-        )
-        .map_err(|error| ExperimentError::Read {
-            path: path.to_path_buf(),
-            error,
-        })?;
+        let text = crate::input::read_regular_text(path, crate::input::MAX_EXPERIMENT_BYTES)
+            .map_err(|error| ExperimentError::Read {
+                path: path.to_path_buf(),
+                error,
+            })?;
         Experiment::from_toml(&text, path)
     }
 
@@ -135,27 +231,45 @@ impl Experiment {
                 ),
             });
         }
-        let experiment: Experiment = toml::from_str(text).map_err(|e| ExperimentError::Parse {
-            path: origin.to_path_buf(),
-            // toml quotes the offending line and key: cut each line so that a huge value
-            // (a 1 MB name) is not echoed back whole.
-            message: e
-                .to_string()
-                .trim_end()
-                .lines()
-                .map(|line| crate::record::input::cut(line, 300))
-                .collect::<Vec<_>>()
-                .join("\n"),
-        })?;
-        experiment
-            .validate()
-            .map_err(|error| ExperimentError::Invalid {
+        let config: ExperimentConfig =
+            toml::from_str(text).map_err(|e| ExperimentError::Parse {
                 path: origin.to_path_buf(),
-                error,
+                // toml quotes the offending line and key: cut each line so that a huge value
+                // (a 1 MB name) is not echoed back whole.
+                message: e
+                    .to_string()
+                    .trim_end()
+                    .lines()
+                    .map(|line| crate::input::cut(line, 300))
+                    .collect::<Vec<_>>()
+                    .join("\n"),
             })?;
-        Ok(experiment)
+        Experiment::try_from(config).map_err(|error| ExperimentError::Invalid {
+            path: origin.to_path_buf(),
+            error,
+        })
     }
 
+    /// The experiment's configuration (also reachable field by field through `Deref`).
+    pub fn config(&self) -> &ExperimentConfig {
+        &self.config
+    }
+
+    /// The configuration, for a caller that changes it and validates it again.
+    pub fn into_config(self) -> ExperimentConfig {
+        self.config
+    }
+
+    /// A builder for a changed copy of this experiment (command-line overrides), validated
+    /// again by [`Overrides::build`].
+    pub fn with_overrides(&self) -> Overrides {
+        Overrides {
+            config: self.config.clone(),
+        }
+    }
+}
+
+impl ExperimentConfig {
     /// Checks every table and the constraints between tables.
     pub fn validate(&self) -> Valid {
         if self.name.trim().is_empty() {
@@ -167,7 +281,7 @@ impl Experiment {
                 format!(
                     "`{}` is not a plain folder name (it names the run folder results/<name>/); \
                      use letters, digits, '-', '_' and '.', not only dots",
-                    crate::record::input::cut(&self.name, 40)
+                    crate::input::cut(&self.name, 40)
                 ),
             ));
         }

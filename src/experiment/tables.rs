@@ -168,7 +168,7 @@ fn is_default<T: Default + PartialEq>(x: &T) -> bool {
 ///
 /// where `gain` is the metabolic part (`mode`, `balance`, `imbalance_penalty`). Every term
 /// but `gain` is off by default, so an experiment without the new keys scores as before.
-/// Ticks are counted as [`crate::evo::fitness::LifeScore`] records them: a tick counts when
+/// Ticks are counted as evo's `LifeScore` (`evo::fitness`) records them: a tick counts when
 /// the creature is alive (and its brain's output finite) at its end.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]

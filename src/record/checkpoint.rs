@@ -771,7 +771,7 @@ fn load_one<T: DeserializeOwned>(
     path: &Path,
     expected_config_hash: Option<&str>,
 ) -> Result<Checkpoint<T>, CheckpointError> {
-    let bytes = super::input::read_regular(path, super::input::MAX_CHECKPOINT_BYTES)
+    let bytes = crate::input::read_regular(path, crate::input::MAX_CHECKPOINT_BYTES)
         .map_err(|e| CheckpointError::new(path, CheckpointErrorKind::Read(e)))?;
     let checkpoint: Checkpoint<T> = decode(&bytes).map_err(|e| CheckpointError::new(path, e))?;
     let named = path

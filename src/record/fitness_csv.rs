@@ -215,7 +215,7 @@ impl FitnessCsv {
         last_generation: u64,
         extra: &[String],
     ) -> Result<Reopened, FitnessCsvError> {
-        let bytes = super::input::read_regular(path, super::input::MAX_CSV_BYTES)
+        let bytes = crate::input::read_regular(path, crate::input::MAX_CSV_BYTES)
             .map_err(|e| io_error(path, "read", e))?;
         let parsed = parse(path, &bytes, Some(last_generation), Some(extra))?;
         let last_row = parsed.rows.last().map(|r| r.generation);
@@ -327,7 +327,7 @@ impl FitnessCsv {
 /// every line a complete row, generations increasing. A partial last line (a killed run) is
 /// reported as [`FitnessCsvError::PartialLine`].
 pub fn read_rows(path: &Path) -> Result<Vec<FitnessRow>, FitnessCsvError> {
-    let bytes = super::input::read_regular(path, super::input::MAX_CSV_BYTES)
+    let bytes = crate::input::read_regular(path, crate::input::MAX_CSV_BYTES)
         .map_err(|e| io_error(path, "read", e))?;
     let parsed = parse(path, &bytes, None, Some(&[]))?;
     if let Some(line) = parsed.partial_line {
@@ -364,7 +364,7 @@ impl Table {
 /// Reads every row of the fitness CSV at `path` as [`read_rows`] does, accepting any extra
 /// columns after [`HEADER`]'s.
 pub fn read_table(path: &Path) -> Result<Table, FitnessCsvError> {
-    let bytes = super::input::read_regular(path, super::input::MAX_CSV_BYTES)
+    let bytes = crate::input::read_regular(path, crate::input::MAX_CSV_BYTES)
         .map_err(|e| io_error(path, "read", e))?;
     let parsed = parse(path, &bytes, None, None)?;
     if let Some(line) = parsed.partial_line {
@@ -396,7 +396,7 @@ pub fn header(extra: &[String]) -> String {
 /// among the candidates validated after this generation, empty in generations without
 /// validation) and `validation_<m>` (that candidate's measures). None for an experiment
 /// without either: the file is then exactly the plain format.
-pub fn extra_columns(experiment: &crate::experiment::Experiment) -> Vec<String> {
+pub fn extra_columns(experiment: &crate::experiment::ExperimentConfig) -> Vec<String> {
     let measures = &experiment.behaviour.measures;
     let mut columns = Vec::new();
     for m in measures {

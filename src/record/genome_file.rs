@@ -5,6 +5,7 @@ use crate::brain::genome::Genome;
 use crate::brain::spec::{BrainSpec, Topology};
 use crate::experiment::Experiment;
 use crate::record::atomic::write_atomic;
+use crate::sim::metabolism::Metabolism;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -37,7 +38,7 @@ pub struct Origin {
     pub fitness: Option<f64>,
     /// Its mean final metabolic vector there.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub metabolism: Option<[f64; 4]>,
+    pub metabolism: Option<Metabolism>,
 }
 
 /// A genome file.
@@ -123,11 +124,12 @@ impl GenomeFile {
     /// Reads and checks a genome file (format, finite values, parameter count).
     pub fn load(path: &Path) -> Result<GenomeFile, GenomeFileError> {
         let bytes =
-            crate::record::input::read_regular(path, crate::record::input::MAX_GENOME_BYTES)
-                .map_err(|error| GenomeFileError::Io {
+            crate::input::read_regular(path, crate::input::MAX_GENOME_BYTES).map_err(|error| {
+                GenomeFileError::Io {
                     path: path.to_path_buf(),
                     error,
-                })?;
+                }
+            })?;
         GenomeFile::from_slice(&bytes, path)
     }
 

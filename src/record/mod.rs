@@ -5,7 +5,6 @@ pub mod atomic;
 pub mod checkpoint;
 pub mod fitness_csv;
 pub mod genome_file;
-pub mod input;
 pub mod plot;
 pub mod render;
 pub mod replay_html;

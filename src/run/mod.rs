@@ -6,18 +6,18 @@
 pub mod lock;
 
 use crate::brain::spec::Topology;
-use crate::evo::evaluate::EvaluationError;
+use crate::evo::life::EvaluationError;
 use crate::evo::state::{
     evaluate, first_generation, improved_champion_for, next_generation_of, Champion,
     EvaluatedGeneration, GenerationSummary, SearchState,
 };
 use crate::evo::validation::{self, ValidatedChampion};
-use crate::experiment::{Experiment, ExperimentError};
+use crate::experiment::{Experiment, ExperimentConfig, ExperimentError};
+use crate::input::{read_regular, read_regular_text, MAX_CSV_BYTES, MAX_EXPERIMENT_BYTES};
 use crate::record::atomic::{remove_stale_temp_files, write_atomic};
 use crate::record::checkpoint::{self, CheckpointError, CheckpointErrorKind, ContentError};
 use crate::record::fitness_csv::{extra_columns, FitnessCsv, FitnessRow};
 use crate::record::genome_file::{GenomeFile, GenomeFileError, Origin};
-use crate::record::input::{read_regular, read_regular_text, MAX_CSV_BYTES, MAX_EXPERIMENT_BYTES};
 use lock::{LockError, RunLock};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -44,8 +44,9 @@ pub const CHANGES_FILE: &str = "config-changes.log";
 /// the seed and the generation (see `seed::stream`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CheckpointPayload {
-    /// The effective experiment, seed included.
-    pub experiment: Experiment,
+    /// The effective experiment, seed included, as read back (validated when the checkpoint
+    /// is loaded, see `check_payload_shape`).
+    pub experiment: ExperimentConfig,
     /// The last completed generation: genomes and evaluations.
     pub last: EvaluatedGeneration,
     /// The best individual ever seen.
@@ -608,8 +609,13 @@ pub fn resume_with(
             checkpoint::PROGRAM
         ));
     }
-    let mut experiment = payload.experiment.clone();
     let experiment_path = dir.join(EXPERIMENT_FILE);
+    let invalid = |error| ExperimentError::Invalid {
+        path: experiment_path.clone(),
+        error,
+    };
+    // Validated already when the checkpoint was loaded (`check_payload_shape`).
+    let mut experiment = Experiment::try_from(payload.experiment.clone()).map_err(invalid)?;
     if experiment_path.exists() {
         let on_disk = Experiment::load(&experiment_path)?;
         if on_disk.config_hash() != experiment.config_hash() {
@@ -628,7 +634,11 @@ pub fn resume_with(
                 && generations.is_none()
             {
                 // Only the length differs: the file was edited to extend the run.
-                experiment.evolution.generations = on_disk.evolution.generations;
+                experiment = experiment
+                    .with_overrides()
+                    .generations(on_disk.evolution.generations)
+                    .build()
+                    .map_err(invalid)?;
             }
             if on_disk.output != experiment.output {
                 // [output] decides only where and how often results are saved: honoured.
@@ -636,7 +646,11 @@ pub fn resume_with(
                     "{} has an edited [output] table; it is used from now on",
                     experiment_path.display()
                 ));
-                experiment.output = on_disk.output.clone();
+                experiment = experiment
+                    .with_overrides()
+                    .output(on_disk.output.clone())
+                    .build()
+                    .map_err(invalid)?;
             }
         }
     }
@@ -684,14 +698,12 @@ pub fn resume_with(
                 loaded_path.display()
             ));
         }
-        experiment.evolution.generations = g;
+        experiment = experiment
+            .with_overrides()
+            .generations(g)
+            .build()
+            .map_err(invalid)?;
     }
-    experiment
-        .validate()
-        .map_err(|error| ExperimentError::Invalid {
-            path: experiment_path.clone(),
-            error,
-        })?;
     if let Some(names) = discard {
         let aside = dir.join(DISCARDED_DIR);
         std::fs::create_dir_all(&aside).map_err(io_err(&aside))?;
@@ -881,21 +893,19 @@ fn check_payload_shape(path: &Path, payload: &CheckpointPayload) -> Result<(), R
             previous_good: None,
         }))
     };
-    if let Err(e) = payload.experiment.validate() {
-        return refuse(format!("its experiment is not valid: {e}"));
-    }
-    let population = payload.experiment.evolution.evaluated_per_generation();
+    let experiment = match Experiment::try_from(payload.experiment.clone()) {
+        Ok(experiment) => experiment,
+        Err(e) => return refuse(format!("its experiment is not valid: {e}")),
+    };
+    let population = experiment.evolution.evaluated_per_generation();
     let individuals = payload.last.individuals.len();
     if individuals != population {
         return refuse(format!(
             "the last generation holds {individuals} individuals, its experiment evaluates {population} per generation"
         ));
     }
-    let parameters = payload.experiment.topology().parameter_count();
-    match (
-        &payload.search,
-        payload.experiment.evolution.pgpe_settings(),
-    ) {
+    let parameters = experiment.topology().parameter_count();
+    match (&payload.search, experiment.evolution.pgpe_settings()) {
         (None, None) => {}
         (Some(SearchState::Pgpe(state)), Some(_)) => {
             if let Some(problem) = state.problem(parameters) {
@@ -1043,7 +1053,7 @@ impl Loop {
         // The checkpoint must never be ahead of the CSV on disk (power loss).
         self.csv.sync()?;
         let payload = CheckpointPayload {
-            experiment: self.experiment.clone(),
+            experiment: self.experiment.config().clone(),
             last: last.clone(),
             best_ever: self.best_ever.clone(),
             history: self.history.clone(),
@@ -1194,7 +1204,7 @@ fn centre_candidate(
     experiment: &Experiment,
     evaluated: &EvaluatedGeneration,
 ) -> Vec<validation::Candidate> {
-    if experiment.evolution.algorithm != crate::evo::spec::Algorithm::Pgpe {
+    if experiment.evolution.algorithm != crate::experiment::evolution::Algorithm::Pgpe {
         return Vec::new();
     }
     let Some(last) = evaluated.individuals.len().checked_sub(1) else {

@@ -1,6 +1,14 @@
 //! The metabolic state m = ⟨fA, fB, fC, fD⟩ (§5.3): what eating adds and what time and
 //! movement take away.
 
+/// The metabolic vector m = ⟨fA, fB, fC, fD⟩ (§5.3): the amount of each food type's substance
+/// a creature holds, indexed by food type (A = 0 … D = 3), never below 0. The name it carries
+/// across layers (a creature's state, a trial's outcome, an evaluation, checkpoints, genome
+/// files, traces). An alias rather than a newtype: it serializes as the same array of four
+/// numbers and the tick's arithmetic indexes it as it always has, so no file byte and no
+/// instruction changes.
+pub type Metabolism = [f64; 4];
+
 /// How m decays: per tick and per LU travelled, per food type.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Decay {
@@ -15,7 +23,7 @@ impl Decay {
     /// added, then the decay for the tick and for the `travelled` LU is subtracted. m never
     /// drops below 0 (§5.3 speaks of amounts of consumed substance).
     #[inline]
-    pub fn apply(&self, m: &mut [f64; 4], received: &[f64; 4], travelled: f64) {
+    pub fn apply(&self, m: &mut Metabolism, received: &[f64; 4], travelled: f64) {
         for t in 0..4 {
             let next = m[t] + received[t] - (self.per_tick[t] + self.per_lu[t] * travelled);
             m[t] = next.max(0.0);

@@ -20,11 +20,12 @@
 //!   moments the world checks);
 //! - `death`: a living creature is dead.
 
-use crate::evo::evaluate::TrialOutcome;
+use crate::evo::life::TrialOutcome;
 use crate::evo::trial::{TickObserver, TrialId};
 use crate::experiment::Experiment;
 use crate::geometry::{circles_touch, Vec2};
 use crate::sim::gadgets::{Effect, Role};
+use crate::sim::metabolism::Metabolism;
 use crate::sim::world::World;
 use serde::{Deserialize, Serialize};
 
@@ -242,7 +243,7 @@ pub struct CreatureTick {
     /// Shock state at the end of the tick (the sensor reads it next tick).
     pub shock: bool,
     /// Metabolic vector after the tick.
-    pub metabolism: [f64; 4],
+    pub metabolism: Metabolism,
     /// Whiskers sensed at the start of the tick (left, right).
     pub whiskers: [bool; 2],
     /// Food detectors A–D sensed at the start of the tick.
@@ -371,7 +372,7 @@ pub struct OutcomeInfo {
     /// The trial's score under `[fitness]`.
     pub score: f64,
     /// The metabolic vector at the end of life.
-    pub metabolism: [f64; 4],
+    pub metabolism: Metabolism,
     /// Shocked ticks.
     pub shocked_ticks: u64,
     /// The brain produced a non-finite output.

@@ -1,6 +1,8 @@
 //! Reading input files safely: only regular files (after following symbolic links), and only
 //! up to a size cap checked before reading, so that a FIFO cannot hang a command, `/dev/zero`
 //! (or a link to it) cannot fill memory, and an oversized file is refused at once.
+//! Below every layer that reads a file (`experiment`'s `load`, `record`, `run`), so that none
+//! of them imports a layer above it for this.
 //!
 //! The caps are generous for real files (see the constants); `BERRY_MAX_INPUT_BYTES` (a byte
 //! count) replaces every cap for a user whose files are larger still.

@@ -23,7 +23,7 @@
 //! ```
 //!
 //! `algorithm = "pgpe"` replaces the genetic algorithm by PGPE with ClipUp (see
-//! [`crate::evo::pgpe`] and [`PgpeSpec`]): then only `population` (even), `generations` and the
+//! `evo::pgpe` and [`PgpeSpec`]): then only `population` (even), `generations` and the
 //! `[evolution.pgpe]` table apply, and the GA's keys must be left out.
 //!
 //! Every key has a default. A key that only matters for a setting the table did not choose
@@ -53,7 +53,7 @@ pub const MAX_MAGNITUDE: f64 = 1.0e6;
 #[serde(deny_unknown_fields, default)]
 pub struct EvolutionSpec {
     /// `algorithm`: `"ga"` (the generational genetic algorithm, default) or `"pgpe"`
-    /// (Sehnke et al.'s PGPE with ClipUp, [`crate::evo::pgpe`]). Not written back when "ga",
+    /// (Sehnke et al.'s PGPE with ClipUp, `evo::pgpe`). Not written back when "ga",
     /// so GA experiments keep their bytes and config hash.
     #[serde(skip_serializing_if = "Algorithm::is_ga")]
     pub algorithm: Algorithm,
