@@ -133,7 +133,7 @@ fn deaths_and_early_stops_match_the_per_trial_path() {
     // An air predator that strikes everyone in the first tick: every world stops at once,
     // each creature keeping its initial metabolism.
     let mut experiment = tiny(
-        include_str!("../fixtures/lethal-air-predator.toml"),
+        include_str!("../fixtures/worlds/lethal-air-predator.toml"),
         ("", ""),
     );
     experiment.evaluation.group_size = 3;

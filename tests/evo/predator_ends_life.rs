@@ -21,7 +21,7 @@ fn experiment(extra: &str) -> Experiment {
 
 #[test]
 fn a_creature_killed_at_once_keeps_its_initial_metabolism() {
-    let air = include_str!("../fixtures/lethal-air-predator.toml");
+    let air = include_str!("../fixtures/worlds/lethal-air-predator.toml");
     let killed = experiment(air);
     let free = experiment("");
     let genome = |e: &Experiment| Genome::new(vec![0.0; e.topology().parameter_count()]);
