@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The long version of tests/kill_resume.rs: SIGKILLs real runs of tests/fixtures/slow.toml at
+# The long version of tests/signals/sigkill_resume.rs: SIGKILLs real runs of tests/fixtures/slow.toml at
 # seeded random moments, resumes each time, and checks every finished run is byte-identical
 # to an uninterrupted one. Prints the number of kills survived.
 #
@@ -10,4 +10,4 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 export BERRY_KILLS="${BERRY_KILLS:-200}"
 export BERRY_KILL_SEED="${BERRY_KILL_SEED:-2026}"
-cargo test --release --quiet --test kill_resume -- --nocapture 2>&1 | grep -E 'survived|panicked|FAILED|failed|test result'
+cargo test --release --quiet --test signals sigkill_resume:: -- --nocapture 2>&1 | grep -E 'survived|panicked|FAILED|failed|test result'

@@ -184,7 +184,7 @@ fn xcr0() -> u32 {
 /// something the compiler may pick for ordinary Rust (BMI2's `shlx` for a variable shift, a
 /// VEX-encoded move for a copy), so this function is CPUID and XGETBV (inline assembly, which
 /// the compiler does not rewrite) and `and`/compare against constant masks, and nothing else:
-/// no loop, no variable shift, no memory copy. `tests/old_cpu.rs` runs the binary on
+/// no loop, no variable shift, no memory copy. `tests/cli/old_cpus.rs` runs the binary on
 /// emulated CPUs without AVX (with `qemu-x86_64`, which `.ci/run` installs).
 #[inline(never)]
 pub fn runs_here() -> bool {

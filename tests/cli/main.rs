@@ -1,0 +1,21 @@
+//! End-to-end through the `berry-evolve` binary (`env!("CARGO_BIN_EXE_berry-evolve")`):
+//! reproducibility, errors and reliability of every command, pictures, replay, replicates, and
+//! the start-up CPU check.
+
+#[path = "../cli_common/mod.rs"]
+mod cli_common;
+
+mod atomic_outputs;
+mod console_output;
+mod dead_end_messages;
+mod gadget_experiments;
+mod hostile_inputs;
+mod landmark_experiments;
+mod old_cpus;
+mod one_writer_per_folder;
+mod pictures;
+mod replay_in_browser;
+mod replicates;
+mod reproducibility_and_errors;
+mod run_folder;
+mod unwritable_outputs;

@@ -1,0 +1,16 @@
+//! Evolution and evaluation (`berry_evolve::evo`, `berry_evolve::experiment`): the GA and PGPE,
+//! trials, lockstep, fitness terms and measures, validation, and experiment files.
+
+#[path = "../cli_common/mod.rs"]
+mod cli_common;
+
+mod experiment_files;
+mod experiment_limits;
+mod fitness_terms_and_measures;
+mod genetic_algorithm;
+mod lockstep_vs_single_trials;
+mod overflowing_brains;
+mod pgpe;
+mod predator_ends_life;
+mod trial_path_observer;
+mod validation_champions;
