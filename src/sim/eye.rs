@@ -31,7 +31,7 @@ use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::Thing;
 use crate::sim::spec::EyeSpec;
 use crate::sim::wall::Wall;
-use crate::sim::world::Creature;
+use crate::sim::creature::Creature;
 
 /// Margin in radians added on each side of a cylinder's approximate angular extent. It must
 /// dominate the error of the bearing and of the angular radius (each ≤ 1.2e-5 rad from

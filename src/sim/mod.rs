@@ -17,6 +17,7 @@
 
 pub mod area;
 pub mod controller;
+pub mod creature;
 pub mod eye;
 pub mod food;
 pub mod gadgets;
@@ -35,4 +36,5 @@ pub mod world;
 
 pub use placement::PlacementError;
 pub use spec::{CreatureSpec, Eating, WorldSpec};
-pub use world::{Creature, World};
+pub use creature::Creature;
+pub use world::World;

@@ -22,7 +22,7 @@ use crate::sim::smell::{
     accumulate, accumulate_listed, add, add_pair, falloff_pair, reach_pair, saturate, Shade, Smell,
 };
 use crate::sim::wall::BoxedSegment;
-use crate::sim::world::Creature;
+use crate::sim::creature::Creature;
 
 /// The body geometry the senses need, precomputed from the creature spec once per world.
 #[derive(Debug, Clone, Copy, PartialEq)]
