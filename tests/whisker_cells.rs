@@ -9,11 +9,11 @@ mod sim_common;
 use std::fmt::Write;
 
 use berry_evolve::geometry::{segments_intersect, Segment, Vec2};
-use berry_evolve::sim::grid::StaticIndex;
+use berry_evolve::sim::index::whisker_cells::WhiskerCells;
+use berry_evolve::sim::index::StaticIndex;
 use berry_evolve::sim::sensors::{Body, Surroundings};
 use berry_evolve::sim::smell::Smell;
 use berry_evolve::sim::wall::{BoxedSegment, Walls};
-use berry_evolve::sim::whisker_cells::WhiskerCells;
 use berry_evolve::sim::World;
 use sim_common::Mix;
 

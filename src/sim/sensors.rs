@@ -15,14 +15,15 @@ use crate::geometry::{
 };
 use crate::sim::area::Area;
 use crate::sim::controller::{ObservationLayout, SensorGroup};
+use crate::sim::creature::Creature;
 use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::Thing;
-use crate::sim::grid::{FacedShade, Scratch, SmellBox, Source, StaticIndex};
+use crate::sim::index::smell_grid::{FacedShade, Source};
+use crate::sim::index::static_grid::{Scratch, SmellBox, StaticIndex};
 use crate::sim::smell::{
     accumulate, accumulate_listed, add, add_pair, falloff_pair, reach_pair, saturate, Shade, Smell,
 };
 use crate::sim::wall::BoxedSegment;
-use crate::sim::creature::Creature;
 
 /// The body geometry the senses need, precomputed from the creature spec once per world.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -250,7 +251,7 @@ impl Surroundings<'_> {
     /// candidate is tested against each whisker not yet touching; the other kinds of things
     /// only matter to the whiskers and are skipped once both touch. The fixed walls and food
     /// objects come from the body's cell of the
-    /// [`WhiskerCells`](crate::sim::whisker_cells::WhiskerCells) when the query passes their
+    /// [`WhiskerCells`](crate::sim::index::whisker_cells::WhiskerCells) when the query passes their
     /// guard (again a superset, see that module), else from the grid.
     ///
     /// Every answer is an "or" of exact tests that do not depend on one another, so the
@@ -418,10 +419,10 @@ impl Surroundings<'_> {
     /// range listed for both receptors, may be smelled, and only the fixed opaque walls hide
     /// them: the terms of [`accumulate_listed`] in list order, into accumulators local to this
     /// small function. What a term needs beyond the list comes from the grid too: the
-    /// source's [`Odour`](crate::sim::grid::Odour) (its emission, one term instead of eight
+    /// source's [`Odour`](crate::sim::index::static_grid::Odour) (its emission, one term instead of eight
     /// when only one component is not 0, and whether its amount scales it, the only case that
     /// reads the food object), and for a source with walls, each wall's
-    /// [`WallShade`](crate::sim::grid::WallShade), which settles the box test of
+    /// [`WallShade`](crate::sim::index::static_grid::WallShade), which settles the box test of
     /// [`visible_among`](crate::sim::smell::visible_among) for both receptors without a branch
     /// per side, and each wall's side of the source's centre, one of the four orientations
     /// of the occlusion test, with a copy of the wall

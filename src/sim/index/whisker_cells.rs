@@ -2,7 +2,7 @@
 //! over the arena whose cells list, in index order, the fixed felt walls and the food objects
 //! that a body whose centre lies in the cell can feel with a whisker or touch with its body.
 //! Built once per world; a creature's query is one cell lookup and two slice reads, where the
-//! [`crate::sim::grid::StaticIndex`] filtered every fixed wall (small worlds) or visited and
+//! [`crate::sim::index::static_grid::StaticIndex`] filtered every fixed wall (small worlds) or visited and
 //! clamped a box of cells.
 //!
 //! # Why a longer list changes no verdict
