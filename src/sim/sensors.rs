@@ -21,7 +21,8 @@ use crate::sim::gadgets::Thing;
 use crate::sim::index::smell_grid::{FacedShade, Source};
 use crate::sim::index::static_grid::{Scratch, SmellBox, StaticIndex};
 use crate::sim::smell::{
-    accumulate, accumulate_listed, add, add_pair, falloff_pair, reach_pair, saturate, Shade, Smell,
+    accumulate, accumulate_listed, add, add_pair, diffusion, falloff_pair, reach_pair, saturate,
+    Shade, Smell,
 };
 use crate::sim::wall::BoxedSegment;
 
@@ -439,7 +440,7 @@ impl Surroundings<'_> {
             if !(reach[0] | reach[1]) {
                 continue;
             }
-            let q = [1.0 / (1.0 + c * d2[0]), 1.0 / (1.0 + c * d2[1])];
+            let q = [diffusion(c, d2[0]), diffusion(c, d2[1])];
             let f0 = if reach[0] { q[0] } else { 0.0 };
             let f1 = if reach[1] { q[1] } else { 0.0 };
             // accumulate_listed skips a source whose falloffs are both 0 before its scale:

@@ -37,12 +37,20 @@ impl Smell {
     };
 }
 
-/// eq. 25/26 without the intensity: the factor 1 / (1 + c d²) at squared distance `d2`, or 0
-/// when `d2` is not strictly inside the range (eq. 26 says "if d < θ").
+/// Eq. 25 without the intensity, the one place it is written: the factor 1 / (1 + c d²) of
+/// I(d) = i / (1 + c d²) at squared distance `d2`. Always inlined, so that each caller
+/// compiles to the expression it wrote out before.
+#[inline(always)]
+pub fn diffusion(c: f64, d2: f64) -> f64 {
+    1.0 / (1.0 + c * d2)
+}
+
+/// eq. 25/26 without the intensity: [`diffusion`] at squared distance `d2`, or 0 when `d2`
+/// is not strictly inside the range (eq. 26 says "if d < θ").
 #[inline]
 pub fn falloff(d2: f64, c: f64, range_squared: f64) -> f64 {
     if d2 < range_squared {
-        1.0 / (1.0 + c * d2)
+        diffusion(c, d2)
     } else {
         0.0
     }
@@ -307,7 +315,7 @@ pub fn accumulate_listed(
     walls: [&[u32]; 2],
     (fixed, doors): (&[BoxedSegment], &[BoxedSegment]),
 ) {
-    let q = [1.0 / (1.0 + c * d2[0]), 1.0 / (1.0 + c * d2[1])];
+    let q = [diffusion(c, d2[0]), diffusion(c, d2[1])];
     let f0 = if reach[0] { q[0] } else { 0.0 };
     let f1 = if reach[1] { q[1] } else { 0.0 };
     if f0 == 0.0 && f1 == 0.0 {

@@ -575,7 +575,9 @@ impl World {
     pub fn begin_tick(&mut self) {
         // Nothing to regrow (every object full, the common case) and no gadgets: nothing
         // to do, known without entering the loops.
-        if self.brute_force || !self.regrowing.is_empty() {
+        if self.brute_force {
+            self.regenerate_all_food();
+        } else if !self.regrowing.is_empty() {
             self.regenerate_food();
         }
         if self.gadgets {
@@ -658,12 +660,6 @@ impl World {
     /// on its own, so the others are skipped and the order does not matter.
     #[inline(never)]
     fn regenerate_food(&mut self) {
-        if self.brute_force {
-            for f in &mut self.food {
-                f.regenerate();
-            }
-            return;
-        }
         let mut kept = 0;
         for n in 0..self.regrowing.len() {
             let k = self.regrowing[n];
@@ -677,6 +673,14 @@ impl World {
             }
         }
         self.regrowing.truncate(kept);
+    }
+
+    /// Phase 1 with the plain loop over every food object (under `brute_force`).
+    #[inline(never)]
+    fn regenerate_all_food(&mut self) {
+        for f in &mut self.food {
+            f.regenerate();
+        }
     }
 
     /// Phase 2.1: creature `i` senses and its observation is written into `out`.
@@ -771,9 +775,26 @@ impl World {
 
     /// Phases 2.3 to 2.5: clamp the motors and move creature `i`, blocked by walls and by the
     /// other living creatures, then its contacts: eating, shock and metabolism. One function,
-    /// so that the creature is looked up once for its move and its contacts.
+    /// so that the creature is looked up once for its move and its contacts. The brute-force
+    /// choice is made here, once for the phase.
     #[inline(always)]
     fn move_and_contact(&mut self, i: usize, command: MotorCommand) {
+        if self.rules.brute_force {
+            self.move_and_contact_brute_force(i, command);
+        } else {
+            self.move_and_contact_with::<false>(i, command);
+        }
+    }
+
+    /// [`World::move_and_contact`] with the plain loops over every wall and object.
+    #[inline(never)]
+    fn move_and_contact_brute_force(&mut self, i: usize, command: MotorCommand) {
+        self.move_and_contact_with::<true>(i, command);
+    }
+
+    /// [`World::move_and_contact`], with the plain loops when `BRUTE` and the indexes else.
+    #[inline(always)]
+    fn move_and_contact_with<const BRUTE: bool>(&mut self, i: usize, command: MotorCommand) {
         let rules = &self.rules;
         let command = MotorCommand {
             left: clamp_motor(command.left, rules.motion.max_rpt),
@@ -781,7 +802,7 @@ impl World {
             eat: command.eat,
         };
         let start = self.creatures[i].pose.position;
-        let near = self.creature_walls_near(i, start, command);
+        let near = self.creature_walls_near::<BRUTE>(i, start, command);
         // A lone creature in a world without things has no bodies to meet (the common case),
         // and its move does not read `blockers` (another cache line).
         let circles: &[Circle] = if self.rules.bodies {
@@ -821,7 +842,7 @@ impl World {
             Eating::Action => command.eat > 0.5,
         };
         let cell = match &self.mover_cells {
-            Some(cells) if !rules.brute_force => {
+            Some(cells) if !BRUTE => {
                 let last = &mut self.last_cell[i];
                 let f = cells.grid_coordinates(position);
                 // Most moves end in the cell they started in (cells are far wider than a
@@ -846,7 +867,7 @@ impl World {
                 cells.food(lists)
             } else {
                 let (lo, hi) = (position - radius, position + radius);
-                if rules.brute_force {
+                if BRUTE {
                     self.scratch.food.clear();
                     self.scratch.food.extend(0..self.food.len() as u32);
                 } else {
@@ -880,7 +901,7 @@ impl World {
         let touches = |a: &Aversive| circles_touch(position, radius, a.position, a.radius);
         let aversive = if !rules.aversives {
             false
-        } else if rules.brute_force {
+        } else if BRUTE {
             self.aversives.iter().any(touches)
         } else if let Some((cells, lists)) = cell {
             cells
@@ -950,8 +971,13 @@ impl World {
     /// |max_rpt|, so their bound (monotone in the magnitude) is no larger. The bound is then
     /// not computed; `walls_near` would have compared it and taken the same cell.
     #[inline]
-    fn creature_walls_near(&mut self, i: usize, start: Vec2, command: MotorCommand) -> NearWalls {
-        if let (Some(cells), false) = (&self.mover_cells, self.rules.brute_force) {
+    fn creature_walls_near<const BRUTE: bool>(
+        &mut self,
+        i: usize,
+        start: Vec2,
+        command: MotorCommand,
+    ) -> NearWalls {
+        if let (Some(cells), false) = (&self.mover_cells, BRUTE) {
             if !self.rules.doors || self.walls.felt().len() == self.walls.fixed_count() {
                 debug_assert!(
                     self.travel_bound(command.left.abs().max(command.right.abs())) <= cells.travel
