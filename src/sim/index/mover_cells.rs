@@ -83,10 +83,8 @@ impl LastCell {
     }
 }
 
-/// Most cells of [`MoverCells`] along each axis. Finer cells list fewer walls per move but
-/// cost more to build, once per trial world: on `experiments/foraging.toml` without common
-/// random numbers (a world built per trial), 16 cells a side cost 1,377M instructions a
-/// generation, 32 cost 1,389M and 64 cost 1,416M, while the tick cost stayed within 0.1%.
+/// Most cells of [`MoverCells`] along each axis: finer cells list fewer walls per move but
+/// cost more to build, once per trial world (figures in docs/performance.md).
 const MOVER_CELLS: usize = 16;
 
 /// Most fixed walls [`MoverCells`] lists.

@@ -15,16 +15,14 @@
 //! The widest query on this grid is the smell box (the opaque walls within the largest finite
 //! θ of a pair of receptors, for the smell sources the smell grid does not list). A cell as
 //! wide as that largest θ makes such a query cover 3 × 3 to 4 × 4 cells. Narrower cells trim the
-//! square query's corners but add per-cell overhead to every query, whiskers' included:
-//! half-width cells cost 6% more instructions on the foraging benchmark (callgrind). Wider
-//! cells would hand the range test objects far out of range. Cells are never narrower than
+//! square query's corners but add per-cell overhead to every query, whiskers' included
+//! (figures in docs/performance.md). Wider cells would hand the range test objects far out of range. Cells are never narrower than
 //! the body's contact and whisker reach (so a whisker query covers at most 2 × 2 cells), and
 //! the grid never has more than [`MAX_CELLS`] cells (huge arenas with short ranges get wider
 //! cells). Nor does it have more than [`CELLS_PER_ITEM`] cells per object and wall it
 //! holds (at least [`MIN_CELLS`]): the grid is built anew for every trial world, at a few
 //! instructions per cell, and a world without smell would otherwise get cells as narrow as
-//! the whisker reach (WaterWorld's 54 objects and walls got 14,400 cells, whose building was
-//! a tenth of a 500-tick trial's instructions). Worlds with at most [`FEW_WALLS`] fixed walls
+//! the whisker reach, and spend more building its grid than living its trial. Worlds with at most [`FEW_WALLS`] fixed walls
 //! filter the wall list directly instead of visiting cells, which is cheaper at that size.
 
 use crate::geometry::{Segment, Vec2};

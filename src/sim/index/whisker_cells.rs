@@ -37,10 +37,8 @@ use crate::geometry::Vec2;
 use crate::sim::food::Food;
 use crate::sim::wall::BoxedSegment;
 
-/// Most cells along each side (cells are never narrower than the reach). Finer cells hand a
-/// query fewer walls and food objects but cost more to build, once per trial world: on the
-/// foraging benchmark 16 cells a side cost 278 instructions per whisker-and-food pass and
-/// 32 cost 245, for about 74,000 instructions per world built (callgrind).
+/// Most cells along each side (cells are never narrower than the reach): finer cells hand a
+/// query fewer walls and food but cost more to build (figures in docs/performance.md).
 const CELLS_PER_SIDE: usize = 32;
 
 /// 2⁵²: adding it to an integer in [0, 2⁵²) is exact and leaves the integer in the low bits
