@@ -109,11 +109,12 @@ impl Geometry {
 
 /// Per-cell lists from `(cell, k)` pairs: cell c's items are `items[start[c]..start[c + 1]]`,
 /// `item(k)` for each of its pairs in the order the pairs come (a stable counting sort, so
-/// lists built from pairs in object order stay in object order).
-pub(crate) fn bucket_by_cell<T: Copy>(
+/// lists built from pairs in object order stay in object order). The one counting sort of
+/// every grid in [`crate::sim::index`].
+pub(crate) fn bucket_by_cell<K: Copy, T: Copy>(
     cells: usize,
-    pairs: &[(u32, u32)],
-    item: impl Fn(u32) -> T,
+    pairs: &[(u32, K)],
+    item: impl Fn(K) -> T,
 ) -> (Vec<u32>, Vec<T>) {
     let mut start = vec![0u32; cells + 1];
     for &(c, _) in pairs {

@@ -28,9 +28,12 @@
 //!   hide them.
 //! - [`whisker_cells`]: per cell, the walls and food a body's whiskers and detectors may touch.
 //! - [`mover_cells`]: per cell, the walls a move may reach and the objects a body may touch.
+//! - [`senses`]: the senses' passes over these candidates (the plain loops stay in
+//!   [`crate::sim::sensors`]).
 
 pub mod cells;
 pub mod mover_cells;
+pub mod senses;
 pub mod smell_grid;
 pub mod static_grid;
 pub mod whisker_cells;

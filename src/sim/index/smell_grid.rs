@@ -30,7 +30,7 @@
 
 use crate::geometry::{point_segment_distance_squared, side_of, Segment, Vec2};
 use crate::sim::food::{Aversive, Food};
-use crate::sim::index::cells::{Geometry, CELLS_PER_ITEM, MAX_CELLS, MIN_CELLS};
+use crate::sim::index::cells::{bucket_by_cell, Geometry, CELLS_PER_ITEM, MAX_CELLS, MIN_CELLS};
 use crate::sim::index::static_grid::StaticIndex;
 use crate::sim::smell::{Smell, WallShade};
 use crate::sim::wall::BoxedSegment;
@@ -331,6 +331,28 @@ pub(super) struct SmellGrid {
 }
 
 impl SmellGrid {
+    /// This grid with its per-cell lists of sources from `(cell, source)` pairs pushed in id
+    /// order (a stable counting sort, so each cell's sources keep their increasing id order),
+    /// and each cell's grown box beside its range.
+    fn with_sources(mut self, pairs: &[(u32, Source)]) -> SmellGrid {
+        let (nx, ny) = (self.geometry.nx, self.geometry.ny);
+        let (start, sources) = bucket_by_cell(nx * ny, pairs, |s| s);
+        self.start = start;
+        self.sources = sources;
+        self.cells = (0..nx * ny)
+            .map(|k| {
+                let ((x0, x1), (y0, y1)) = (self.xs[k % nx], self.ys[k / nx]);
+                PairCell {
+                    lo: Vec2::new(x0, y0),
+                    hi: Vec2::new(x1, y1),
+                    start: self.start[k],
+                    end: self.start[k + 1],
+                }
+            })
+            .collect();
+        self
+    }
+
     /// This grid with `odours`, the distinct emissions its sources reference.
     pub(super) fn with_odours(self, odours: Vec<Odour>) -> SmellGrid {
         SmellGrid { odours, ..self }
@@ -621,19 +643,6 @@ pub(super) fn smell_grid(
         let c = grid
             .geometry
             .cells(lo - (grow + slack), hi + (grow + slack));
-        // Plain comparisons rather than f64::min/max (which handle NaN at a cost): only a
-        // finite p can be in range of a receptor, and its lists are what matters.
-        let gap = |lo: f64, hi: f64, v: f64| {
-            if v < lo {
-                lo - v
-            } else if v > hi {
-                v - hi
-            } else {
-                0.0
-            }
-        };
-        let low = |a: f64, b: f64| if b < a { b } else { a };
-        let high = |a: f64, b: f64| if b > a { b } else { a };
         for y in c.y0..=c.y1 {
             let (ylo, yhi) = ys[y];
             // Distance from p to the cell's box (0 inside it), by axis.
@@ -647,29 +656,7 @@ pub(super) fn smell_grid(
                 }
                 let (clo, chi) = (Vec2::new(xlo, ylo), Vec2::new(xhi, yhi));
                 let w0 = walls.len() as u32;
-                let hlo = Vec2::new(low(xlo, p.x), low(ylo, p.y));
-                let hhi = Vec2::new(high(xhi, p.x), high(yhi, p.y));
-                // A source that one wall hides from the whole cell is not listed there: it
-                // would cost an occlusion test per receptor and add nothing.
-                let mut hidden = false;
-                for h in &hiders {
-                    if h.may_meet(clo, chi, hlo, hhi) {
-                        if h.hides(clo, chi) {
-                            hidden = true;
-                            break;
-                        }
-                        walls.push(h.k);
-                        let segment = opaque[h.k as usize].segment;
-                        shaded.push(ShadedWall {
-                            shade: FacedShade::new(WallShade::new(p, h.lo, h.hi)),
-                            segment,
-                            side: side_of(&segment, p),
-                        });
-                    }
-                }
-                if hidden {
-                    walls.truncate(w0 as usize);
-                    shaded.truncate(w0 as usize);
+                if !list_hiders(&hiders, (clo, chi), p, opaque, &mut walls, &mut shaded) {
                     continue;
                 }
                 let w1 = walls.len() as u32;
@@ -684,30 +671,70 @@ pub(super) fn smell_grid(
     }
     grid.walls = walls;
     grid.shaded = shaded;
-    // A counting sort by cell, stable: each cell's sources keep their increasing id order.
-    for &(cell, _) in &pairs {
-        grid.start[cell as usize + 1] += 1;
+    grid.with_sources(&pairs)
+}
+
+/// Distance from `v` to the span `[lo, hi]` (0 inside it). Plain comparisons rather than
+/// f64::min/max (which handle NaN at a cost): only a finite source centre can be in range of
+/// a receptor, and its lists are what matters.
+fn gap(lo: f64, hi: f64, v: f64) -> f64 {
+    if v < lo {
+        lo - v
+    } else if v > hi {
+        v - hi
+    } else {
+        0.0
     }
-    for k in 0..nx * ny {
-        grid.start[k + 1] += grid.start[k];
+}
+
+/// The lesser of `a` and `b` (`a` when they compare equal or one is NaN).
+fn low(a: f64, b: f64) -> f64 {
+    if b < a {
+        b
+    } else {
+        a
     }
-    let mut next = grid.start.clone();
-    grid.cells = (0..nx * ny)
-        .map(|k| {
-            let ((x0, x1), (y0, y1)) = (grid.xs[k % nx], grid.ys[k / nx]);
-            PairCell {
-                lo: Vec2::new(x0, y0),
-                hi: Vec2::new(x1, y1),
-                start: grid.start[k],
-                end: grid.start[k + 1],
+}
+
+/// The greater of `a` and `b` (`a` when they compare equal or one is NaN).
+fn high(a: f64, b: f64) -> f64 {
+    if b > a {
+        b
+    } else {
+        a
+    }
+}
+
+/// Onto `walls` and `shaded`: the walls of `hiders` that may hide the source at `p` from a
+/// receptor in the cell's grown box `[clo, chi]`, with their shades. False (and nothing left
+/// pushed) when one wall hides it from the whole cell: such a source is not listed there, it
+/// would cost an occlusion test per receptor and add nothing.
+fn list_hiders(
+    hiders: &[Hider],
+    (clo, chi): (Vec2, Vec2),
+    p: Vec2,
+    opaque: &[BoxedSegment],
+    walls: &mut Vec<u32>,
+    shaded: &mut Vec<ShadedWall>,
+) -> bool {
+    let w0 = walls.len();
+    let hlo = Vec2::new(low(clo.x, p.x), low(clo.y, p.y));
+    let hhi = Vec2::new(high(chi.x, p.x), high(chi.y, p.y));
+    for h in hiders {
+        if h.may_meet(clo, chi, hlo, hhi) {
+            if h.hides(clo, chi) {
+                walls.truncate(w0);
+                shaded.truncate(w0);
+                return false;
             }
-        })
-        .collect();
-    grid.sources = vec![Source::NONE; pairs.len()];
-    for (cell, s) in pairs {
-        let slot = &mut next[cell as usize];
-        grid.sources[*slot as usize] = s;
-        *slot += 1;
+            walls.push(h.k);
+            let segment = opaque[h.k as usize].segment;
+            shaded.push(ShadedWall {
+                shade: FacedShade::new(WallShade::new(p, h.lo, h.hi)),
+                segment,
+                side: side_of(&segment, p),
+            });
+        }
     }
-    grid
+    true
 }

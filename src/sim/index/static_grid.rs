@@ -27,7 +27,9 @@
 
 use crate::geometry::{Segment, Vec2};
 use crate::sim::food::{Aversive, Food};
-use crate::sim::index::cells::{Cells, Geometry, CELLS_PER_ITEM, MAX_CELLS, MIN_CELLS};
+use crate::sim::index::cells::{
+    bucket_by_cell, Cells, Geometry, CELLS_PER_ITEM, MAX_CELLS, MIN_CELLS,
+};
 use crate::sim::index::smell_grid::{finite_sources, smell_grid, SmellGrid};
 use crate::sim::index::whisker_cells::WhiskerCells;
 use crate::sim::smell::{Shade, Smell};
@@ -51,20 +53,10 @@ struct CellLists {
 
 impl CellLists {
     /// Lists built from `(cell, object)` pairs pushed in increasing object order.
-    fn build(cells: usize, mut pairs: Vec<(u32, u32)>) -> CellLists {
+    fn build(cells: usize, pairs: Vec<(u32, u32)>) -> CellLists {
         // Stable: objects keep their increasing order within a cell.
-        pairs.sort_by_key(|&(cell, _)| cell);
-        let mut start = vec![0u32; cells + 1];
-        for &(cell, _) in &pairs {
-            start[cell as usize + 1] += 1;
-        }
-        for k in 0..cells {
-            start[k + 1] += start[k];
-        }
-        CellLists {
-            start,
-            items: pairs.into_iter().map(|(_, item)| item).collect(),
-        }
+        let (start, items) = bucket_by_cell(cells, &pairs, |k| k);
+        CellLists { start, items }
     }
 
     /// The objects of cells `x0..=x1` in row `y` (a row holds `nx` cells).
