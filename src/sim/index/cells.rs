@@ -109,8 +109,8 @@ impl Geometry {
 
 /// Per-cell lists from `(cell, k)` pairs: cell c's items are `items[start[c]..start[c + 1]]`,
 /// `item(k)` for each of its pairs in the order the pairs come (a stable counting sort, so
-/// lists built from pairs in object order stay in object order). The one counting sort of
-/// every grid in [`crate::sim::index`].
+/// lists built from pairs in object order stay in object order). The counting sort of the
+/// static grid, the smell grid and the mover cells.
 pub(crate) fn bucket_by_cell<K: Copy, T: Copy>(
     cells: usize,
     pairs: &[(u32, K)],

@@ -22,7 +22,11 @@
 //!    against a filter over every object) and compares the bits.
 //!
 //! # Layout
-//! - [`cells`]: the cell layout and the one stable counting sort the grids build lists with.
+//! - [`cells`]: the cell layout of the static and smell grids, and the stable counting sort
+//!   the static grid, the smell grid and the mover cells build their lists with. The whisker
+//!   and mover cells keep their own cell lookups (a range test and a truncation tuned for
+//!   the tick, which the static grid's clamping lookup would lengthen), and the whisker
+//!   cells their own two-kind sort (a quarter cheaper to build than the shared one).
 //! - [`static_grid`]: food, aversive objects and fixed walls by cell ([`StaticIndex`]).
 //! - [`smell_grid`]: per cell, the smell sources that may reach it and the walls that may
 //!   hide them.

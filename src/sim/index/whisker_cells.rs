@@ -35,7 +35,6 @@
 
 use crate::geometry::Vec2;
 use crate::sim::food::Food;
-use crate::sim::index::cells::bucket_by_cell;
 use crate::sim::wall::BoxedSegment;
 
 /// Most cells along each side (cells are never narrower than the reach): finer cells hand a
@@ -144,25 +143,43 @@ impl WhiskerCells {
                 [x0, x1, y0, y1]
             })
             .collect();
-        // A counting sort by slot, cell k's walls in slot 2k and its food in slot 2k + 1,
-        // from pairs in object order so that each list keeps the increasing index order.
-        let mut pairs: Vec<(u32, u32)> = Vec::new();
-        for (j, &[x0, x1, y0, y1]) in rects.iter().enumerate() {
-            let (kind, k) = if j < walls.len() {
-                (0, j)
-            } else {
-                (1, j - walls.len())
-            };
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    pairs.push(((2 * (y * nx + x) + kind) as u32, k as u32));
+        // A counting sort by cell and kind (walls, then food), filled in object order so
+        // that each list keeps the increasing index order. Its own rather than
+        // `cells::bucket_by_cell`: two passes over the objects' cell ranges without a list of
+        // pairs, where the shared sort cost a quarter more of this build (callgrind).
+        let each = |f: &mut dyn FnMut(usize, usize)| {
+            for (j, &[x0, x1, y0, y1]) in rects.iter().enumerate() {
+                let (kind, k) = if j < walls.len() {
+                    (0, j)
+                } else {
+                    (1, j - walls.len())
+                };
+                for y in y0..=y1 {
+                    for x in x0..=x1 {
+                        f(2 * (y * nx + x) + kind, k);
+                    }
                 }
             }
+        };
+        // First each cell's counts of walls and food, then their slots: cell k gets
+        // `[a, b, c]`, and `next[k]` is the next free slot of its walls and of its food.
+        let mut cells = vec![[0u32; 3]; n];
+        each(&mut |slot, _| cells[slot / 2][1 + slot % 2] += 1);
+        let mut next = vec![[0u32; 2]; n];
+        let mut at = 0u32;
+        for (cell, next) in cells.iter_mut().zip(next.iter_mut()) {
+            let [_, walls_in, food_in] = *cell;
+            let (b, c) = (at + walls_in, at + walls_in + food_in);
+            *cell = [at, b, c];
+            *next = [at, b];
+            at = c;
         }
-        let (start, items) = bucket_by_cell(2 * n, &pairs, |k| k);
-        let cells = (0..n)
-            .map(|k| [start[2 * k], start[2 * k + 1], start[2 * k + 2]])
-            .collect();
+        let mut items = vec![0u32; at as usize];
+        each(&mut |slot, k| {
+            let free = &mut next[slot / 2][slot % 2];
+            items[*free as usize] = k as u32;
+            *free += 1;
+        });
         Some(WhiskerCells {
             cell,
             inv_cell,
