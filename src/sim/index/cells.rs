@@ -1,6 +1,6 @@
-//! The cell layout the grids share: square cells over the arena ([`Geometry`]; points outside
+//! The cell layout the grids share: square cells over the arena (`Geometry`; points outside
 //! map to the nearest border cell), and the stable counting sort that turns `(cell, item)`
-//! pairs pushed in item order into per-cell lists that keep item order ([`bucket_by_cell`]).
+//! pairs pushed in item order into per-cell lists that keep item order (`bucket_by_cell`).
 
 use crate::geometry::Vec2;
 

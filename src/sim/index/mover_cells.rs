@@ -1,7 +1,7 @@
 //! The creatures' moves and contacts: a grid over the fixed walls whose cells list the walls a
 //! move starting in the cell may reach and the food and aversive objects a body ending in it
-//! may touch ([`MoverCells`]), and per creature the cell its last contacts found it in
-//! ([`LastCell`]), which its next move reuses when it starts where the last one ended.
+//! may touch (`MoverCells`), and per creature the cell its last contacts found it in
+//! (`LastCell`), which its next move reuses when it starts where the last one ended.
 
 use crate::geometry::{Segment, Vec2};
 use crate::sim::food::{Aversive, Food};

@@ -179,7 +179,7 @@ impl Surroundings<'_> {
     /// object out of range of both receptors costs a few instructions) and the fixed opaque
     /// walls that may hide it from there, so such an object is tested for occlusion against
     /// those walls and the closed doors only. Mostly one cell serves both receptors
-    /// ([`StaticIndex::smell_pair_sources`]); otherwise each receptor's cell serves it, in a
+    /// ([`StaticIndex::smell_pair_sources`](crate::sim::index::StaticIndex::smell_pair_sources)); otherwise each receptor's cell serves it, in a
     /// merge of both lists. The objects of unlimited range, the areas, things and creatures
     /// are tested against the opaque walls that meet the smell box of the pair (the largest
     /// finite range around both receptors) when their centre lies in it, else against every
@@ -223,10 +223,10 @@ impl Surroundings<'_> {
     /// range listed for both receptors, may be smelled, and only the fixed opaque walls hide
     /// them: the terms of [`accumulate_listed`] in list order, into accumulators local to this
     /// small function. What a term needs beyond the list comes from the grid too: the
-    /// source's [`Odour`](crate::sim::index::static_grid::Odour) (its emission, one term instead of eight
+    /// source's [`Odour`](crate::sim::index::smell_grid::Odour) (its emission, one term instead of eight
     /// when only one component is not 0, and whether its amount scales it, the only case that
     /// reads the food object), and for a source with walls, each wall's
-    /// [`WallShade`](crate::sim::index::static_grid::WallShade), which settles the box test of
+    /// [`WallShade`](crate::sim::smell::WallShade), which settles the box test of
     /// [`visible_among`](crate::sim::smell::visible_among) for both receptors without a branch
     /// per side, and each wall's side of the source's centre, one of the four orientations
     /// of the occlusion test, with a copy of the wall
