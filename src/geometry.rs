@@ -246,7 +246,7 @@ pub fn side_of(seg: &Segment, p: Vec2) -> f64 {
 /// [`segments_intersect`]`(s0, s1)` when the caller knows that the segments' boxes meet (the
 /// rejection of eq. 5–8 would pass) and gives `o4 = `[`side_of`]`(s1, s0.b)`: the rest of the
 /// same code, with that orientation read rather than computed. The smell's occlusion test
-/// knows both: a wall's [`WallShade`](crate::sim::grid::WallShade) settled the box test for
+/// knows both: a wall's [`WallShade`](crate::sim::smell::WallShade) settled the box test for
 /// the receptor, and the grid keeps the source's side of the wall. Out of line like
 /// [`segments_intersect`]: inlined into the smell's loop over walls, its registers crowded
 /// that loop into more spills than the call costs.

@@ -27,11 +27,11 @@
 //! when the eye is built; rendering allocates nothing.
 
 use crate::geometry::{point_segment_distance_squared, ray_circle, ray_segment, Vec2};
+use crate::sim::creature::Creature;
 use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::Thing;
 use crate::sim::spec::EyeSpec;
 use crate::sim::wall::Wall;
-use crate::sim::world::Creature;
 
 /// Margin in radians added on each side of a cylinder's approximate angular extent. It must
 /// dominate the error of the bearing and of the angular radius (each ≤ 1.2e-5 rad from

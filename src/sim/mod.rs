@@ -3,11 +3,11 @@
 //! and every random draw comes from the generator a world is given.
 //!
 //! - [`spec`]: the `[world]` and `[creature]` tables and their validation.
-//! - [`world`]: the running world and the tick loop of §9.
+//! - [`world`]: the running world and the tick loop of §9; [`creature`]: one creature.
 //! - [`wall`], [`food`], [`smell`]: the things in the world.
 //! - [`sensors`]: whiskers, smell sensors, food detectors, observation layout.
-//! - [`grid`]: the spatial index of food, aversive objects and fixed walls the senses query;
-//!   [`whisker_cells`]: the walls and food each cell's whiskers and food detectors may touch.
+//! - [`index`]: what exists only for speed, the spatial indexes the senses, moves and contacts
+//!   query (the static grid, the smell grid, whisker cells, mover cells).
 //! - [`gadgets`]: doors, teleporters, wanderers and predators (§4.5.1, §4.5.2, §4.7, §4.8).
 //! - [`area`]: areas and distal landmarks; [`eye`]: the retina; [`noise`]: sensor noise.
 //! - [`motion`]: the body's movement (§8).
@@ -17,10 +17,11 @@
 
 pub mod area;
 pub mod controller;
+pub mod creature;
 pub mod eye;
 pub mod food;
 pub mod gadgets;
-pub mod grid;
+pub mod index;
 pub mod metabolism;
 pub mod motion;
 pub mod noise;
@@ -30,9 +31,9 @@ pub mod sensors;
 pub mod smell;
 pub mod spec;
 pub mod wall;
-pub mod whisker_cells;
 pub mod world;
 
+pub use creature::Creature;
 pub use placement::PlacementError;
 pub use spec::{CreatureSpec, Eating, WorldSpec};
-pub use world::{Creature, World};
+pub use world::World;

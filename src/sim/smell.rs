@@ -2,7 +2,6 @@
 //! (eq. 25, cut off by the range θ of eq. 26), and how opaque walls hide it from a receptor.
 
 use crate::geometry::{segments_intersect, Segment, Vec2};
-use crate::sim::grid::WallShade;
 use crate::sim::wall::BoxedSegment;
 use serde::{Deserialize, Serialize};
 
@@ -38,12 +37,20 @@ impl Smell {
     };
 }
 
-/// eq. 25/26 without the intensity: the factor 1 / (1 + c d²) at squared distance `d2`, or 0
-/// when `d2` is not strictly inside the range (eq. 26 says "if d < θ").
+/// Eq. 25 without the intensity, the one place it is written: the factor 1 / (1 + c d²) of
+/// I(d) = i / (1 + c d²) at squared distance `d2`. Always inlined, so that each caller
+/// compiles to the expression it wrote out before.
+#[inline(always)]
+pub fn diffusion(c: f64, d2: f64) -> f64 {
+    1.0 / (1.0 + c * d2)
+}
+
+/// eq. 25/26 without the intensity: [`diffusion`] at squared distance `d2`, or 0 when `d2`
+/// is not strictly inside the range (eq. 26 says "if d < θ").
 #[inline]
 pub fn falloff(d2: f64, c: f64, range_squared: f64) -> f64 {
     if d2 < range_squared {
-        1.0 / (1.0 + c * d2)
+        diffusion(c, d2)
     } else {
         0.0
     }
@@ -119,6 +126,57 @@ impl Shade {
             y1,
             segment: wall.segment,
         }
+    }
+}
+
+/// A wall as seen from a smell source's centre p: the box `[x0, x1] × [y0, y1]` (bounds may be
+/// infinite) a receptor r must lie in for the box of the segment from r to p to meet the
+/// wall's box. The segment's box misses the wall's box on the low x side only when both ends
+/// are below the wall's `lo.x`, which p settles: if p is below, r must not be (x0 = lo.x),
+/// else nothing is required (x0 = −∞); likewise for the other three sides. So for r and p not
+/// NaN, "r is in the box" is exactly [`BoxedSegment::may_meet`] of the segment's box, the
+/// first test of [`crate::sim::smell::visible_among`], settled per source and wall when the
+/// index is built rather than per receptor (the same construction as
+/// [`crate::sim::smell::Shade`], with the roles of the two ends swapped, which the box of a
+/// segment does not see).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WallShade {
+    /// Least x.
+    pub x0: f64,
+    /// Greatest x.
+    pub x1: f64,
+    /// Least y.
+    pub y0: f64,
+    /// Greatest y.
+    pub y1: f64,
+}
+
+impl WallShade {
+    /// The wall whose box is `[lo, hi]` seen from `p` (also the first part of a receptor's
+    /// [`Shade`]).
+    #[inline]
+    pub(crate) fn new(p: Vec2, lo: Vec2, hi: Vec2) -> WallShade {
+        let pick = |cut: bool, v: f64, none: f64| if cut { v } else { none };
+        WallShade {
+            x0: pick(p.x < lo.x, lo.x, f64::NEG_INFINITY),
+            x1: pick(hi.x < p.x, hi.x, f64::INFINITY),
+            y0: pick(p.y < lo.y, lo.y, f64::NEG_INFINITY),
+            y1: pick(hi.y < p.y, hi.y, f64::INFINITY),
+        }
+    }
+
+    /// Does the box of the segment from `r` to the source's centre meet the wall's box (`r`
+    /// and the centre not NaN), and is `ask` true? One branch for the caller rather than one
+    /// per side (the answers are as good as random): the tests are counted, which the
+    /// compiler keeps free of branches where it turns `&` and `&&` alike into jumps.
+    #[inline(always)]
+    pub fn holds(&self, r: Vec2, ask: bool) -> bool {
+        let n = u8::from(r.x >= self.x0)
+            + u8::from(r.x <= self.x1)
+            + u8::from(r.y >= self.y0)
+            + u8::from(r.y <= self.y1)
+            + u8::from(ask);
+        n == 5
     }
 }
 
@@ -257,7 +315,7 @@ pub fn accumulate_listed(
     walls: [&[u32]; 2],
     (fixed, doors): (&[BoxedSegment], &[BoxedSegment]),
 ) {
-    let q = [1.0 / (1.0 + c * d2[0]), 1.0 / (1.0 + c * d2[1])];
+    let q = [diffusion(c, d2[0]), diffusion(c, d2[1])];
     let f0 = if reach[0] { q[0] } else { 0.0 };
     let f1 = if reach[1] { q[1] } else { 0.0 };
     if f0 == 0.0 && f1 == 0.0 {

@@ -301,7 +301,7 @@ fn listed_smells_world(seed: u64) -> String {
 
 /// [`listed_smells_world`] with every kind's odour cut down to one component (a random one of
 /// the eight, of random strength), the smells the smell grid sums one term at a time
-/// ([`berry_evolve::sim::grid::Odour::lone`]).
+/// ([`berry_evolve::sim::index::smell_grid::Odour::lone`]).
 fn one_component_smells_world(seed: u64) -> String {
     let mut r = Mix(seed ^ 0x0D0E);
     let mut out = String::new();
@@ -560,7 +560,7 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
     use berry_evolve::geometry::{
         segments_intersect, segments_intersect_past_box, side_of, Segment,
     };
-    use berry_evolve::sim::grid::{FacedShade, Source};
+    use berry_evolve::sim::index::smell_grid::{FacedShade, Source};
     use berry_evolve::sim::wall::BoxedSegment;
     let (mut checked, mut listed_in_range) = (0, 0);
     let (mut pairs, mut pairs_served, mut hidden_unlisted) = (0, 0, 0);
@@ -750,7 +750,8 @@ fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
 /// every receptor: infinite ones, NaN and both zeros included, on bounds of the same kinds.
 #[test]
 fn a_faced_shade_answers_as_its_wall_shade() {
-    use berry_evolve::sim::grid::{FacedShade, WallShade};
+    use berry_evolve::sim::index::smell_grid::FacedShade;
+    use berry_evolve::sim::smell::WallShade;
     let inf = f64::INFINITY;
     let values = [-inf, -2.5, -1.0, -0.0, 0.0, 1.0, 2.5, inf, f64::NAN];
     for x0 in values {

@@ -2,7 +2,7 @@
 //! over the arena whose cells list, in index order, the fixed felt walls and the food objects
 //! that a body whose centre lies in the cell can feel with a whisker or touch with its body.
 //! Built once per world; a creature's query is one cell lookup and two slice reads, where the
-//! [`crate::sim::grid::StaticIndex`] filtered every fixed wall (small worlds) or visited and
+//! [`crate::sim::index::static_grid::StaticIndex`] filtered every fixed wall (small worlds) or visited and
 //! clamped a box of cells.
 //!
 //! # Why a longer list changes no verdict
@@ -37,10 +37,8 @@ use crate::geometry::Vec2;
 use crate::sim::food::Food;
 use crate::sim::wall::BoxedSegment;
 
-/// Most cells along each side (cells are never narrower than the reach). Finer cells hand a
-/// query fewer walls and food objects but cost more to build, once per trial world: on the
-/// foraging benchmark 16 cells a side cost 278 instructions per whisker-and-food pass and
-/// 32 cost 245, for about 74,000 instructions per world built (callgrind).
+/// Most cells along each side (cells are never narrower than the reach): finer cells hand a
+/// query fewer walls and food but cost more to build (figures in docs/performance.md).
 const CELLS_PER_SIDE: usize = 32;
 
 /// 2⁵²: adding it to an integer in [0, 2⁵²) is exact and leaves the integer in the low bits
@@ -146,7 +144,9 @@ impl WhiskerCells {
             })
             .collect();
         // A counting sort by cell and kind (walls, then food), filled in object order so
-        // that each list keeps the increasing index order.
+        // that each list keeps the increasing index order. Its own rather than
+        // `cells::bucket_by_cell`: two passes over the objects' cell ranges without a list of
+        // pairs, where the shared sort cost a quarter more of this build (callgrind).
         let each = |f: &mut dyn FnMut(usize, usize)| {
             for (j, &[x0, x1, y0, y1]) in rects.iter().enumerate() {
                 let (kind, k) = if j < walls.len() {
