@@ -31,106 +31,11 @@
 use crate::geometry::{point_segment_distance_squared, side_of, Segment, Vec2};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::index::cells::{bucket_by_cell, Geometry, CELLS_PER_ITEM, MAX_CELLS, MIN_CELLS};
-use crate::sim::index::static_grid::StaticIndex;
 use crate::sim::smell::{Smell, WallShade};
 use crate::sim::wall::BoxedSegment;
 
 /// Cells of the smell grid per largest finite smell range (see the module docs).
 const SMELL_CELLS_PER_RANGE: f64 = 2.0;
-
-/// The smell grid's queries, on the world's index that holds it.
-impl StaticIndex {
-    /// The cell of the smell grid holding a receptor at `p` (any point: outside points go to
-    /// the nearest border cell, NaN to cell 0).
-    #[inline]
-    pub fn smell_cell(&self, p: Vec2) -> usize {
-        let g = &self.smell.geometry;
-        g.row(p.y) * g.nx + g.col(p.x)
-    }
-
-    /// The list of [`StaticIndex::smell_sources`] that serves both receptors `tips` of a
-    /// creature at once, or `None` (then each receptor's own cell, [`StaticIndex::smell_cell`],
-    /// serves it): the cell holding the tips' midpoint when both tips lie in its box as the
-    /// grid was built for it, which is the cell widened by the whisker reach (see
-    /// [`SmellGrid`]), so that one list holds every source that may reach either tip, with
-    /// every wall that may hide it from either. The whisker tips are at most the whisker
-    /// length from their midpoint, so only tips far from the arena or not finite miss.
-    #[inline(never)]
-    pub fn smell_pair_sources(&self, tips: [Vec2; 2]) -> Option<&[Source]> {
-        self.smell_pair_sources_inlined(tips)
-    }
-
-    /// [`StaticIndex::smell_pair_sources`], always inlined: for the common case of a
-    /// creature's smell, where a call would cost about a fifth of the lookup. The general
-    /// smell keeps the call (out of line above): inlined there, it crowds that function's
-    /// registers (more instructions in the eye world).
-    #[inline(always)]
-    pub fn smell_pair_sources_inlined(&self, tips: [Vec2; 2]) -> Option<&[Source]> {
-        let s = &self.smell;
-        let g = &s.geometry;
-        let mid = (tips[0] + tips[1]) * 0.5;
-        let c = &s.cells[g.row(mid.y) * g.nx + g.col(mid.x)];
-        let (lo, hi) = (c.lo, c.hi);
-        let within = |p: Vec2| (p.x >= lo.x) & (p.x <= hi.x) & (p.y >= lo.y) & (p.y <= hi.y);
-        if within(tips[0]) & within(tips[1]) {
-            Some(&s.sources[c.start as usize..c.end as usize])
-        } else {
-            None
-        }
-    }
-
-    /// Every food or aversive object of finite range whose smell may reach a receptor in
-    /// smell cell `cell` (a finite receptor strictly within the range of such an object is
-    /// in a cell listing it), in increasing [`Source::id`] order.
-    #[inline]
-    pub fn smell_sources(&self, cell: usize) -> &[Source] {
-        let s = &self.smell;
-        &s.sources[s.start[cell] as usize..s.start[cell + 1] as usize]
-    }
-
-    /// The fixed opaque walls (indices among the first [`StaticIndex::fixed_opaque`] opaque
-    /// walls) that may cross a segment from a point of the cell listing `source` to its
-    /// centre: no other fixed wall can hide it from a receptor in that cell.
-    #[inline]
-    pub fn source_walls(&self, source: &Source) -> &[u32] {
-        &self.smell.walls[source.w0 as usize..source.w1 as usize]
-    }
-
-    /// The emission of `source` (a copy of its object's [`Smell::emission`]) and whether its
-    /// smell follows its amount.
-    #[inline(always)]
-    pub fn odour(&self, source: &Source) -> &Odour {
-        &self.smell.odours[source.odour as usize]
-    }
-
-    /// Per wall of [`StaticIndex::source_walls`] of `source`, in the same order, what the
-    /// occlusion test of a receptor's segment to the source's centre reads of it (a
-    /// [`ShadedWall`]): one slice, so that the smell's loop over a source's walls walks one
-    /// array with no index into the walls.
-    #[inline]
-    pub fn source_shaded_walls(&self, source: &Source) -> &[ShadedWall] {
-        &self.smell.shaded[source.w0 as usize..source.w1 as usize]
-    }
-
-    /// The smelly food and aversive objects of unlimited range, as [`Source::id`]s in
-    /// increasing order: every receptor may smell them.
-    #[inline]
-    pub fn smell_always(&self) -> &[u32] {
-        &self.smell_always
-    }
-
-    /// How many food objects the index holds ([`Source::id`]s from it on are aversive).
-    #[inline]
-    pub fn food_count(&self) -> usize {
-        self.food_count
-    }
-
-    /// Columns and rows of the smell grid, and the side of its cells.
-    pub fn smell_dimensions(&self) -> ([usize; 2], f64) {
-        let g = &self.smell.geometry;
-        ([g.nx, g.ny], g.cell)
-    }
-}
 
 /// One smell source listed in a cell of the [`SmellGrid`]: `id` is the food object's index,
 /// or the food count plus the aversive object's index (so that increasing ids are the order
@@ -147,10 +52,10 @@ pub struct Source {
     pub range_squared: f64,
     /// Food index, or food count + aversive index.
     pub id: u32,
-    w0: u32,
-    w1: u32,
+    pub(super) w0: u32,
+    pub(super) w1: u32,
     /// Index of its [`Odour`] in the grid's.
-    odour: u32,
+    pub(super) odour: u32,
 }
 
 impl Source {
@@ -311,23 +216,23 @@ pub struct ShadedWall {
 /// of a merge of two, at the cost of a slightly longer list.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct SmellGrid {
-    geometry: Geometry,
+    pub(super) geometry: Geometry,
     /// The sources of cell k are `sources[start[k]..start[k + 1]]`.
-    start: Vec<u32>,
-    sources: Vec<Source>,
+    pub(super) start: Vec<u32>,
+    pub(super) sources: Vec<Source>,
     /// The distinct emissions of the listed sources, referenced by [`Source::odour`].
-    odours: Vec<Odour>,
+    pub(super) odours: Vec<Odour>,
     /// Indices into the fixed opaque walls, referenced by [`Source`] ranges.
-    walls: Vec<u32>,
+    pub(super) walls: Vec<u32>,
     /// Per entry of `walls`, its shade, segment and side of the source's centre.
-    shaded: Vec<ShadedWall>,
+    pub(super) shaded: Vec<ShadedWall>,
     /// The bounds of the columns' grown boxes (infinite on the border sides).
-    xs: Vec<(f64, f64)>,
+    pub(super) xs: Vec<(f64, f64)>,
     /// Per cell, its grown box and its range of `sources`, side by side for
     /// [`StaticIndex::smell_pair_sources`] (one read of one cache line or two).
-    cells: Vec<PairCell>,
+    pub(super) cells: Vec<PairCell>,
     /// The bounds of the rows' grown boxes (infinite on the border sides).
-    ys: Vec<(f64, f64)>,
+    pub(super) ys: Vec<(f64, f64)>,
 }
 
 impl SmellGrid {
@@ -414,11 +319,11 @@ impl SmellGrid {
 /// One cell of the [`SmellGrid`] as [`StaticIndex::smell_pair_sources`] reads it: its grown box
 /// (the bounds of its column and row in `xs` and `ys`) and its range of sources.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct PairCell {
-    lo: Vec2,
-    hi: Vec2,
-    start: u32,
-    end: u32,
+pub(super) struct PairCell {
+    pub(super) lo: Vec2,
+    pub(super) hi: Vec2,
+    pub(super) start: u32,
+    pub(super) end: u32,
 }
 
 /// A fixed opaque wall as seen from a smell source's centre `p`, prepared for the test "can
