@@ -24,7 +24,8 @@ use crate::evo::evaluate::TrialOutcome;
 use crate::evo::trial::{TickObserver, TrialId};
 use crate::experiment::Experiment;
 use crate::geometry::{circles_touch, Vec2};
-use crate::sim::gadgets::{Effect, Role};
+use crate::sim::gadgets::Role;
+use crate::sim::spec::Effect;
 use crate::sim::world::World;
 use serde::{Deserialize, Serialize};
 
