@@ -911,7 +911,7 @@ impl World {
     /// built for, else `scratch.blocking`, filled by the grid. Motion's verdict is a yes/no
     /// over the walls, so leaving out walls that cannot be reached changes nothing, and
     /// listing more walls than needed changes nothing either (see [`MoverCells`]).
-    #[inline]
+    #[inline(always)]
     ///
     /// `creature`: the mover, when a creature, whose last cell is tried first.
     fn walls_near(&mut self, start: Vec2, travel: f64, creature: Option<usize>) -> NearWalls {

@@ -109,17 +109,20 @@ pub struct Context<'a> {
 
 /// Is `position` inside a safe area of `areas` (bounds included)? Predators leave such
 /// creatures alone.
+#[inline]
 pub fn in_safe_area(areas: &[Area], position: Vec2) -> bool {
     areas.iter().any(|a| a.is_safe() && a.contains(position))
 }
 
 impl Context<'_> {
     /// [`in_safe_area`] of the world's areas.
+    #[inline]
     fn in_safe_area(&self, position: Vec2) -> bool {
         in_safe_area(self.areas, position)
     }
 
     /// A predator's attack on creature `i` (outside safe areas, checked by the caller).
+    #[inline]
     fn attack(&mut self, i: usize, effect: Effect) {
         let c = &mut self.creatures[i];
         match effect {
@@ -143,6 +146,7 @@ impl Context<'_> {
     }
 
     /// The centre of the nearest living creature outside safe areas (lowest index on ties).
+    #[inline]
     fn nearest_prey(&self, from: Vec2) -> Option<Vec2> {
         let mut best: Option<(f64, Vec2)> = None;
         for c in self.creatures.iter() {
@@ -165,6 +169,7 @@ impl Gadgets {
     }
 
     /// Phase 1 (gadgets): doors whose time is up close.
+    #[inline]
     pub fn close_doors(&self, ctx: &mut Context<'_>) {
         for k in 0..self.doors.len() {
             if ctx.walls.door_open(k) && self.doors[k].open_until.is_some_and(|u| ctx.tick > u) {
@@ -176,6 +181,7 @@ impl Gadgets {
     /// Phase 2 (predators and wanderers), the decision: actor `a`'s motor command (left,
     /// right) when its whiskers feel `whiskers`, and its effect when it is a predator (which
     /// then attacks what it touches after its move, [`Gadgets::moved`]).
+    #[inline]
     pub fn command(
         &mut self,
         a: usize,
@@ -218,6 +224,7 @@ impl Gadgets {
 
     /// Phase 2, after actor `a`'s move to `pose`: its body goes there, and a predator
     /// (`predator`: its effect) attacks every living creature it touches outside safe areas.
+    #[inline]
     pub fn moved(&mut self, a: usize, pose: Pose, predator: Option<Effect>, ctx: &mut Context<'_>) {
         let actor = &mut self.actors[a];
         actor.pose = pose;
@@ -230,6 +237,7 @@ impl Gadgets {
 
     /// Phase 2 (air predators): each flyer in file order flies one tick, entering anew when
     /// it left the arena, and strikes every creature within its strike radius.
+    #[inline]
     pub fn fly(&mut self, ctx: &mut Context<'_>) {
         for f in 0..self.flyers.len() {
             self.flyers[f].fly(ctx.arena, ctx.rng);
@@ -261,6 +269,7 @@ impl Gadgets {
 
     /// Contacts: creature `i`'s body touching a door's trigger opens the door until tick
     /// `now + open_ticks` (included).
+    #[inline]
     fn trigger_doors(&mut self, i: usize, ctx: &mut Context<'_>) {
         let position = ctx.creatures[i].pose.position;
         for k in 0..self.doors.len() {
@@ -275,6 +284,7 @@ impl Gadgets {
     /// Contacts: creature `i`'s body touching a teleporter's entry (the first in file order)
     /// jumps to its exit, unless a body there would touch a wall, another living creature or
     /// a wanderer.
+    #[inline]
     fn teleport(&self, i: usize, ctx: &mut Context<'_>) {
         let r = ctx.radius;
         let position = ctx.creatures[i].pose.position;
@@ -311,6 +321,7 @@ impl Gadgets {
 
     /// Contacts: ground predators touching creature `i` and air predators within their strike
     /// radius of it attack it, unless its centre is in a safe area.
+    #[inline]
     fn predator_contacts(&self, i: usize, ctx: &mut Context<'_>) {
         let position = ctx.creatures[i].pose.position;
         if ctx.in_safe_area(position) {
