@@ -49,7 +49,7 @@
 //! the bits are theirs. (Only below 2⁻²⁶ do the three differ in their shortcut thresholds.)
 //! For 2⁻²⁷·√2 ≤ |x| ≲ π/4 (almost every turn of one tick) those two kernels are copied here
 //! with the same operations in the same order and inlined, sparing the call.
-//! The tests compare all of this with [`reference`], the plain §8.2 move, bit for bit.
+//! The tests compare all of this with [`reference`](mod@reference), the plain §8.2 move, bit for bit.
 //!
 //! The world moves a creature every tick: the free move is inlined into its caller
 //! ([`plan_clamped_move`] is a wrapper), and a blocked move's search is a function of its own.
