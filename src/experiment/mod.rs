@@ -217,7 +217,7 @@ impl Experiment {
         // refused before it is parsed: every wall (and gadget) has a `from` key, so counting
         // the word bounds their number from above (comments only add a few).
         let froms = text.matches("from").count() as u64;
-        let most = crate::sim::spec::MAX_WALLS + crate::sim::gadgets::MAX_ACTORS + 1000;
+        let most = crate::sim::spec::MAX_WALLS + crate::sim::spec::MAX_ACTORS + 1000;
         if froms > most {
             return Err(ExperimentError::Invalid {
                 path: origin.to_path_buf(),

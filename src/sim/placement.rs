@@ -7,7 +7,7 @@ use crate::geometry::{circle_touches_segment, circles_touch, Segment, Vec2};
 use crate::seed::{below, uniform, Rng};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::motion::Pose;
-use crate::sim::spec::{grid_span, KindSpec, PlaceSpec, Region, WorldSpec};
+use crate::sim::spec::{grid_span, KindSpec, PlaceSpec, Region, WorldSpec, MAX_CREATURES};
 use crate::validate::InvalidValue;
 use std::collections::BTreeMap;
 use thiserror::Error;
@@ -16,9 +16,6 @@ use thiserror::Error;
 /// filled to a reasonable density always succeeds, small enough that an impossible rule fails
 /// in well under a second.
 pub const MAX_ATTEMPTS: u32 = 10_000;
-
-/// Most creatures a world may hold.
-pub const MAX_CREATURES: usize = 10_000;
 
 /// Why a trial world could not be built.
 #[derive(Debug, Clone, PartialEq, Error)]

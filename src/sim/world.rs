@@ -50,15 +50,13 @@
 //! the bit (same tests, same order): [`World::set_brute_force`] runs the plain loops, and
 //! the tests compare the two.
 
-use crate::geometry::{circle_touches_segment, circles_touch, Circle, Segment, Vec2};
-use crate::seed::{uniform, Rng};
+use crate::geometry::{circles_touch, Circle, Segment, Vec2};
+use crate::seed::Rng;
 use crate::sim::area::{bearing, Area};
 use crate::sim::controller::{Controller, MotorCommand, ObservationLayout, SensorGroup};
 use crate::sim::eye::{Eye, Scene};
 use crate::sim::food::{Aversive, Food};
-use crate::sim::gadgets::{
-    Actor, Door, Effect, Flyer, Role, Strategy, Teleporter, Thing, TurnAway,
-};
+use crate::sim::gadgets::{self, Actor, Context, Door, Flyer, Gadgets, Teleporter, Thing};
 use crate::sim::index::mover_cells::{LastCell, MoverCells, NearWalls};
 use crate::sim::index::{self, Scratch, StaticIndex};
 use crate::sim::metabolism::Decay;
@@ -136,19 +134,8 @@ pub struct World {
     /// landmarks that smell, in that order: what senses meet besides food, aversive objects
     /// and creatures.
     things: Vec<Thing>,
-    /// Locked doors (§4.5.2), in file order.
-    doors: Vec<Door>,
-    /// Teleporters (§4.5.1), in file order.
-    teleporters: Vec<Teleporter>,
-    /// Wanderers then ground predators, in file order.
-    actors: Vec<Actor>,
-    /// Each ground predator's patrol waypoints.
-    waypoints: Vec<Vec<Vec2>>,
-    /// Air predators, in file order.
-    flyers: Vec<Flyer>,
-    /// The world has teleporters, doors, wanderers or predators: the contacts phase checks
-    /// them (most worlds have none, and none is added during a trial).
-    gadgets: bool,
+    /// Doors, teleporters, wanderers, ground and air predators (§4.5, §4.7, §4.8).
+    gadgets: Gadgets,
     /// What [`World::apply`] reads of the above on every move, copied side by side.
     rules: CreatureRules,
     /// Per creature and food object (`creature * food.len() + k`): has the creature taken
@@ -177,7 +164,7 @@ struct CreatureRules {
     wall_shock: bool,
     /// `World::brute_force` (kept equal by [`World::set_brute_force`]).
     brute_force: bool,
-    /// `World::gadgets`.
+    /// `World::gadgets` is active.
     gadgets: bool,
     /// Other bodies may block a move: more than one creature, or things (neither count
     /// changes during a trial).
@@ -187,6 +174,65 @@ struct CreatureRules {
     /// The world has aversive objects (none is added during a trial): without any, the
     /// contacts phase does not look for them.
     aversives: bool,
+}
+
+impl CreatureRules {
+    /// The rules of `creature` in `world` with `gadgets`; `bodies` and `aversives` as the
+    /// fields of the same names say.
+    fn new(
+        world: &WorldSpec,
+        creature: &CreatureSpec,
+        gadgets: &Gadgets,
+        bodies: bool,
+        aversives: bool,
+    ) -> CreatureRules {
+        CreatureRules {
+            motion: motion_params(world, creature),
+            radius: creature.radius(),
+            decay: Decay {
+                per_tick: creature.decay_per_tick,
+                per_lu: creature.decay_per_lu,
+            },
+            eating: creature.eating,
+            wall_shock: world.wall_shock,
+            brute_force: false,
+            gadgets: gadgets.active(),
+            bodies,
+            doors: !gadgets.doors().is_empty(),
+            aversives,
+        }
+    }
+}
+
+/// How the creatures of `creature` move in `world`.
+fn motion_params(world: &WorldSpec, creature: &CreatureSpec) -> MotionParams {
+    MotionParams {
+        wheel: creature.wheel,
+        max_rpt: creature.max_rpt,
+        search_steps: world.search_steps,
+        slippery_walls: world.slippery_walls,
+    }
+}
+
+/// Landmarks that smell (§4.2) are smelled from their position, as things with no body,
+/// pushed onto `things` after the gadgets' in file order; silent ones are left out, so that a
+/// world of silent landmarks keeps the senses' paths of a world without things.
+fn push_smelling_landmarks(world: &WorldSpec, things: &mut Vec<Thing>) {
+    for l in &world.landmarks {
+        let smell = Smell::new(&l.odour, l.intensity, l.range);
+        if !smell.silent {
+            things.push(Thing {
+                position: Vec2::from(l.position),
+                radius: 0.0,
+                smell,
+                felt: false,
+                blocks: false,
+                seen: false,
+                colour: [0.0; 3],
+                height: 0.0,
+            });
+        }
+    }
 }
 
 /// A world and a creature specification validated together: the proof [`World::build`] asks
@@ -225,6 +271,23 @@ macro_rules! surroundings {
             skip_thing: usize::MAX,
             smell_c: $world.smell_c,
             index: &$world.index,
+        }
+    };
+}
+
+/// The [`Context`] the gadgets of a world run in: borrows only the fields it names, so that
+/// the gadgets (another field) can be stepped alongside.
+macro_rules! gadget_context {
+    ($world:expr) => {
+        Context {
+            tick: $world.tick,
+            arena: $world.arena,
+            radius: $world.body.radius,
+            walls: &mut $world.walls,
+            creatures: &mut $world.creatures,
+            things: &mut $world.things,
+            areas: &$world.areas,
+            rng: &mut $world.rng,
         }
     };
 }
@@ -279,198 +342,22 @@ impl World {
             .range(SensorGroup::Eye)
             .map(|_| Eye::new(&creature.eye));
         let noise = Noise::new(&creature.noise, &layout);
-        let n_actors = world.wanderers.count as usize + world.predators.len();
-        let mut things = Vec::with_capacity(
-            world.doors.len() + world.teleporters.len() + n_actors + world.air_predators.len(),
-        );
-        let mut doors = Vec::with_capacity(world.doors.len());
-        for d in &world.doors {
-            doors.push(Door {
-                trigger: things.len(),
-                open_ticks: d.open_ticks,
-                open_until: None,
-            });
-            things.push(Thing {
-                position: Vec2::from(d.trigger),
-                radius: d.trigger_radius,
-                smell: Smell::new(&d.odour, d.intensity, d.range),
-                felt: true,
-                blocks: false,
-                seen: false,
-                colour: d.colour,
-                height: 0.0,
-            });
-        }
-        let mut teleporters = Vec::with_capacity(world.teleporters.len());
-        for t in &world.teleporters {
-            teleporters.push(Teleporter {
-                entry: Vec2::from(t.entry),
-                radius: t.radius,
-                exit: Vec2::from(t.exit),
-                exit_heading: t.exit_heading.map(|deg| {
-                    let a = deg.to_radians();
-                    Vec2::new(libm::cos(a), libm::sin(a))
-                }),
-            });
-            things.push(Thing {
-                position: Vec2::from(t.entry),
-                radius: t.radius,
-                smell: Smell::new(&t.odour, t.intensity, t.range),
-                felt: true,
-                blocks: false,
-                seen: false,
-                colour: [0.0; 3],
-                height: 0.0,
-            });
-        }
-        let mut actors = Vec::with_capacity(n_actors);
-        let w = &world.wanderers;
-        let arena_region = world.arena_region();
-        for k in 0..w.count as usize {
-            let pose = free_pose(
-                world.wanderers.region.unwrap_or(arena_region),
-                None,
-                radius,
-                walls.blocking(),
-                &poses,
-                &things,
-                &mut rng,
-            )
-            .ok_or(PlacementError::Actor {
-                what: format!("wanderer {}", k + 1),
-                attempts: ACTOR_ATTEMPTS,
-            })?;
-            actors.push(Actor {
-                thing: things.len(),
-                role: Role::Wanderer,
-                pose,
-                max_rpt: w.max_rpt,
-                hold_ticks: w.hold_ticks,
-                held: (0.0, 0.0),
-                hold_left: 0,
-                waypoint: 0,
-                turn_away: TurnAway::new(w.max_rpt, w.turn_degrees),
-            });
-            things.push(Thing {
-                position: pose.position,
-                radius,
-                smell: Smell::new(&w.odour, w.intensity, w.range),
-                felt: true,
-                blocks: true,
-                seen: true,
-                colour: w.colour,
-                height: creature.body_height(),
-            });
-        }
-        for (k, p) in world.predators.iter().enumerate() {
-            let pose = free_pose(
-                arena_region,
-                p.start.map(Vec2::from),
-                radius,
-                walls.blocking(),
-                &poses,
-                &things,
-                &mut rng,
-            )
-            .ok_or(PlacementError::Actor {
-                what: format!("world.predators[{k}]"),
-                attempts: ACTOR_ATTEMPTS,
-            })?;
-            actors.push(Actor {
-                thing: things.len(),
-                role: Role::Predator {
-                    predator: k,
-                    strategy: p.strategy,
-                    effect: p.effect,
-                },
-                pose,
-                max_rpt: p.max_rpt,
-                hold_ticks: p.hold_ticks,
-                held: (0.0, 0.0),
-                hold_left: 0,
-                waypoint: 0,
-                turn_away: TurnAway::new(p.max_rpt, p.turn_degrees),
-            });
-            things.push(Thing {
-                position: pose.position,
-                radius,
-                smell: Smell::new(&p.odour, p.intensity, p.range),
-                felt: true,
-                blocks: false,
-                seen: true,
-                colour: p.colour,
-                height: creature.body_height(),
-            });
-        }
-        let waypoints = world
-            .predators
-            .iter()
-            .map(|p| p.waypoints.iter().map(|&w| Vec2::from(w)).collect())
-            .collect();
-        let mut flyers = Vec::with_capacity(world.air_predators.len());
-        for a in &world.air_predators {
-            let mut f = Flyer {
-                thing: things.len(),
-                position: Vec2::new(0.0, 0.0),
-                velocity: Vec2::new(0.0, 0.0),
-                speed: a.speed,
-                strike_radius: a.strike_radius,
-                effect: a.effect,
-            };
-            f.enter(world.arena, &mut rng);
-            things.push(Thing {
-                position: f.position,
-                radius: 0.0,
-                smell: Smell::new(&a.odour, a.intensity, a.range),
-                felt: false,
-                blocks: false,
-                seen: false,
-                colour: [0.0; 3],
-                height: 0.0,
-            });
-            flyers.push(f);
-        }
-        // Landmarks that smell (§4.2) are smelled from their position, as things with no
-        // body; silent ones are left out, so that a world of silent landmarks keeps the
-        // senses' paths of a world without things.
-        for l in &world.landmarks {
-            let smell = Smell::new(&l.odour, l.intensity, l.range);
-            if !smell.silent {
-                things.push(Thing {
-                    position: Vec2::from(l.position),
-                    radius: 0.0,
-                    smell,
-                    felt: false,
-                    blocks: false,
-                    seen: false,
-                    colour: [0.0; 3],
-                    height: 0.0,
-                });
-            }
-        }
-        let rules = CreatureRules {
-            motion: MotionParams {
-                wheel: creature.wheel,
-                max_rpt: creature.max_rpt,
-                search_steps: world.search_steps,
-                slippery_walls: world.slippery_walls,
-            },
+        let (gadgets, mut things) = Gadgets::build(
+            world,
             radius,
-            decay: Decay {
-                per_tick: creature.decay_per_tick,
-                per_lu: creature.decay_per_lu,
-            },
-            eating: creature.eating,
-            wall_shock: world.wall_shock,
-            brute_force: false,
-            gadgets: !(teleporters.is_empty()
-                && doors.is_empty()
-                && actors.is_empty()
-                && flyers.is_empty()),
-            bodies: creatures > 1 || !things.is_empty(),
-            doors: !doors.is_empty(),
-            aversives: !objects.aversives.is_empty(),
-        };
+            creature.body_height(),
+            walls.blocking(),
+            &poses,
+            &mut rng,
+        )?;
+        push_smelling_landmarks(world, &mut things);
+        let rules = CreatureRules::new(
+            world,
+            creature,
+            &gadgets,
+            creatures > 1 || !things.is_empty(),
+            !objects.aversives.is_empty(),
+        );
         Ok(World {
             tick: 0,
             arena: world.arena,
@@ -497,19 +384,14 @@ impl World {
                 whisker_sin: libm::sin(phi),
                 smell: creature.strongest_body_smell(),
             },
-            motion: MotionParams {
-                wheel: creature.wheel,
-                max_rpt: creature.max_rpt,
-                search_steps: world.search_steps,
-                slippery_walls: world.slippery_walls,
-            },
+            motion: motion_params(world, creature),
             smell_c: world.smell_c,
             inhibit_smell_on_whisker: creature.inhibit_smell_on_whisker,
             offsets: Offsets::new(&layout),
             observations: vec![0.0; layout.len() * creatures],
             layout,
             full_sensing: false,
-            blockers: Vec::with_capacity(creatures + n_actors),
+            blockers: Vec::with_capacity(creatures + gadgets.actors().len()),
             landmarks: world
                 .landmarks
                 .iter()
@@ -522,15 +404,7 @@ impl World {
             noise,
             rng,
             things,
-            gadgets: !(teleporters.is_empty()
-                && doors.is_empty()
-                && actors.is_empty()
-                && flyers.is_empty()),
-            doors,
-            teleporters,
-            actors,
-            waypoints,
-            flyers,
+            gadgets,
             rules,
             bitten: Vec::new(),
         })
@@ -580,7 +454,7 @@ impl World {
         } else if !self.regrowing.is_empty() {
             self.regenerate_food();
         }
-        if self.gadgets {
+        if self.gadgets.active() {
             self.begin_gadgets();
         }
     }
@@ -588,13 +462,11 @@ impl World {
     /// Phase 1 (doors) and 2 of the tick.
     #[inline(never)]
     fn begin_gadgets(&mut self) {
-        self.close_doors();
-        for a in 0..self.actors.len() {
+        self.gadgets.close_doors(&mut gadget_context!(self));
+        for a in 0..self.gadgets.actors().len() {
             self.act_actor(a);
         }
-        for f in 0..self.flyers.len() {
-            self.fly(f);
-        }
+        self.gadgets.fly(&mut gadget_context!(self));
     }
 
     /// Phase 3.1 of the tick (see [`World::begin_tick`] for the order): creature `creature`
@@ -1003,9 +875,9 @@ impl World {
     /// built for, else `scratch.blocking`, filled by the grid. Motion's verdict is a yes/no
     /// over the walls, so leaving out walls that cannot be reached changes nothing, and
     /// listing more walls than needed changes nothing either (see [`MoverCells`]).
-    #[inline]
     ///
     /// `creature`: the mover, when a creature, whose last cell is tried first.
+    #[inline(always)]
     fn walls_near(&mut self, start: Vec2, travel: f64, creature: Option<usize>) -> NearWalls {
         let felt = self.walls.felt();
         if self.brute_force {
@@ -1032,134 +904,16 @@ impl World {
 
     /// Phase 2.6: teleporters, door triggers and predators meet creature `i`.
     fn gadget_contacts(&mut self, i: usize) {
-        let shocked = self.creatures[i].shocked;
-        if !self.teleporters.is_empty() {
-            self.teleport(i);
-        }
-        if !self.doors.is_empty() {
-            self.trigger_doors(i);
-        }
-        if !self.actors.is_empty() || !self.flyers.is_empty() {
-            self.predator_contacts(i);
-        }
-        // A predator's shock counts too.
-        let c = &mut self.creatures[i];
-        if c.shocked && !shocked {
-            c.shock_ticks += 1;
-        }
-    }
-
-    /// Phase 1 (gadgets): doors whose time is up close.
-    fn close_doors(&mut self) {
-        for k in 0..self.doors.len() {
-            if self.walls.door_open(k) && self.doors[k].open_until.is_some_and(|u| self.tick > u) {
-                self.walls.set_door_open(k, false);
-            }
-        }
-    }
-
-    /// Contacts: creature `i`'s body touching a door's trigger opens the door until tick
-    /// `now + open_ticks` (included).
-    fn trigger_doors(&mut self, i: usize) {
-        let position = self.creatures[i].pose.position;
-        for k in 0..self.doors.len() {
-            let t = &self.things[self.doors[k].trigger];
-            if circles_touch(position, self.body.radius, t.position, t.radius) {
-                self.doors[k].open_until = Some(self.tick + self.doors[k].open_ticks);
-                self.walls.set_door_open(k, true);
-            }
-        }
-    }
-
-    /// Contacts: creature `i`'s body touching a teleporter's entry (the first in file order)
-    /// jumps to its exit, unless a body there would touch a wall, another living creature or
-    /// a wanderer.
-    fn teleport(&mut self, i: usize) {
-        let r = self.body.radius;
-        let position = self.creatures[i].pose.position;
-        let Some(t) = self
-            .teleporters
-            .iter()
-            .find(|t| circles_touch(position, r, t.entry, t.radius))
-            .copied()
-        else {
-            return;
-        };
-        let walls_free = !self
-            .walls
-            .blocking()
-            .iter()
-            .any(|s| circle_touches_segment(t.exit, r, s));
-        let bodies_free = !self
-            .creatures
-            .iter()
-            .enumerate()
-            .any(|(j, c)| j != i && c.alive && circles_touch(t.exit, r, c.pose.position, r))
-            && !self
-                .things
-                .iter()
-                .any(|b| b.blocks && circles_touch(t.exit, r, b.position, b.radius));
-        if walls_free && bodies_free {
-            let c = &mut self.creatures[i];
-            c.pose.position = t.exit;
-            if let Some(h) = t.exit_heading {
-                c.pose.heading = h;
-            }
-        }
-    }
-
-    /// Contacts: ground predators touching creature `i` and air predators within their strike
-    /// radius of it attack it, unless its centre is in a safe area.
-    fn predator_contacts(&mut self, i: usize) {
-        let position = self.creatures[i].pose.position;
-        if self.in_safe_area(position) {
-            return;
-        }
-        let r = self.body.radius;
-        for a in 0..self.actors.len() {
-            if let Role::Predator { effect, .. } = self.actors[a].role {
-                if circles_touch(position, r, self.actors[a].pose.position, r) {
-                    self.attack(i, effect);
-                }
-            }
-        }
-        for f in 0..self.flyers.len() {
-            let fl = self.flyers[f];
-            if circles_touch(position, 0.0, fl.position, fl.strike_radius) {
-                self.attack(i, fl.effect);
-            }
-        }
-    }
-
-    /// A predator's attack on creature `i` (outside safe areas, checked by the caller).
-    fn attack(&mut self, i: usize, effect: Effect) {
-        let c = &mut self.creatures[i];
-        match effect {
-            Effect::Lethal => c.alive = false,
-            Effect::Shock => c.shocked = true,
-        }
-    }
-
-    /// Attacks by a predator at `position` (ground: body contact; air: `reach` = strike
-    /// radius, `radius` = 0) on every living creature outside safe areas.
-    fn strike_all(&mut self, position: Vec2, reach: f64, own: f64, effect: Effect) {
-        for i in 0..self.creatures.len() {
-            let c = &self.creatures[i];
-            if c.alive
-                && circles_touch(c.pose.position, own, position, reach)
-                && !self.in_safe_area(c.pose.position)
-            {
-                self.attack(i, effect);
-            }
-        }
+        self.gadgets.contacts(i, &mut gadget_context!(self));
     }
 
     /// Phase 2 (predators and wanderers): actor `a` feels with its whiskers, picks its
-    /// command, moves, and (a predator) attacks what it touches. Wanderers are blocked by
+    /// command ([`Gadgets::command`]), moves, and (a predator) attacks what it touches
+    /// ([`Gadgets::moved`]). Wanderers are blocked by
     /// walls, creatures and each other; ground predators by walls and wanderers only (they
     /// reach their prey: contact is the attack).
     fn act_actor(&mut self, a: usize) {
-        let actor = self.actors[a];
+        let actor = self.gadgets.actors()[a];
         let r = self.body.radius;
         let tips = self
             .body
@@ -1184,36 +938,9 @@ impl World {
             }
         };
         let whiskers = [feel(tips[0]), feel(tips[1])];
-        let (left, right, predator) = match actor.role {
-            Role::Wanderer => {
-                let (l, rr) = self.actors[a].wander(whiskers, &mut self.rng);
-                (l, rr, None)
-            }
-            Role::Predator {
-                predator,
-                strategy,
-                effect,
-            } => {
-                let target = match strategy {
-                    Strategy::Wander => None,
-                    Strategy::Chase => self.nearest_prey(actor.pose.position),
-                    Strategy::Patrol => {
-                        let points = &self.waypoints[predator];
-                        let mut k = actor.waypoint % points.len();
-                        if actor.pose.position.distance_squared(points[k]) <= r * r {
-                            k = (k + 1) % points.len();
-                            self.actors[a].waypoint = k;
-                        }
-                        Some(points[k])
-                    }
-                };
-                let (l, rr) = match target {
-                    Some(t) => actor.steer(t),
-                    None => self.actors[a].wander(whiskers, &mut self.rng),
-                };
-                (l, rr, Some(effect))
-            }
-        };
+        let (left, right, predator) = self
+            .gadgets
+            .command(a, whiskers, &mut gadget_context!(self));
         self.blockers.clear();
         if predator.is_none() {
             for c in &self.creatures {
@@ -1238,34 +965,8 @@ impl World {
             circles: &self.blockers,
         };
         let outcome = plan_move(actor.pose, left, right, r, &params, &blockers);
-        self.actors[a].pose = outcome.pose;
-        self.things[actor.thing].position = outcome.pose.position;
-        if let Some(effect) = predator {
-            self.strike_all(outcome.pose.position, r, r, effect);
-        }
-    }
-
-    /// The centre of the nearest living creature outside safe areas (lowest index on ties).
-    fn nearest_prey(&self, from: Vec2) -> Option<Vec2> {
-        let mut best: Option<(f64, Vec2)> = None;
-        for c in &self.creatures {
-            if c.alive && !self.in_safe_area(c.pose.position) {
-                let d = from.distance_squared(c.pose.position);
-                if best.is_none_or(|(b, _)| d < b) {
-                    best = Some((d, c.pose.position));
-                }
-            }
-        }
-        best.map(|(_, p)| p)
-    }
-
-    /// Phase 2 (air predators): flyer `f` flies one tick, entering anew when it left the
-    /// arena, and strikes every creature within its strike radius.
-    fn fly(&mut self, f: usize) {
-        self.flyers[f].fly(self.arena, &mut self.rng);
-        let fl = self.flyers[f];
-        self.things[fl.thing].position = fl.position;
-        self.strike_all(fl.position, fl.strike_radius, 0.0, fl.effect);
+        self.gadgets
+            .moved(a, outcome.pose, predator, &mut gadget_context!(self));
     }
 
     /// Ticks done so far.
@@ -1367,9 +1068,7 @@ impl World {
     /// Is `position` inside a safe area (bounds included)? Predators leave such creatures
     /// alone.
     pub fn in_safe_area(&self, position: Vec2) -> bool {
-        self.areas
-            .iter()
-            .any(|a| a.is_safe() && a.contains(position))
+        gadgets::in_safe_area(&self.areas, position)
     }
 
     /// Renders what creature `creature` sees now into `out` (3 × width × height values, the
@@ -1430,22 +1129,22 @@ impl World {
 
     /// The locked doors' running state (their triggers are [`World::things`]), in file order.
     pub fn doors(&self) -> &[Door] {
-        &self.doors
+        self.gadgets.doors()
     }
 
     /// The teleporters, in file order.
     pub fn teleporters(&self) -> &[Teleporter] {
-        &self.teleporters
+        self.gadgets.teleporters()
     }
 
     /// Wanderers then ground predators, in file order.
     pub fn actors(&self) -> &[Actor] {
-        &self.actors
+        self.gadgets.actors()
     }
 
     /// Air predators, in file order.
     pub fn flyers(&self) -> &[Flyer] {
-        &self.flyers
+        self.gadgets.flyers()
     }
 
     /// Door triggers, teleporter entries, wanderers, ground and air predators, then the
@@ -1456,26 +1155,19 @@ impl World {
 
     /// Puts wanderer or ground predator `actor` at `pose` (for tests and demos).
     pub fn set_actor_pose(&mut self, actor: usize, pose: Pose) {
-        let a = &mut self.actors[actor];
-        a.pose = Pose {
-            position: pose.position,
-            heading: pose.heading.normalize_or(Vec2::X),
-        };
-        self.things[a.thing].position = pose.position;
+        self.gadgets.set_actor_pose(actor, pose, &mut self.things);
     }
 
     /// Puts air predator `flyer` at `position` flying `velocity` LU per tick (for tests and
     /// demos).
     pub fn set_flyer(&mut self, flyer: usize, position: Vec2, velocity: Vec2) {
-        let f = &mut self.flyers[flyer];
-        f.position = position;
-        f.velocity = velocity;
-        self.things[f.thing].position = position;
+        self.gadgets
+            .set_flyer(flyer, position, velocity, &mut self.things);
     }
 
     /// Locked doors (`[[world.doors]]`), in file order: how many.
     pub fn door_count(&self) -> usize {
-        self.doors.len()
+        self.gadgets.doors().len()
     }
 
     /// From now on, notes which food objects each creature takes substance from (for
@@ -1505,46 +1197,6 @@ impl World {
     pub fn kill(&mut self, creature: usize) {
         self.creatures[creature].alive = false;
     }
-}
-
-/// Placement attempts for one wanderer or predator.
-const ACTOR_ATTEMPTS: u32 = 10_000;
-
-/// A start pose for a wanderer or predator: at `at` when given, else a uniform point of
-/// `region` (draws x, then y, repeated until free) whose body touches no wall, creature or
-/// blocking thing; then a uniform heading (one draw). None when no free spot was found.
-fn free_pose(
-    region: [f64; 4],
-    at: Option<Vec2>,
-    radius: f64,
-    walls: &[Segment],
-    creatures: &[Pose],
-    things: &[Thing],
-    rng: &mut Rng,
-) -> Option<Pose> {
-    let position = match at {
-        Some(p) => p,
-        None => (0..ACTOR_ATTEMPTS)
-            .map(|_| {
-                let x = uniform(rng, region[0], region[2]);
-                let y = uniform(rng, region[1], region[3]);
-                Vec2::new(x, y)
-            })
-            .find(|&p| {
-                !walls.iter().any(|s| circle_touches_segment(p, radius, s))
-                    && !creatures
-                        .iter()
-                        .any(|c| circles_touch(p, radius, c.position, radius))
-                    && !things
-                        .iter()
-                        .any(|t| t.blocks && circles_touch(p, radius, t.position, t.radius))
-            })?,
-    };
-    let angle = uniform(rng, 0.0, std::f64::consts::TAU);
-    Some(Pose {
-        position,
-        heading: Vec2::new(libm::cos(angle), libm::sin(angle)),
-    })
 }
 
 /// Motor clamping: to ±`max_rpt`; NaN (a broken controller) counts as 0 so that the world

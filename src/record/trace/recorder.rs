@@ -24,8 +24,9 @@ use crate::evo::life::TrialOutcome;
 use crate::evo::trial::{TickObserver, TrialId};
 use crate::experiment::Experiment;
 use crate::geometry::{circles_touch, Vec2};
-use crate::sim::gadgets::{Effect, Role};
+use crate::sim::gadgets::Role;
 use crate::sim::metabolism::Metabolism;
+use crate::sim::spec::Effect;
 use crate::sim::world::World;
 use serde::{Deserialize, Serialize};
 

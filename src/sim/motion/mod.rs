@@ -49,7 +49,7 @@
 //! the bits are theirs. (Only below 2⁻²⁶ do the three differ in their shortcut thresholds.)
 //! For 2⁻²⁷·√2 ≤ |x| ≲ π/4 (almost every turn of one tick) those two kernels are copied here
 //! with the same operations in the same order and inlined, sparing the call.
-//! The tests compare all of this with a plain copy of the original algorithm bit for bit.
+//! The tests compare all of this with [`reference`](mod@reference), the plain §8.2 move, bit for bit.
 //!
 //! The world moves a creature every tick: the free move is inlined into its caller
 //! ([`plan_clamped_move`] is a wrapper), and a blocked move's search is a function of its own.
@@ -126,6 +126,8 @@ use crate::geometry::{
     circle_touches_segment, circles_touch, point_segment_distance_squared, segments_intersect,
     Circle, Segment, Vec2,
 };
+
+pub mod reference;
 
 /// Where a body is and which way it faces.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -1131,40 +1133,95 @@ pub(crate) fn plan_clamped_move_inline(
     if cause == Verdict::Free {
         return free;
     }
-    let steps = params.search_steps;
-    if first_wall.is_some_and(|f| {
+    if pushes_against_first_wall(
+        start,
+        target,
+        radius,
+        params.search_steps,
+        first_wall,
+        blockers,
+    ) {
+        return stopped_at_wall(pose, d.phi, free_heading, params);
+    }
+    searched_move(
+        start,
+        pose.heading,
+        target,
+        d,
+        free_heading,
+        radius,
+        params,
+        blockers,
+        cause,
+        first_wall,
+    )
+}
+
+/// The commonest blocked move, a body pushing against the wall that blocked its planned
+/// path (`first_wall`), not touching it at the start: does every midpoint of the search touch
+/// that wall? Then the search ends at the start with a wall as its verdict, whichever
+/// shortlist it runs over (see "A body pushing against a wall" in the module docs). That wall
+/// passes `wall_may_block` (it blocked a path of the box), so `prepared_search` would take
+/// this very test, or run a search whose every verdict is a wall, and give the same.
+#[inline(always)]
+fn pushes_against_first_wall(
+    start: Vec2,
+    target: Vec2,
+    radius: f64,
+    steps: u32,
+    first_wall: Option<FirstWall>,
+    blockers: &Blockers,
+) -> bool {
+    first_wall.is_some_and(|f| {
         steps > 0
             && !f.touching
             && box_is_safe(start, target)
             && every_midpoint_touches(&blockers.segments[f.index], start, target, radius, steps)
-    }) {
-        // The commonest blocked move, a body pushing against the wall that blocked its
-        // planned path, not touching it at the start: every midpoint touches that wall, so
-        // the search ends at the start with a wall as its verdict, whichever shortlist it
-        // runs over (see "A body pushing against a wall" in the module docs). That wall
-        // passes `wall_may_block` (it blocked a path of the box), so `prepared_search` would
-        // take this very test, or run a search whose every verdict is a wall, and give the
-        // same. Then eq. 38 gives d_I = |start − start| = +0 (the start is finite: its box
-        // is safe), the fraction of eq. 34 is 0/|M| = +0 (M finite, not 0), and its turn
-        // 0·φ = ±0, whose sine `sin_cos` returns as the angle itself and whose cosine as 1.
-        let heading = if params.slippery_walls {
-            free_heading
-        } else {
-            normalise(rotate_sc(pose.heading, 0.0 * d.phi, 1.0))
-        };
-        return MoveOutcome {
-            pose: Pose {
-                position: start,
-                heading,
-            },
-            travelled: 0.0,
-            blocked: true,
-            blocked_by_wall: true,
-        };
+    })
+}
+
+/// The outcome of a move from `pose` that [`pushes_against_first_wall`] stopped at the start:
+/// eq. 38 gives d_I = |start − start| = +0 (the start is finite: its box is safe), the
+/// fraction of eq. 34 is 0/|M| = +0 (M finite, not 0), and its turn 0·φ = ±0, whose sine
+/// `sin_cos` returns as the angle itself and whose cosine as 1 (`free_heading` with slippery
+/// walls).
+#[inline(always)]
+fn stopped_at_wall(pose: Pose, phi: f64, free_heading: Vec2, params: &MotionParams) -> MoveOutcome {
+    let heading = if params.slippery_walls {
+        free_heading
+    } else {
+        normalise(rotate_sc(pose.heading, 0.0 * phi, 1.0))
+    };
+    MoveOutcome {
+        pose: Pose {
+            position: pose.position,
+            heading,
+        },
+        travelled: 0.0,
+        blocked: true,
+        blocked_by_wall: true,
     }
+}
+
+/// A blocked move's search ([`blocked_move`], out of line) for the drive `d`, its outcome
+/// rebuilt here.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn searched_move(
+    start: Vec2,
+    heading: Vec2,
+    target: Vec2,
+    d: Drive,
+    free_heading: Vec2,
+    radius: f64,
+    params: &MotionParams,
+    blockers: &Blockers,
+    cause: Verdict,
+    first_wall: Option<FirstWall>,
+) -> MoveOutcome {
     let searched = blocked_move(
         start,
-        pose.heading,
+        heading,
         target,
         d.phi,
         d.chord,

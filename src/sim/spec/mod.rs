@@ -9,7 +9,6 @@
 //! creature's right), so heading 0° points along +x and 90° along +y (down the screen).
 
 use crate::sim::controller::{GroupSizes, InputsSpec, ObservationLayout};
-use crate::sim::gadgets::{AirPredatorSpec, DoorSpec, PredatorSpec, TeleporterSpec, WanderersSpec};
 use crate::sim::smell::Smell;
 use crate::validate::{
     all_finite, all_non_negative, count_within, finite, non_negative, positive, within,
@@ -18,6 +17,14 @@ use crate::validate::{
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
+mod gadgets;
+pub use gadgets::{
+    AirPredatorSpec, DoorSpec, Effect, PredatorSpec, Strategy, TeleporterSpec, WanderersSpec,
+    MAX_ACTORS, MAX_TICKS,
+};
+
+/// Most creatures a world may hold.
+pub const MAX_CREATURES: usize = 10_000;
 /// Most objects a world may hold (explicit plus placed): beyond this a trial world costs more
 /// memory and set-up time than any BERRY experiment needs, and a typo in a count is likelier.
 pub const MAX_OBJECTS: u64 = 100_000;
@@ -869,7 +876,7 @@ impl CreatureSpec {
             "creature.odours",
             self.odours.len() as u64,
             0,
-            crate::sim::placement::MAX_CREATURES as u64,
+            MAX_CREATURES as u64,
             "odours, one per creature at most",
         )?;
         for (i, odour) in self.odours.iter().enumerate() {
@@ -1096,7 +1103,7 @@ impl WorldSpec {
             self.region_in_arena(&format!("{key}.region"), area.region)?;
             validate_smell(&key, &area.odour, area.intensity, area.range)?;
         }
-        crate::sim::gadgets::validate(
+        gadgets::validate(
             self.arena,
             &self.doors,
             &self.teleporters,
