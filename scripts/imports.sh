@@ -22,22 +22,14 @@
 #     layer order below (a file's layer is its top module; main.rs belongs to cli).
 #
 # Layer order, lowest first ("a | b": b may use a, a must not use b; names in one group may use
-# each other). This is the order issue 21 aims at (its picture of the layers,
-# `geometry, seed <- sim <- brain <- experiment <- evo <- record <- run <- cli`), not yet the
-# picture in src/lib.rs, which shows `geometry, seed <- sim <- brain <- evo <- experiment <-
-# record <- cli` and leaves out run, cpu and validate. Where the code puts those (afdcf35):
-#   - validate (`Valid`, `InvalidValue`, the range checks) uses nothing of the crate and is
-#     used by sim, brain, experiment and evo: the bottom, beside geometry and seed.
-#   - cpu (does this CPU have the extensions the build was compiled for) uses nothing of the
-#     crate and is used only by main.rs (`cpu::runs_here`, `cpu::MESSAGE`): the bottom too.
+# each other), the picture of src/lib.rs:
+#   - geometry, seed, validate (the range checks), input (reading a user's file safely) and cpu
+#     (does this CPU have the build's extensions) use nothing of the crate: the bottom.
+#   - experiment sits under evo: the experiment file, [evolution] included, is data that evo
+#     reads.
 #   - run (one run folder: lock, loop, checkpoints, resume) uses sim, brain, evo, experiment and
 #     record and is used only by main.rs and cli: between record and cli.
-#   - experiment and evo use each other today: experiment/mod.rs takes `EvolutionSpec` from
-#     evo/spec.rs, and evo takes `Experiment` and its tables from experiment. With experiment
-#     under evo (issue 21 moves the evolution spec under experiment/), experiment -> evo is the
-#     arrow reported. experiment/mod.rs also reads its file through record/input.rs, an arrow up
-#     in either picture.
-LAYERS="geometry seed validate cpu | sim | brain | experiment | evo | record | run | cli"
+LAYERS="geometry seed validate input cpu | sim | brain | experiment | evo | record | run | cli"
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:-summary}

@@ -10,6 +10,7 @@
 //! functions or give provably the same answers (a yes/no test does not depend on extra
 //! candidates; see [`crate::sim::smell::Shade`]), so both give the same bits.
 
+use crate::geometry::BoxedSegment;
 use crate::geometry::{circles_touch, segment_touches_circle, segments_intersect, Segment, Vec2};
 use crate::sim::area::Area;
 use crate::sim::controller::{ObservationLayout, SensorGroup};
@@ -18,7 +19,6 @@ use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::Thing;
 use crate::sim::index::static_grid::StaticIndex;
 use crate::sim::smell::{accumulate, saturate, Smell};
-use crate::sim::wall::BoxedSegment;
 
 /// The body geometry the senses need, precomputed from the creature spec once per world.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -1,8 +1,8 @@
 //! Smell (§4.2, §7.1, §7.2): what a smelly thing gives off, how it fades with distance
 //! (eq. 25, cut off by the range θ of eq. 26), and how opaque walls hide it from a receptor.
 
+use crate::geometry::BoxedSegment;
 use crate::geometry::{segments_intersect, Segment, Vec2};
-use crate::sim::wall::BoxedSegment;
 use serde::{Deserialize, Serialize};
 
 /// What one smelly thing gives off, precomputed for the receptor loop.

@@ -2,7 +2,7 @@
 //! plus the precomputed segment lists the hot loops iterate over (all walls block movement
 //! and whiskers; only opaque ones stop smells).
 
-use crate::geometry::{Segment, Vec2};
+use crate::geometry::{BoxedSegment, Segment, Vec2};
 use crate::sim::spec::{WallSpec, WorldSpec, DEFAULT_WALL_COLOUR, DEFAULT_WALL_HEIGHT};
 use serde::{Deserialize, Serialize};
 
@@ -28,34 +28,6 @@ impl Wall {
             colour: spec.colour,
             height: spec.height,
         }
-    }
-}
-
-/// A wall segment with its bounding box, so that the sensor loops can reject far walls with
-/// four inline comparisons before calling the exact intersection test (eq. 5–8 done once per
-/// wall instead of once per query).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BoxedSegment {
-    /// The segment.
-    pub segment: Segment,
-    /// Smallest x and y of its end points.
-    pub lo: Vec2,
-    /// Largest x and y of its end points.
-    pub hi: Vec2,
-}
-
-impl BoxedSegment {
-    /// `segment` with its box.
-    pub fn new(segment: Segment) -> BoxedSegment {
-        let (lo, hi) = segment.bounds();
-        BoxedSegment { segment, lo, hi }
-    }
-
-    /// Can this wall meet anything inside the box `[lo, hi]`? False only when the boxes are
-    /// disjoint (touching boxes may meet).
-    #[inline]
-    pub fn may_meet(&self, lo: Vec2, hi: Vec2) -> bool {
-        !(self.hi.x < lo.x || hi.x < self.lo.x || self.hi.y < lo.y || hi.y < self.lo.y)
     }
 }
 

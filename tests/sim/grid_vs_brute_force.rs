@@ -557,11 +557,11 @@ count = 25
 /// pair of nearby receptors does so for both.
 #[test]
 fn smell_cells_list_every_source_in_range_and_every_wall_that_may_hide_it() {
+    use berry_evolve::geometry::BoxedSegment;
     use berry_evolve::geometry::{
         segments_intersect, segments_intersect_past_box, side_of, Segment,
     };
     use berry_evolve::sim::index::smell_grid::{FacedShade, Source};
-    use berry_evolve::sim::wall::BoxedSegment;
     let (mut checked, mut listed_in_range) = (0, 0);
     let (mut pairs, mut pairs_served, mut hidden_unlisted) = (0, 0, 0);
     for seed in 0..40u64 {

@@ -9,12 +9,13 @@ use crate::sim_common;
 use std::fmt::Write;
 
 use crate::sim_common::Mix;
+use berry_evolve::geometry::BoxedSegment;
 use berry_evolve::geometry::{segments_intersect, Segment, Vec2};
 use berry_evolve::sim::index::whisker_cells::WhiskerCells;
 use berry_evolve::sim::index::StaticIndex;
 use berry_evolve::sim::sensors::{Body, Surroundings};
 use berry_evolve::sim::smell::Smell;
-use berry_evolve::sim::wall::{BoxedSegment, Walls};
+use berry_evolve::sim::wall::Walls;
 use berry_evolve::sim::World;
 
 /// A random world: walls of every slope, doors, food of several radii (points included),

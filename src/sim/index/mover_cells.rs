@@ -3,11 +3,11 @@
 //! may touch (`MoverCells`), and per creature the cell its last contacts found it in
 //! (`LastCell`), which its next move reuses when it starts where the last one ended.
 
+use crate::geometry::BoxedSegment;
 use crate::geometry::{Segment, Vec2};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::index::cells::bucket_by_cell;
 use crate::sim::index::static_grid::Scratch;
-use crate::sim::wall::BoxedSegment;
 
 /// Where the world's `walls_near` put the walls of one move.
 #[derive(Clone, Copy)]

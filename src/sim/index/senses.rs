@@ -3,6 +3,7 @@
 //! out, both whiskers and both smell receptors in one pass. What the tick loop uses; the
 //! tests compare them with the plain loops (see the contract in [`crate::sim::index`]).
 
+use crate::geometry::BoxedSegment;
 use crate::geometry::{
     circles_touch, segment_touches_circle, segments_intersect, segments_intersect_past_box,
     Segment, Vec2,
@@ -14,7 +15,6 @@ use crate::sim::sensors::{Body, Senses, Surroundings};
 use crate::sim::smell::{
     accumulate_listed, add, add_pair, diffusion, falloff_pair, reach_pair, saturate, Shade, Smell,
 };
-use crate::sim::wall::BoxedSegment;
 
 /// The indexed senses of [`Surroundings`].
 impl Surroundings<'_> {

@@ -28,11 +28,11 @@
 //! every trial world. Objects of unlimited range are in a short list apart, merged into
 //! every query in id order.
 
+use crate::geometry::BoxedSegment;
 use crate::geometry::{point_segment_distance_squared, side_of, Segment, Vec2};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::index::cells::{bucket_by_cell, Geometry, CELLS_PER_ITEM, MAX_CELLS, MIN_CELLS};
 use crate::sim::smell::{Smell, WallShade};
-use crate::sim::wall::BoxedSegment;
 
 /// Cells of the smell grid per largest finite smell range (see the module docs).
 const SMELL_CELLS_PER_RANGE: f64 = 2.0;

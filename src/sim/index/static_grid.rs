@@ -25,6 +25,7 @@
 //! the whisker reach, and spend more building its grid than living its trial. Worlds with at most [`FEW_WALLS`] fixed walls
 //! filter the wall list directly instead of visiting cells, which is cheaper at that size.
 
+use crate::geometry::BoxedSegment;
 use crate::geometry::{Segment, Vec2};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::index::cells::{
@@ -35,7 +36,7 @@ use crate::sim::index::smell_grid::{
 };
 use crate::sim::index::whisker_cells::WhiskerCells;
 use crate::sim::smell::{Shade, Smell};
-use crate::sim::wall::{BoxedSegment, Walls};
+use crate::sim::wall::Walls;
 
 /// Up to this many fixed walls, a box query filters the whole wall list (a few comparisons
 /// per wall) rather than visiting cells and deduplicating: cheaper for small worlds.

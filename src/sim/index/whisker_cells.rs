@@ -33,9 +33,9 @@
 //! things, which the caller tests as before. A world with a non-finite or negative size,
 //! reach, wall or food object gets no lists (every query goes to the index).
 
+use crate::geometry::BoxedSegment;
 use crate::geometry::Vec2;
 use crate::sim::food::Food;
-use crate::sim::wall::BoxedSegment;
 
 /// Most cells along each side (cells are never narrower than the reach): finer cells hand a
 /// query fewer walls and food but cost more to build (figures in docs/performance.md).

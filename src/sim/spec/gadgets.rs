@@ -2,7 +2,7 @@
 //! teleporters, wanderers, ground and air predators, their defaults and their validation.
 //! Their running state is [`crate::sim::gadgets`].
 
-use crate::sim::spec::{Point, Region, DEFAULT_WALL_COLOUR, DEFAULT_WALL_HEIGHT};
+use super::values::{Point, Region, DEFAULT_WALL_COLOUR, DEFAULT_WALL_HEIGHT};
 use crate::validate::{
     all_finite, count_within, finite, non_negative, positive, InvalidValue, Valid,
 };
@@ -20,23 +20,26 @@ pub const MAX_TICKS: u64 = 1_000_000_000;
 #[serde(deny_unknown_fields)]
 pub struct DoorSpec {
     /// First end point `[x, y]` of the door segment in LU (required; inside the arena).
-    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    #[serde(deserialize_with = "crate::sim::spec::values::exact::array")]
     pub from: Point,
     /// Second end point `[x, y]` in LU (required; inside the arena, not equal to `from`).
-    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    #[serde(deserialize_with = "crate::sim::spec::values::exact::array")]
     pub to: Point,
     /// A closed door stops smells (default: true).
     #[serde(default = "yes")]
     pub opaque: bool,
     /// Colour `[r, g, b]` in [0, 1] for the eye (default: grey 0.5).
-    #[serde(default = "grey", deserialize_with = "crate::sim::spec::exact::array")]
+    #[serde(
+        default = "grey",
+        deserialize_with = "crate::sim::spec::values::exact::array"
+    )]
     pub colour: [f64; 3],
     /// Height in LU for the eye (default: 10).
     #[serde(default = "wall_height")]
     pub height: f64,
     /// Centre `[x, y]` of the trigger circle in LU (required; inside the arena). The trigger
     /// does not block and is not seen; whiskers feel it when its radius is > 0.
-    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    #[serde(deserialize_with = "crate::sim::spec::values::exact::array")]
     pub trigger: Point,
     /// Radius of the trigger circle in LU (default: 5; 0 = a point, touched by the body).
     #[serde(default = "five")]
@@ -51,14 +54,14 @@ pub struct DoorSpec {
     /// zeros = no smell).
     #[serde(
         default,
-        skip_serializing_if = "crate::sim::spec::exact::is_zero",
-        deserialize_with = "crate::sim::spec::exact::array"
+        skip_serializing_if = "crate::sim::spec::values::exact::is_zero",
+        deserialize_with = "crate::sim::spec::values::exact::array"
     )]
     pub odour: [f64; 8],
     /// Smell intensity at the trigger (default: 0).
     #[serde(
         default,
-        skip_serializing_if = "crate::sim::spec::exact::is_zero_scalar"
+        skip_serializing_if = "crate::sim::spec::values::exact::is_zero_scalar"
     )]
     pub intensity: f64,
     /// Smell range θ of the trigger in LU (default: absent = unlimited).
@@ -73,21 +76,21 @@ pub struct DoorSpec {
 #[serde(deny_unknown_fields)]
 pub struct TeleporterSpec {
     /// Centre `[x, y]` of the entry circle in LU (required; inside the arena).
-    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    #[serde(deserialize_with = "crate::sim::spec::values::exact::array")]
     pub entry: Point,
     /// Radius of the entry circle in LU (default: 5). Felt by whiskers when > 0; not seen,
     /// does not block.
     #[serde(default = "five")]
     pub radius: f64,
     /// Exit point `[x, y]` in LU (required; inside the arena): the new body centre.
-    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    #[serde(deserialize_with = "crate::sim::spec::values::exact::array")]
     pub exit: Point,
     /// Heading after the jump in degrees, 0 = facing +x, positive clockwise on screen
     /// (default: absent = keep the heading).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub exit_heading: Option<f64>,
     /// Odour given off at the entry's centre (default: zeros).
-    #[serde(default, deserialize_with = "crate::sim::spec::exact::array")]
+    #[serde(default, deserialize_with = "crate::sim::spec::values::exact::array")]
     pub odour: [f64; 8],
     /// Smell intensity at the entry (default: 0).
     #[serde(default)]
@@ -108,7 +111,7 @@ pub struct WanderersSpec {
     /// Where they start, `[x0, y0, x1, y1]` in LU (default: absent = the whole arena).
     #[serde(
         skip_serializing_if = "Option::is_none",
-        deserialize_with = "crate::sim::spec::exact::option_array"
+        deserialize_with = "crate::sim::spec::values::exact::option_array"
     )]
     pub region: Option<Region>,
     /// Largest motor signal in rotations per tick (default: 0.25).
@@ -118,7 +121,7 @@ pub struct WanderersSpec {
     #[serde(deserialize_with = "exact_lists::pair")]
     pub hold_ticks: [u64; 2],
     /// Odour of their bodies (default: zeros).
-    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    #[serde(deserialize_with = "crate::sim::spec::values::exact::array")]
     pub odour: [f64; 8],
     /// Smell intensity (default: 0).
     pub intensity: f64,
@@ -126,7 +129,7 @@ pub struct WanderersSpec {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub range: Option<f64>,
     /// Body colour for the eye (default: `[0.6, 0.4, 0.8]`).
-    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    #[serde(deserialize_with = "crate::sim::spec::values::exact::array")]
     pub colour: [f64; 3],
     /// Largest turn per tick in degrees while turning away from what a whisker touches, in
     /// (0, 180] (default: absent = 30). The turn is a spin in place, at most `max_rpt` per
@@ -193,14 +196,14 @@ pub struct PredatorSpec {
     /// Start position `[x, y]` in LU (default: absent = a random free spot in the arena).
     #[serde(
         skip_serializing_if = "Option::is_none",
-        deserialize_with = "crate::sim::spec::exact::option_array"
+        deserialize_with = "crate::sim::spec::values::exact::option_array"
     )]
     pub start: Option<Point>,
     /// `wander` holds each random command for `[min, max]` ticks (default: `[5, 30]`).
     #[serde(deserialize_with = "exact_lists::pair")]
     pub hold_ticks: [u64; 2],
     /// Odour of its body (default: zeros).
-    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    #[serde(deserialize_with = "crate::sim::spec::values::exact::array")]
     pub odour: [f64; 8],
     /// Smell intensity (default: 0).
     pub intensity: f64,
@@ -208,7 +211,7 @@ pub struct PredatorSpec {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub range: Option<f64>,
     /// Body colour for the eye (default: red `[0.9, 0.1, 0.1]`).
-    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    #[serde(deserialize_with = "crate::sim::spec::values::exact::array")]
     pub colour: [f64; 3],
     /// Largest turn per tick in degrees while a wandering predator turns away from a touch,
     /// as `[world.wanderers] turn_degrees` (default: absent = 30).
@@ -249,7 +252,7 @@ pub struct AirPredatorSpec {
     /// `"lethal"` or `"shock"` (default: `"lethal"`).
     pub effect: Effect,
     /// Odour at its ground position (default: zeros).
-    #[serde(deserialize_with = "crate::sim::spec::exact::array")]
+    #[serde(deserialize_with = "crate::sim::spec::values::exact::array")]
     pub odour: [f64; 8],
     /// Smell intensity (default: 0).
     pub intensity: f64,
