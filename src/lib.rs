@@ -2,20 +2,51 @@
 //! (Balkenius, Lund University) driven by a genetic algorithm that evolves neural-network
 //! controllers, evaluating whole populations in parallel.
 //!
-//! # Layers (dependencies point one way)
+//! # Layers (dependencies point one way; `bash scripts/imports.sh` checks it)
 //!
 //! ```text
-//! geometry, seed  <-  sim  <-  brain  <-  evo  <-  experiment  <-  record  <-  cli
+//! geometry, seed, validate, input, cpu  <-  sim  <-  brain  <-  experiment  <-  evo
+//!                                       <-  record  <-  run  <-  cli
 //! ```
 //!
 //! - [`geometry`]: the report's §6, pure functions on circles, segments and rays.
 //! - [`seed`]: the one function that derives every random stream from the master seed.
-//! - `sim`: the world, creatures, sensors and motion (§3–§9); knows nothing of networks.
+//! - [`validate`]: range checks that name the key; [`input`]: reading a user's file safely;
+//!   [`cpu`]: does this CPU have the extensions the build was compiled for.
+//! - `sim`: the world, creatures, sensors and motion (§3–§9); knows nothing of networks. The
+//!   model (`sim::world`, `sim::sensors`, `sim::motion`, `sim::smell`, ...) reads as the report;
+//!   what exists only for speed is in `sim::index`, bit-identical to the plain loops.
 //! - `brain`: genomes and the controllers they encode (MLP, recurrent, CTRNN).
-//! - `evo`: the genetic algorithm and parallel, deterministic evaluation (the only rayon user).
-//! - `experiment`: TOML experiment files, strict parsing and validation.
-//! - `record`: all file output: fitness CSV, checkpoints, genome files, traces.
+//! - `experiment`: TOML experiment files (raw `ExperimentConfig`, validated `Experiment`),
+//!   `[evolution]` included.
+//! - `evo`: the genetic algorithm and PGPE, and parallel, deterministic evaluation: one trial
+//!   path (`evo::trial`), the parts evaluation and lockstep share (`evo::life`).
+//! - `record`: file output: fitness CSV, checkpoints, genome files, traces, plots, pictures.
+//! - `run`: one run folder: its lock, the generation loop, checkpoints, resume.
 //! - `cli`: the command-line front end (lives in the binary).
+//!
+//! rayon runs evo's evaluation (on a pool `run` builds) and the binary's `compare` and
+//! `bench`; each collects in index order and reduces serially.
+//!
+//! # The report's sections in the code
+//!
+//! | § | report | code |
+//! |---|---|---|
+//! | §2 | units, optional start grid | `geometry::Vec2`; `sim::placement` (`place_objects`, `place_creatures`) |
+//! | §3, §4.1 | arena, walls | `sim::spec::WorldSpec`, `sim::wall::{Wall, Walls}` |
+//! | §4.2, §7.1–7.2 | smell, eq. 25–26 | `sim::smell` (eq. 25 once: `diffusion`; `falloff`, `Shade`, `WallShade`); plain loop `sim::sensors::Surroundings::smell_at_all`, fast pass `sim::index::senses` |
+//! | §4.3, §4.4 | food, aversive objects | `sim::food::{Food, Aversive}`; regrowth `World::regenerate_food`, eating and shock in `World::move_and_contact` |
+//! | §4.5.1, §4.5.2 | teleporters, locked doors | `sim::gadgets::Gadgets` (`teleport`, `trigger_doors`, `close_doors`), specs in `sim::spec` |
+//! | §4.5.3, §4.6 | distal landmarks, areas | `sim::area` (`bearing`, `Area`), `World::in_safe_area` |
+//! | §4.7, §4.8 | predators, wanderers | `sim::gadgets` (`Actor`, `Flyer`, `Gadgets::contacts`), `World::act_actor` |
+//! | §5.1, §5.3 | creature, metabolism | `sim::creature::Creature`, `sim::spec::CreatureSpec`, `sim::metabolism` (`Metabolism`, `Decay`) |
+//! | §5.2, §7.3 | food detectors, shock, whiskers | plain loops in `sim::sensors` (`food_detectors_all`, `whisker_touches_all`), fast in `sim::index::senses` |
+//! | §6 | geometry, eq. 1–24 | `geometry` (`circles_touch`, `circle_touches_segment`, `segments_intersect`) |
+//! | §7.4 | eye | `sim::eye::{Eye, Scene}` (ray casting) |
+//! | §7.5 | noise, eq. 27 | `sim::noise::Noise` |
+//! | §8.1–8.2 | motion, eq. 28–38 | `sim::motion` (`drive`, `plan_clamped_move`, `admissible`, the search); the plain §8.2 reference in `sim::motion::reference` |
+//! | §9 | the tick | `sim::world::World::step` (`begin_tick`, `observe`, `apply`, `end_tick`) |
+//! | — | which objects a sense or move tests | `sim::index` (static grid, smell grid, whisker cells, mover cells) |
 //!
 //! # Glossary (one name per concept)
 //! World, Arena, Wall, Door, Food, FoodType (A–D), Odour, Aversive, Teleporter, Landmark,
