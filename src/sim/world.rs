@@ -555,7 +555,7 @@ impl World {
         }
     }
 
-    /// Phase 2.1: creature `i` senses and its observation is written into `out`.
+    /// Phase 3.1: creature `i` senses and its observation is written into `out`.
     ///
     /// [`Surroundings::sense`] step by step, so that the smell sensors land in one local
     /// that both the creature and the observation are copied from (no [`Senses`] in
@@ -586,7 +586,7 @@ impl World {
         self.record_senses(i, out, senses.whiskers, &senses.smell, senses.food);
     }
 
-    /// The rest of phase 2.1 once creature `i` has sensed `whiskers`, `smell` and `food`:
+    /// The rest of phase 3.1 once creature `i` has sensed `whiskers`, `smell` and `food`:
     /// they are kept in the creature, the observation is written into `out`, then sensor
     /// noise is applied to it.
     #[inline(always)]
@@ -645,7 +645,7 @@ impl World {
         }
     }
 
-    /// Phases 2.3 to 2.5: clamp the motors and move creature `i`, blocked by walls and by the
+    /// Phases 3.3 to 3.5: clamp the motors and move creature `i`, blocked by walls and by the
     /// other living creatures, then its contacts: eating, shock and metabolism. One function,
     /// so that the creature is looked up once for its move and its contacts. The brute-force
     /// choice is made here, once for the phase.
@@ -703,7 +703,7 @@ impl World {
         c.travelled += outcome.travelled;
         c.command = command;
         c.blocked = outcome.blocked;
-        // Phases 2.4 and 2.5: eating, shock and metabolism of the creature after its move.
+        // Phases 3.4 and 3.5: eating, shock and metabolism of the creature after its move.
         //
         // The food and aversive objects the body may touch come from the list of its cell in
         // `mover_cells` when it ends in one (see [`MoverCells::with_contacts`]), else from the
@@ -902,7 +902,7 @@ impl World {
         NearWalls::Scratch
     }
 
-    /// Phase 2.6: teleporters, door triggers and predators meet creature `i`.
+    /// Phase 3.6: teleporters, door triggers and predators meet creature `i`.
     fn gadget_contacts(&mut self, i: usize) {
         self.gadgets.contacts(i, &mut gadget_context!(self));
     }
