@@ -26,19 +26,20 @@ fn main() {
         }) {
             std::process::exit(0);
         }
+        // A deliberate Ctrl-C (or SIGTERM) that stopped the run after a checkpoint is not an
+        // error: say what happened and how to go on, and exit 130 as shells expect.
+        let interrupted = error
+            .downcast_ref::<berry_evolve::run::RunError>()
+            .is_some_and(|e| matches!(e, berry_evolve::run::RunError::Interrupted { .. }));
+        if interrupted {
+            errln!("stopped: {error}");
+            std::process::exit(130);
+        }
         errln!("error: {error}");
         for cause in error.chain().skip(1) {
             errln!("  caused by: {cause}");
         }
-        let code = if error
-            .downcast_ref::<berry_evolve::run::RunError>()
-            .is_some_and(|e| matches!(e, berry_evolve::run::RunError::Interrupted { .. }))
-        {
-            130
-        } else {
-            1
-        };
-        std::process::exit(code);
+        std::process::exit(1);
     }
 }
 

@@ -119,12 +119,15 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     // Every genome meets the same worlds: common random numbers, group 0.
     let experiment = overrides.common_random_numbers(true).build()?;
     let generation = Generation(args.generation.unwrap_or(HELD_OUT_GENERATION));
+    let worlds = match args.generation {
+        None => "the held-out worlds (never used in training or validation)".to_string(),
+        Some(g) => format!("generation {g}'s training worlds"),
+    };
     outln!(
-        "experiment `{}`: {} trials x {} ticks of generation {}'s worlds",
+        "experiment `{}`: {} trials x {} ticks on {worlds}",
         experiment.name,
         experiment.evaluation.trials,
         experiment.evaluation.ticks,
-        generation.0
     );
     for path in &args.genomes {
         let file = GenomeFile::load(path)?;

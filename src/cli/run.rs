@@ -170,12 +170,12 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
 pub fn report(summary: &berry_evolve::run::RunSummary) {
     if let Some(best) = &summary.best_ever {
         errln!(
-            "done: {} generations; best ever {:.4} (generation {}, individual {}), metabolism {:?}",
+            "done: {} generations; best ever {:.4} (generation {}, individual {}), metabolism [{}]",
             summary.generations,
             best.fitness,
             best.generation,
             best.individual,
-            best.metabolism
+            best.metabolism.map(|m| format!("{m:.4}")).join(", ")
         );
     }
     errln!(

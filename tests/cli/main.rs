@@ -14,6 +14,7 @@ mod landmark_experiments;
 mod old_cpus;
 mod one_writer_per_folder;
 mod pictures;
+mod plain_wording;
 mod replay_in_browser;
 mod replicates;
 mod reproducibility_and_errors;

@@ -117,6 +117,11 @@ fn stop_and_resume(signal_name: &str) {
     let stderr = String::from_utf8_lossy(&out.stderr).to_string();
     assert_eq!(out.status.code(), Some(130), "exit code; stderr:\n{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
+    // A deliberate stop is reported as such, not as an error.
+    assert!(
+        stderr.contains("stopped: interrupted after generation ") && !stderr.contains("error:"),
+        "the stop is not reported as a stop:\n{stderr}"
+    );
     assert!(
         stderr.contains(&format!("berry-evolve resume {}", dir.display())),
         "stderr does not say how to continue:\n{stderr}"

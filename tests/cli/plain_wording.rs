@@ -1,0 +1,89 @@
+//! What the console says in plain words: the end-of-run line rounds its numbers, and
+//! `compare` names the worlds it scores on (the held-out set by default, a generation's
+//! training worlds when asked).
+
+use crate::cli_common::{fixture, run_ok};
+
+/// Runs tiny.toml for 2 generations into a fresh folder; returns the folder and stderr.
+fn tiny_run() -> (tempfile::TempDir, String) {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("run");
+    let out = run_ok(&[
+        "run",
+        fixture("tiny.toml").to_str().unwrap(),
+        "--generations",
+        "2",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    (tmp, String::from_utf8_lossy(&out.stderr).to_string())
+}
+
+#[test]
+fn the_done_line_rounds_the_metabolism_to_four_decimals() {
+    let (_tmp, stderr) = tiny_run();
+    let line = stderr
+        .lines()
+        .find(|l| l.starts_with("done: "))
+        .unwrap_or_else(|| panic!("no done: line in\n{stderr}"));
+    let inside = line
+        .split("metabolism [")
+        .nth(1)
+        .and_then(|s| s.strip_suffix(']'))
+        .unwrap_or_else(|| panic!("no metabolism [..] in {line}"));
+    let parts: Vec<&str> = inside.split(", ").collect();
+    assert_eq!(parts.len(), 4, "{line}");
+    for p in parts {
+        let decimals = p.split('.').nth(1).unwrap_or("");
+        assert_eq!(decimals.len(), 4, "{p} in {line}");
+        assert!(p.parse::<f64>().is_ok(), "{p} in {line}");
+    }
+}
+
+#[test]
+fn compare_names_the_held_out_worlds_or_the_generation_asked_for() {
+    let (tmp, _) = tiny_run();
+    let best = tmp.path().join("run").join("best.json");
+    let best = best.to_str().unwrap();
+    let tiny = fixture("tiny.toml");
+    let tiny = tiny.to_str().unwrap();
+    let held_out = run_ok(&[
+        "compare",
+        "--experiment",
+        tiny,
+        best,
+        "--trials",
+        "2",
+        "--random",
+        "2",
+    ]);
+    let text = String::from_utf8_lossy(&held_out.stdout);
+    assert!(
+        text.lines()
+            .next()
+            .unwrap_or("")
+            .contains("on the held-out worlds (never used in training or validation)"),
+        "{text}"
+    );
+    assert!(!text.contains("1099511627776"), "{text}");
+    let asked = run_ok(&[
+        "compare",
+        "--experiment",
+        tiny,
+        best,
+        "--trials",
+        "2",
+        "--random",
+        "2",
+        "--generation",
+        "3",
+    ]);
+    let text = String::from_utf8_lossy(&asked.stdout);
+    assert!(
+        text.lines()
+            .next()
+            .unwrap_or("")
+            .contains("on generation 3's training worlds"),
+        "{text}"
+    );
+}
