@@ -13,6 +13,13 @@ fn main() {
     if !berry_evolve::cpu::runs_here() {
         cpu_exit();
     }
+    if let Some(message) = std::env::args()
+        .nth(1)
+        .and_then(|a| cli::mistyped_subcommand(&a))
+    {
+        errln!("error: {message}");
+        std::process::exit(2);
+    }
     let cli = cli::Cli::parse();
     let result = cli::dispatch(cli).and_then(|()| match cli::console::stdout_error() {
         Some(e) => Err(anyhow::anyhow!("cannot write to standard output: {e}")),

@@ -77,3 +77,70 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         }
     }
 }
+
+/// A message for a first argument that looks like a mistyped subcommand (`inpsect x.toml`),
+/// which the `berry-evolve FILE` shortcut would otherwise take for an experiment file and clap
+/// would answer with a confusing conflict: None when it names a subcommand, looks like a path
+/// (has a `.` or a `/`), is an existing file, or is close to no subcommand.
+pub fn mistyped_subcommand(first: &str) -> Option<String> {
+    use clap::CommandFactory;
+    if first.starts_with('-') || first.contains(['.', '/']) || std::path::Path::new(first).exists()
+    {
+        return None;
+    }
+    let command = Cli::command();
+    let names: Vec<&str> = command.get_subcommands().map(|s| s.get_name()).collect();
+    if names.contains(&first) {
+        return None;
+    }
+    let (distance, best) = names.iter().map(|n| (edit_distance(first, n), *n)).min()?;
+    (distance <= 2.max(best.len() / 3)).then(|| {
+        format!(
+            "`{first}` is not a subcommand; did you mean `{best}`? (`berry-evolve FILE.toml` \
+             runs an experiment file; `berry-evolve --help` lists the subcommands)"
+        )
+    })
+}
+
+/// Levenshtein distance between two short words (insertions, deletions, substitutions).
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let above = row[j + 1];
+            row[j + 1] = (above + 1)
+                .min(row[j] + 1)
+                .min(diagonal + usize::from(ca != cb));
+            diagonal = above;
+        }
+    }
+    row[b.len()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{edit_distance, mistyped_subcommand};
+
+    #[test]
+    fn edit_distance_of_hand_checked_pairs() {
+        assert_eq!(edit_distance("inpsect", "inspect"), 2);
+        assert_eq!(edit_distance("resme", "resume"), 1);
+        assert_eq!(edit_distance("", "plot"), 4);
+        assert_eq!(edit_distance("bench", "bench"), 0);
+    }
+
+    #[test]
+    fn a_mistyped_subcommand_gets_a_suggestion_and_a_file_does_not() {
+        let m = mistyped_subcommand("inpsect").expect("a suggestion");
+        assert!(m.contains("did you mean `inspect`"), "{m}");
+        assert!(mistyped_subcommand("export-cvs")
+            .unwrap()
+            .contains("`export-csv`"));
+        assert_eq!(mistyped_subcommand("inspect"), None);
+        assert_eq!(mistyped_subcommand("experiments/foraging.toml"), None);
+        assert_eq!(mistyped_subcommand("zzzzzzzzzz"), None);
+    }
+}

@@ -1,6 +1,6 @@
 //! What the console says in plain words: the end-of-run line rounds its numbers, and
 //! `compare` names the worlds it scores on (the held-out set by default, a generation's
-//! training worlds when asked).
+//! training worlds when asked), and a mistyped subcommand is answered with the one it resembles.
 
 use crate::cli_common::{fixture, run_ok};
 
@@ -86,4 +86,14 @@ fn compare_names_the_held_out_worlds_or_the_generation_asked_for() {
             .contains("on generation 3's training worlds"),
         "{text}"
     );
+}
+
+#[test]
+fn a_mistyped_subcommand_is_answered_with_the_subcommand_it_resembles() {
+    let err = crate::cli_common::run_err(&["inpsect", "experiments/foraging.toml"]);
+    assert!(
+        err.contains("`inpsect` is not a subcommand; did you mean `inspect`?"),
+        "{err}"
+    );
+    assert!(!err.contains("cannot be used with"), "{err}");
 }

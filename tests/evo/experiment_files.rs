@@ -179,3 +179,21 @@ fn every_shipped_genome_fits_its_experiment() {
         "expected the hand-designed forager and a kept champion"
     );
 }
+
+/// The config hash of a frozen experiment file is pinned: a dependency update (serde, toml,
+/// the hash's own code or a feature change) that silently changed how a file hashes would
+/// change every run folder's identity and make `resume` refuse every old run. The hash covers
+/// the whole normalised configuration, defaults included, so adding a key changes it too (it
+/// moved from 0.3.5's 78d47ba0... when the [fitness], [behaviour] and [validation] keys came):
+/// then update the pin on purpose, in the same commit.
+#[test]
+fn the_config_hash_of_a_frozen_experiment_is_pinned() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/foraging-v035.toml");
+    let experiment = Experiment::load(&path).unwrap();
+    assert_eq!(
+        experiment.config_hash(),
+        "294039f116077617881a38f69c1cc9b7830dac6b1afc8f8e07e27a16c168c0f2",
+        "the config hash of {} changed",
+        path.display()
+    );
+}
