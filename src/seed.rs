@@ -10,7 +10,7 @@
 //! have changed between `rand` releases; golden tests pin their first outputs so that a
 //! dependency upgrade that changes any value fails loudly.
 
-use rand::{RngCore, SeedableRng};
+use rand_chacha::rand_core::{RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::{Deserialize, Serialize};
 
