@@ -75,7 +75,10 @@ impl Progress for Lines {
             .started
             .map_or((0.0, 0), |(t, _, total)| (t.elapsed().as_secs_f64(), total));
         errln!(
-            "generation {:>4}/{total}: best {:.4} mean {:.4} median {:.4} best ever {:.4} ({elapsed:.1} s)",
+            // The generation as the files number it (from 0, the CSV row and the checkpoint
+            // name), then how many of the run's generations are done.
+            "generation {:>4} ({}/{total} done): best {:.4} mean {:.4} median {:.4} best ever {:.4} ({elapsed:.1} s)",
+            row.generation,
             row.generation + 1,
             row.best,
             row.mean,

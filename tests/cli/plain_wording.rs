@@ -1,4 +1,5 @@
-//! What the console says in plain words: the end-of-run line rounds its numbers, and
+//! What the console says in plain words: generations numbered from 0 as in the files, the
+//! end-of-run line rounds its numbers, and
 //! `compare` names the worlds it scores on (the held-out set by default, a generation's
 //! training worlds when asked), and a mistyped subcommand is answered with the one it resembles.
 
@@ -96,4 +97,13 @@ fn a_mistyped_subcommand_is_answered_with_the_subcommand_it_resembles() {
         "{err}"
     );
     assert!(!err.contains("cannot be used with"), "{err}");
+}
+
+#[test]
+fn the_console_numbers_generations_from_0_as_the_files_do() {
+    let (tmp, stderr) = tiny_run();
+    assert!(stderr.contains("generation    0 (1/2 done): "), "{stderr}");
+    assert!(stderr.contains("generation    1 (2/2 done): "), "{stderr}");
+    // The last generation's line names the generation of the last checkpoint.
+    assert!(tmp.path().join("run/checkpoints/gen-000001.json").exists());
 }
