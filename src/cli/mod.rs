@@ -3,6 +3,7 @@
 
 pub mod bench;
 pub mod compare;
+pub mod completions;
 pub mod console;
 pub mod export;
 pub mod inspect;
@@ -54,6 +55,11 @@ pub enum Command {
     /// Sum up replicates (`run --seeds`): summary.csv (quartiles across seeds per generation)
     /// and held-out.csv (each seed's best.json, random and baseline genomes held out).
     Summary(summary::SummaryArgs),
+    /// Print a completion script for a shell (bash: `berry-evolve completions bash >
+    /// ~/.local/share/bash-completion/completions/berry-evolve`).
+    Completions(completions::CompletionsArgs),
+    /// Print the man page (`berry-evolve man > berry-evolve.1; man -l berry-evolve.1`).
+    Man,
 }
 
 /// Runs the parsed command line.
@@ -70,6 +76,8 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         (Some(Command::Plot(args)), _) => plot::run(args),
         (Some(Command::Render(args)), _) => render::run(args),
         (Some(Command::Summary(args)), _) => summary::run(args),
+        (Some(Command::Completions(args)), _) => completions::completions(args),
+        (Some(Command::Man), _) => completions::man(),
         (None, None) => {
             use clap::CommandFactory;
             Cli::command().print_help()?;
