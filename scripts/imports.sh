@@ -38,7 +38,10 @@ summary | --edges) ;;
 *) echo "usage: bash scripts/imports.sh [--edges]" >&2; exit 2 ;;
 esac
 exec python3 - "$mode" "$LAYERS" <<'PY'
-import os, re, sys
+import os, re, signal, sys
+
+# Piped into head: stop quietly when the reader goes away.
+signal.signal(signal.SIGPIPE, signal.SIG_DFL)
 
 mode, layer_text = sys.argv[1], sys.argv[2]
 LAYER = {}

@@ -3,8 +3,7 @@
 //! clap_mangen), so they cannot drift from it.
 
 use super::console::outln;
-use super::Cli;
-use clap::{Args, CommandFactory};
+use clap::Args;
 
 /// Arguments of `completions`.
 #[derive(Debug, Args)]
@@ -13,17 +12,17 @@ pub struct CompletionsArgs {
     pub shell: clap_complete::Shell,
 }
 
-/// Prints the completion script for one shell on standard output.
-pub fn completions(args: CompletionsArgs) -> anyhow::Result<()> {
+/// Prints the completion script for one shell of the program's `command` on standard output.
+pub fn completions(args: CompletionsArgs, mut command: clap::Command) -> anyhow::Result<()> {
     let mut script = Vec::new();
-    clap_complete::generate(args.shell, &mut Cli::command(), "berry-evolve", &mut script);
+    clap_complete::generate(args.shell, &mut command, "berry-evolve", &mut script);
     print_text(&script)
 }
 
-/// Prints the man page (roff) on standard output.
-pub fn man() -> anyhow::Result<()> {
+/// Prints the man page (roff) of the program's `command` on standard output.
+pub fn man(command: clap::Command) -> anyhow::Result<()> {
     let mut page = Vec::new();
-    clap_mangen::Man::new(Cli::command()).render(&mut page)?;
+    clap_mangen::Man::new(command).render(&mut page)?;
     print_text(&page)
 }
 

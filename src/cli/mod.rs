@@ -76,8 +76,10 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         (Some(Command::Plot(args)), _) => plot::run(args),
         (Some(Command::Render(args)), _) => render::run(args),
         (Some(Command::Summary(args)), _) => summary::run(args),
-        (Some(Command::Completions(args)), _) => completions::completions(args),
-        (Some(Command::Man), _) => completions::man(),
+        (Some(Command::Completions(args)), _) => {
+            completions::completions(args, <Cli as clap::CommandFactory>::command())
+        }
+        (Some(Command::Man), _) => completions::man(<Cli as clap::CommandFactory>::command()),
         (None, None) => {
             use clap::CommandFactory;
             Cli::command().print_help()?;

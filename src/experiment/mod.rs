@@ -10,6 +10,7 @@
 //! `DerefMut`), so the hundreds of places that read `experiment.evaluation.ticks` read it as
 //! before while none can assign it.
 
+pub mod diff;
 pub mod evolution;
 pub mod tables;
 
@@ -372,13 +373,18 @@ impl ExperimentConfig {
     /// run can be extended with `resume --generations`) and `[output]` (where and how often
     /// results are saved). The canonical form is the JSON of the experiment with sorted keys.
     pub fn config_hash(&self) -> String {
+        let bytes = serde_json::to_vec(&self.identity()).expect("JSON value serialises");
+        let digest = Sha256::digest(&bytes);
+        digest.iter().map(|b| format!("{b:02x}")).collect()
+    }
+
+    /// What [`ExperimentConfig::config_hash`] hashes: the configuration as JSON, without the
+    /// run length and the output settings.
+    pub fn identity(&self) -> serde_json::Value {
         let mut identity = self.clone();
         identity.evolution.generations = 0;
         identity.output = OutputSpec::default();
-        let value = serde_json::to_value(&identity).expect("experiment serialises to JSON");
-        let bytes = serde_json::to_vec(&value).expect("JSON value serialises");
-        let digest = Sha256::digest(&bytes);
-        digest.iter().map(|b| format!("{b:02x}")).collect()
+        serde_json::to_value(&identity).expect("experiment serialises to JSON")
     }
 
     /// The run folder used when `--out` is not given.

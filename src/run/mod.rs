@@ -12,6 +12,7 @@ use crate::evo::state::{
     EvaluatedGeneration, GenerationSummary, SearchState,
 };
 use crate::evo::validation::{self, ValidatedChampion};
+use crate::experiment::diff::changed_keys;
 use crate::experiment::{Experiment, ExperimentConfig, ExperimentError};
 use crate::input::{read_regular, read_regular_text, MAX_CSV_BYTES, MAX_EXPERIMENT_BYTES};
 use crate::record::atomic::{remove_stale_temp_files, write_atomic};
@@ -185,7 +186,7 @@ pub enum RunError {
         message: String,
     },
     /// The experiment file in the folder differs from the checkpoint's experiment.
-    #[error("{path} differs from the experiment in checkpoint {checkpoint} (config hash {found} vs {expected}); the run would no longer be the one its seed describes. Restore the file, or pass --allow-config-change to continue anyway (the change is recorded in the run folder)")]
+    #[error("{path} differs from the experiment in checkpoint {checkpoint} (config hash {found} vs {expected}; {changes}); the run would no longer be the one its seed describes. Restore the file, or pass --allow-config-change to continue anyway (the change is recorded in the run folder)")]
     ConfigChanged {
         /// The experiment file.
         path: PathBuf,
@@ -195,6 +196,8 @@ pub enum RunError {
         found: String,
         /// Hash in the checkpoint (short).
         expected: String,
+        /// The changed keys, `key: checkpoint's -> file's`, separated by "; ".
+        changes: String,
     },
     /// `resume --generations N` asked for fewer generations than the checkpoint holds.
     #[error("--generations {requested}: checkpoint {checkpoint} already holds {completed} completed generations; ask for at least that many{older}")]
@@ -625,6 +628,7 @@ pub fn resume_with(
                     checkpoint: loaded_path,
                     found: on_disk.config_hash()[..12].to_string(),
                     expected: experiment.config_hash()[..12].to_string(),
+                    changes: changed_keys(&experiment, &on_disk).join("; "),
                 });
             }
             record_config_change(&dir, &experiment, &on_disk, &loaded_path)?;
@@ -958,15 +962,17 @@ fn record_config_change(
     new: &Experiment,
     checkpoint: &Path,
 ) -> Result<(), RunError> {
-    record_change(
-        dir,
-        &format!(
-            "resumed from {} with a changed experiment: config hash {} -> {}",
-            checkpoint.display(),
-            old.config_hash(),
-            new.config_hash()
-        ),
-    )
+    let mut line = format!(
+        "resumed from {} with a changed experiment: config hash {} -> {}",
+        checkpoint.display(),
+        old.config_hash(),
+        new.config_hash()
+    );
+    for change in changed_keys(old, new) {
+        line.push_str("\n  ");
+        line.push_str(&change);
+    }
+    record_change(dir, &line)
 }
 
 /// Appends `line` to `config-changes.log`, replacing the file atomically (the log is small).

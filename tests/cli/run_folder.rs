@@ -217,3 +217,28 @@ fn a_damaged_fitness_row_is_repaired_from_the_checkpoint_and_output_edits_are_ho
         .unwrap()
         .contains("keep_checkpoints = 5"));
 }
+
+/// An edited experiment.toml is refused naming the keys that changed, and with
+/// --allow-config-change the log records each key with its old and new value.
+#[test]
+fn a_changed_experiment_names_the_keys_that_changed() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("run");
+    tiny_run(&dir, &["--quiet"]);
+    let path = dir.join("experiment.toml");
+    let text = String::from_utf8(read(&path)).unwrap();
+    assert!(text.contains("elitism = 1\n"), "{text}");
+    std::fs::write(&path, text.replace("elitism = 1\n", "elitism = 2\n")).unwrap();
+    let err = run_err(&["resume", dir.to_str().unwrap(), "--generations", "10"]);
+    assert!(err.contains("evolution.elitism: 1 -> 2"), "{err}");
+    run_ok(&[
+        "resume",
+        dir.to_str().unwrap(),
+        "--generations",
+        "10",
+        "--allow-config-change",
+        "--quiet",
+    ]);
+    let log = String::from_utf8(read(&dir.join("config-changes.log"))).unwrap();
+    assert!(log.contains("\n  evolution.elitism: 1 -> 2\n"), "{log}");
+}
