@@ -80,6 +80,14 @@ impl Replay {
         }
         let file = GenomeFile::load(genome_path)?;
         let topology = file.topology_for(&experiment, genome_path)?;
+        if let Some(evolved) = file.origin.seed.filter(|&s| s != experiment.seed) {
+            errln!(
+                "note: {} was evolved with seed {evolved}, this experiment has seed {}; replay \
+                 with --seed {evolved} to meet the worlds it was evaluated on",
+                genome_path.display(),
+                experiment.seed
+            );
+        }
         if let Some(recorded) = &file.origin.config_hash {
             let here = experiment.config_hash();
             if *recorded != here {

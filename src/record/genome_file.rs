@@ -27,6 +27,9 @@ pub struct Origin {
     /// That experiment's config hash.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub config_hash: Option<String>,
+    /// The experiment's seed when it was evolved (`replay --seed` reproduces its worlds).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seed: Option<u64>,
     /// The generation it was evaluated in.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub generation: Option<u64>,

@@ -1044,6 +1044,7 @@ impl Loop {
                     description: None,
                     experiment: Some(self.experiment.name.clone()),
                     config_hash: Some(self.experiment.config_hash()),
+                    seed: Some(self.experiment.seed),
                     generation: Some(c.generation),
                     individual: Some(c.individual),
                     fitness: Some(c.fitness),

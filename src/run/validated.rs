@@ -30,6 +30,7 @@ impl Loop {
                 description: Some(description),
                 experiment: Some(self.experiment.name.clone()),
                 config_hash: Some(self.experiment.config_hash()),
+                seed: Some(self.experiment.seed),
                 generation: Some(v.generation),
                 individual: v.individual,
                 fitness: v.training_fitness,

@@ -107,3 +107,33 @@ fn the_console_numbers_generations_from_0_as_the_files_do() {
     // The last generation's line names the generation of the last checkpoint.
     assert!(tmp.path().join("run/checkpoints/gen-000001.json").exists());
 }
+
+#[test]
+fn best_json_records_the_seed_and_replay_names_it_when_another_is_used() {
+    let (tmp, _) = tiny_run();
+    let best = tmp.path().join("run").join("best.json");
+    let json: serde_json::Value = serde_json::from_slice(&crate::cli_common::read(&best)).unwrap();
+    assert_eq!(json["origin"]["seed"], 5, "{json}");
+    let tiny = fixture("tiny.toml");
+    let out = run_ok(&[
+        "replay",
+        best.to_str().unwrap(),
+        "--experiment",
+        tiny.to_str().unwrap(),
+        "--seed",
+        "9",
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr
+            .contains("was evolved with seed 5, this experiment has seed 9; replay with --seed 5"),
+        "{stderr}"
+    );
+    let same = run_ok(&[
+        "replay",
+        best.to_str().unwrap(),
+        "--experiment",
+        tiny.to_str().unwrap(),
+    ]);
+    assert!(!String::from_utf8_lossy(&same.stderr).contains("evolved with seed"));
+}

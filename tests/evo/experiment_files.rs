@@ -103,6 +103,7 @@ fn genome_file_round_trips_parameters_bit_for_bit() {
         let origin = Origin {
             experiment: Some(experiment.name.clone()),
             config_hash: Some(experiment.config_hash()),
+            seed: Some(round as u64 * 7),
             generation: Some(round as u64),
             individual: Some(3),
             fitness: Some(unit(&mut rng)),
