@@ -1233,14 +1233,8 @@ fn travel_bound(wheel: f64, rpt: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sim::index::mover_cells::tests::step;
     use rand::{Rng as _, SeedableRng};
-
-    /// A float next to `x` (`d` = ±1 step of its bits, finite nonzero `x`).
-    fn step(x: f64, d: i64) -> f64 {
-        let up = (x > 0.0) == (d > 0);
-        let bits = x.to_bits();
-        f64::from_bits(if up { bits + 1 } else { bits - 1 })
-    }
 
     /// Motor clamping gives `f64::clamp`'s bits (NaN as 0) for every bound the
     /// specification allows (a number ≥ 0, ±0 included) and every kind of signal.

@@ -48,44 +48,33 @@ fn compare_names_the_held_out_worlds_or_the_generation_asked_for() {
     let best = best.to_str().unwrap();
     let tiny = fixture("tiny.toml");
     let tiny = tiny.to_str().unwrap();
-    let held_out = run_ok(&[
-        "compare",
-        "--experiment",
-        tiny,
-        best,
-        "--trials",
-        "2",
-        "--random",
-        "2",
-    ]);
-    let text = String::from_utf8_lossy(&held_out.stdout);
+    // The first line of `compare` on tiny.toml for `best` with `extra` flags.
+    let first_line = |extra: &[&str]| {
+        let mut args = vec![
+            "compare",
+            "--experiment",
+            tiny,
+            best,
+            "--trials",
+            "2",
+            "--random",
+            "2",
+        ];
+        args.extend_from_slice(extra);
+        let out = run_ok(&args);
+        let text = String::from_utf8_lossy(&out.stdout).to_string();
+        text.lines().next().unwrap_or("").to_string()
+    };
+    let held_out = first_line(&[]);
     assert!(
-        text.lines()
-            .next()
-            .unwrap_or("")
-            .contains("on the held-out worlds (never used in training or validation)"),
-        "{text}"
+        held_out.contains("on the held-out worlds (never used in training or validation)"),
+        "{held_out}"
     );
-    assert!(!text.contains("1099511627776"), "{text}");
-    let asked = run_ok(&[
-        "compare",
-        "--experiment",
-        tiny,
-        best,
-        "--trials",
-        "2",
-        "--random",
-        "2",
-        "--generation",
-        "3",
-    ]);
-    let text = String::from_utf8_lossy(&asked.stdout);
+    assert!(!held_out.contains("1099511627776"), "{held_out}");
+    let asked = first_line(&["--generation", "3"]);
     assert!(
-        text.lines()
-            .next()
-            .unwrap_or("")
-            .contains("on generation 3's training worlds"),
-        "{text}"
+        asked.contains("on generation 3's training worlds"),
+        "{asked}"
     );
 }
 

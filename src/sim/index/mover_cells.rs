@@ -332,12 +332,13 @@ impl MoverCells {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use rand::{Rng as _, SeedableRng};
 
-    /// A float next to `x` (`d` = ±1 step of its bits, finite nonzero `x`).
-    fn step(x: f64, d: i64) -> f64 {
+    /// A float next to `x` (`d` = ±1 step of its bits, finite nonzero `x`); the world's
+    /// motor-clamp test uses it too.
+    pub(crate) fn step(x: f64, d: i64) -> f64 {
         let up = (x > 0.0) == (d > 0);
         let bits = x.to_bits();
         f64::from_bits(if up { bits + 1 } else { bits - 1 })
