@@ -3,17 +3,20 @@
 //! fairly. By default the worlds are a held-out set that evolution never saw.
 
 use crate::cli::console::outln;
+use crate::cli::json::{self, finite, Named};
 
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::brain::spec::Topology;
-use berry_evolve::evo::evaluate::{aggregate, run_trial, Evaluation};
+use berry_evolve::evo::evaluate::{aggregate, run_trial};
 use berry_evolve::evo::init::initial_population;
+use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::stats::FitnessStats;
-use berry_evolve::experiment::Experiment;
+use berry_evolve::experiment::{Aggregate, Experiment};
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
 use clap::Args;
 use rayon::prelude::*;
+use serde::Serialize;
 use std::path::PathBuf;
 
 /// Generation number whose trial worlds serve as the held-out test set: far beyond any run's
@@ -37,15 +40,253 @@ pub struct CompareArgs {
     /// Random genomes (drawn as the initial population is) to evaluate as a baseline.
     #[arg(long, default_value_t = 32)]
     pub random: u64,
+    /// Print one JSON document (schema `berry-evolve/compare/1`) instead of text: per genome
+    /// the fitness, metabolism, behaviour measures, trial-score statistics and every trial;
+    /// for the random genomes their statistics and each genome.
+    #[arg(long)]
+    pub json: bool,
 }
 
-fn evaluate(
+/// The experiment's behaviour measures, by name, taken from a trial's full measure array
+/// (all [`berry_evolve::experiment::MEASURES`] values).
+pub fn named_measures(experiment: &Experiment, all: &[f64]) -> Named<f64> {
+    Named(
+        experiment
+            .behaviour
+            .measures
+            .iter()
+            .map(|m| (m.name(), all[m.index()]))
+            .collect(),
+    )
+}
+
+/// The experiment's behaviour measures, by name, from values in its order (an
+/// [`Evaluation`]'s means over trials).
+pub fn measures_in_order(experiment: &Experiment, values: &[f64]) -> Named<f64> {
+    Named(
+        experiment
+            .behaviour
+            .measures
+            .iter()
+            .zip(values)
+            .map(|(m, &v)| (m.name(), v))
+            .collect(),
+    )
+}
+
+/// `  distinct_food 3.5000, ticks_alive 500.0000` for the behaviour measures, or nothing when
+/// the experiment names none.
+pub fn measures_text(measures: &Named<f64>) -> String {
+    if measures.is_empty() {
+        return String::new();
+    }
+    let parts: Vec<String> = measures
+        .0
+        .iter()
+        .map(|(name, v)| format!("{name} {v:.4}"))
+        .collect();
+    format!("  {}", parts.join(", "))
+}
+
+/// One life in one trial world, as `compare --json` and `replay --json` report it.
+#[derive(Debug, Serialize)]
+pub struct TrialReport {
+    /// The trial's index (its world).
+    pub trial: u64,
+    /// Its score under `[fitness]` (`null` when not finite).
+    pub score: Option<f64>,
+    /// The metabolic vector at the end of life (A, B, C, D).
+    pub metabolism: [f64; 4],
+    /// Ticks on which the shock sensor was on.
+    pub shocked_ticks: u64,
+    /// True when the brain produced a NaN or infinite output and the life was stopped.
+    pub non_finite: bool,
+    /// The experiment's behaviour measures in this trial.
+    pub measures: Named<f64>,
+}
+
+impl TrialReport {
+    /// The report of trial `trial`'s outcome.
+    pub fn new(experiment: &Experiment, trial: u64, o: &TrialOutcome) -> TrialReport {
+        TrialReport {
+            trial,
+            score: finite(o.score),
+            metabolism: o.metabolism,
+            shocked_ticks: o.shocked_ticks,
+            non_finite: o.non_finite,
+            measures: named_measures(experiment, &o.measures),
+        }
+    }
+}
+
+/// One genome's evaluation over the trials: the fitness selection would see, its parts, the
+/// statistics of the trial scores and every trial.
+#[derive(Debug, Serialize)]
+pub struct GenomeReport {
+    /// The genome file (absent for a random genome).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub path: Option<String>,
+    /// The fitness: the trials' scores aggregated as the experiment says (`null` when a
+    /// trial was not finite).
+    pub fitness: Option<f64>,
+    /// Mean over trials of the final metabolic vector.
+    pub metabolism: [f64; 4],
+    /// Mean over trials of each behaviour measure.
+    pub measures: Named<f64>,
+    /// Statistics over the trials' finite scores.
+    pub trial_scores: FitnessStats,
+    /// Every trial.
+    pub trials: Vec<TrialReport>,
+}
+
+impl GenomeReport {
+    fn new(
+        experiment: &Experiment,
+        path: Option<String>,
+        outcomes: &[TrialOutcome],
+    ) -> GenomeReport {
+        let e = aggregate(experiment, outcomes);
+        let scores: Vec<f64> = outcomes
+            .iter()
+            .map(|o| o.score)
+            .filter(|s| s.is_finite())
+            .collect();
+        GenomeReport {
+            path,
+            fitness: e.fitness,
+            metabolism: e.metabolism,
+            measures: measures_in_order(experiment, &e.measures),
+            trial_scores: FitnessStats::of(&scores),
+            trials: outcomes
+                .iter()
+                .zip(0..)
+                .map(|(o, t)| TrialReport::new(experiment, t, o))
+                .collect(),
+        }
+    }
+
+    /// `46.0000  (A 22.000, B 10.000, C 8.000, D 6.000)  distinct_food 7.6667`.
+    fn text(&self) -> String {
+        let f = self
+            .fitness
+            .map_or("non-finite".to_string(), |f| format!("{f:.4}"));
+        let m = self.metabolism;
+        format!(
+            "{f}  (A {:.3}, B {:.3}, C {:.3}, D {:.3}){}",
+            m[0],
+            m[1],
+            m[2],
+            m[3],
+            measures_text(&self.measures)
+        )
+    }
+}
+
+/// Whose trial worlds the genomes met.
+#[derive(Debug, Serialize)]
+pub struct Worlds {
+    /// True for the held-out set (never used in training or validation).
+    pub held_out: bool,
+    /// The generation number whose worlds these are (for the held-out set,
+    /// [`HELD_OUT_GENERATION`]).
+    pub generation: u64,
+}
+
+impl Worlds {
+    /// `the held-out worlds (...)` or `generation G's training worlds`.
+    pub fn text(&self) -> String {
+        if self.held_out {
+            "the held-out worlds (never used in training or validation)".to_string()
+        } else {
+            format!("generation {}'s training worlds", self.generation)
+        }
+    }
+}
+
+/// The random genomes' results: statistics over the genomes and each genome.
+#[derive(Debug, Serialize)]
+pub struct RandomReport {
+    /// How many random genomes were drawn.
+    pub count: u64,
+    /// How many of them got a finite fitness (the statistics are over those).
+    pub finite: usize,
+    /// Statistics of their finite fitness values.
+    pub fitness: FitnessStats,
+    /// Per behaviour measure, statistics of the genomes' values (means over trials).
+    pub measures: Named<FitnessStats>,
+    /// Every random genome, in the order drawn.
+    pub genomes: Vec<GenomeReport>,
+}
+
+/// What `compare` prints (as text, or as JSON with `--json`).
+#[derive(Debug, Serialize)]
+pub struct CompareReport {
+    /// `berry-evolve/compare/1`.
+    pub schema: &'static str,
+    /// The experiment's name.
+    pub experiment: String,
+    /// The experiment file given.
+    pub experiment_file: String,
+    /// Its seed (the worlds derive from it).
+    pub seed: u64,
+    /// Trials per genome.
+    pub trials: u64,
+    /// Ticks per trial.
+    pub ticks: u64,
+    /// How a genome's trial scores become its fitness.
+    pub aggregate: Aggregate,
+    /// Whose worlds.
+    pub worlds: Worlds,
+    /// The genome files, in the order given.
+    pub genomes: Vec<GenomeReport>,
+    /// The random genomes (absent with `--random 0`).
+    pub random: Option<RandomReport>,
+}
+
+impl CompareReport {
+    /// Prints the report as the text lines `compare` has always printed.
+    fn print_text(&self) {
+        outln!(
+            "experiment `{}`: {} trials x {} ticks on {}",
+            self.experiment,
+            self.trials,
+            self.ticks,
+            self.worlds.text()
+        );
+        for g in &self.genomes {
+            outln!("{}: fitness {}", g.path.as_deref().unwrap_or("?"), g.text());
+        }
+        if let Some(r) = &self.random {
+            let s = &r.fitness;
+            outln!(
+                "{} random genomes: fitness mean {:.4}, std {:.4}, best {:.4}, median {:.4}",
+                r.count,
+                s.mean,
+                s.std,
+                s.best,
+                s.median
+            );
+            // Per measure, the random genomes' median and best (largest) value.
+            for (name, s) in &r.measures.0 {
+                outln!(
+                    "{} random genomes: {name} median {:.4}, best {:.4}",
+                    r.count,
+                    s.median,
+                    s.best
+                );
+            }
+        }
+    }
+}
+
+/// Lives every trial of `genome` in `generation`'s worlds (group 0).
+fn outcomes(
     experiment: &Experiment,
     topology: &Topology,
     genome: &Genome,
     generation: Generation,
-) -> anyhow::Result<Evaluation> {
-    let outcomes = (0..experiment.evaluation.trials)
+) -> anyhow::Result<Vec<TrialOutcome>> {
+    Ok((0..experiment.evaluation.trials)
         .map(|t| {
             run_trial(
                 experiment,
@@ -57,61 +298,22 @@ fn evaluate(
             )
             .map(|o| o[0])
         })
-        .collect::<Result<Vec<_>, _>>()?;
-    Ok(aggregate(experiment, &outcomes))
-}
-
-fn fmt(experiment: &Experiment, e: &Evaluation) -> String {
-    let f = e
-        .fitness
-        .map_or("non-finite".to_string(), |f| format!("{f:.4}"));
-    format!(
-        "{f}  (A {:.3}, B {:.3}, C {:.3}, D {:.3}){}",
-        e.metabolism[0],
-        e.metabolism[1],
-        e.metabolism[2],
-        e.metabolism[3],
-        measures_text(experiment, &e.measures)
-    )
-}
-
-/// A trial's measures (all [`berry_evolve::experiment::MEASURES`] values) as
-/// `  measures: distinct_food 3, ticks_alive 500` for the experiment's behaviour measures, or
-/// an empty string.
-pub fn measure_values_text(experiment: &Experiment, all: &[f64]) -> String {
-    let values: Vec<f64> = experiment
-        .behaviour
-        .measures
-        .iter()
-        .map(|m| all[m.index()])
-        .collect();
-    let text = measures_text(experiment, &values);
-    if text.is_empty() {
-        text
-    } else {
-        format!("  measures:{text}")
-    }
-}
-
-/// `  distinct_food 3.5, ticks_alive 500` for the experiment's behaviour measures (mean over
-/// trials), or nothing when it names none.
-pub fn measures_text(experiment: &Experiment, values: &[f64]) -> String {
-    let parts: Vec<String> = experiment
-        .behaviour
-        .measures
-        .iter()
-        .zip(values)
-        .map(|(m, v)| format!("{} {v:.4}", m.name()))
-        .collect();
-    if parts.is_empty() {
-        String::new()
-    } else {
-        format!("  {}", parts.join(", "))
-    }
+        .collect::<Result<Vec<_>, _>>()?)
 }
 
 /// Runs the subcommand.
 pub fn run(args: CompareArgs) -> anyhow::Result<()> {
+    let report = compare(&args)?;
+    if args.json {
+        json::print(&report)
+    } else {
+        report.print_text();
+        Ok(())
+    }
+}
+
+/// Evaluates what `args` names and gathers the report.
+fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
     let mut overrides = Experiment::load(&args.experiment)?.with_overrides();
     if let Some(t) = args.trials {
         overrides = overrides.trials(t);
@@ -119,60 +321,78 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     // Every genome meets the same worlds: common random numbers, group 0.
     let experiment = overrides.common_random_numbers(true).build()?;
     let generation = Generation(args.generation.unwrap_or(HELD_OUT_GENERATION));
-    let worlds = match args.generation {
-        None => "the held-out worlds (never used in training or validation)".to_string(),
-        Some(g) => format!("generation {g}'s training worlds"),
-    };
-    outln!(
-        "experiment `{}`: {} trials x {} ticks on {worlds}",
-        experiment.name,
-        experiment.evaluation.trials,
-        experiment.evaluation.ticks,
-    );
+    let mut genomes = Vec::new();
     for path in &args.genomes {
         let file = GenomeFile::load(path)?;
         let topology = file.topology_for(&experiment, path)?;
-        let e = evaluate(&experiment, &topology, &file.genome(), generation)?;
-        outln!("{}: fitness {}", path.display(), fmt(&experiment, &e));
+        let o = outcomes(&experiment, &topology, &file.genome(), generation)?;
+        genomes.push(GenomeReport::new(
+            &experiment,
+            Some(path.display().to_string()),
+            &o,
+        ));
     }
-    if args.random > 0 {
-        let topology = experiment.topology();
-        let mut rng = stream(
-            experiment.seed(),
-            Purpose::Baseline,
-            generation,
-            IndividualId(0),
-            TrialIndex(0),
-        );
-        let mut spec = experiment.evolution.clone();
-        spec.population = args.random as usize;
-        let genomes = initial_population(&spec, topology.parameter_count(), &mut rng);
-        let evaluations = genomes
-            .par_iter()
-            .map(|g| evaluate(&experiment, &topology, g, generation))
-            .collect::<anyhow::Result<Vec<_>>>()?;
-        let fitness: Vec<f64> = evaluations.iter().filter_map(|e| e.fitness).collect();
-        let stats = FitnessStats::of(&fitness);
-        outln!(
-            "{} random genomes: fitness mean {:.4}, std {:.4}, best {:.4}, median {:.4}",
-            args.random,
-            stats.mean,
-            stats.std,
-            stats.best,
-            stats.median
-        );
-        // Per measure, the random genomes' median and best (largest) value.
-        for (k, m) in experiment.behaviour.measures.iter().enumerate() {
-            let values: Vec<f64> = evaluations.iter().map(|e| e.measures[k]).collect();
-            let s = FitnessStats::of(&values);
-            outln!(
-                "{} random genomes: {} median {:.4}, best {:.4}",
-                args.random,
-                m.name(),
-                s.median,
-                s.best
-            );
-        }
-    }
-    Ok(())
+    let random = (args.random > 0)
+        .then(|| random_genomes(&experiment, generation, args.random))
+        .transpose()?;
+    Ok(CompareReport {
+        schema: "berry-evolve/compare/1",
+        experiment: experiment.name.clone(),
+        experiment_file: args.experiment.display().to_string(),
+        seed: experiment.seed,
+        trials: experiment.evaluation.trials,
+        ticks: experiment.evaluation.ticks,
+        aggregate: experiment.evaluation.aggregate,
+        worlds: Worlds {
+            held_out: args.generation.is_none(),
+            generation: generation.0,
+        },
+        genomes,
+        random,
+    })
+}
+
+/// `count` random genomes, drawn as the initial population is, evaluated in parallel
+/// (collected in draw order).
+fn random_genomes(
+    experiment: &Experiment,
+    generation: Generation,
+    count: u64,
+) -> anyhow::Result<RandomReport> {
+    let topology = experiment.topology();
+    let mut rng = stream(
+        experiment.seed(),
+        Purpose::Baseline,
+        generation,
+        IndividualId(0),
+        TrialIndex(0),
+    );
+    let mut spec = experiment.evolution.clone();
+    spec.population = count as usize;
+    let drawn = initial_population(&spec, topology.parameter_count(), &mut rng);
+    let genomes = drawn
+        .par_iter()
+        .map(|g| {
+            let o = outcomes(experiment, &topology, g, generation)?;
+            Ok(GenomeReport::new(experiment, None, &o))
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let fitness: Vec<f64> = genomes.iter().filter_map(|g| g.fitness).collect();
+    let measures = experiment
+        .behaviour
+        .measures
+        .iter()
+        .enumerate()
+        .map(|(k, m)| {
+            let values: Vec<f64> = genomes.iter().map(|g| g.measures.0[k].1).collect();
+            (m.name(), FitnessStats::of(&values))
+        })
+        .collect();
+    Ok(RandomReport {
+        count,
+        finite: fitness.len(),
+        fitness: FitnessStats::of(&fitness),
+        measures: Named(measures),
+        genomes,
+    })
 }

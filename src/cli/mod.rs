@@ -7,12 +7,14 @@ pub mod completions;
 pub mod console;
 pub mod export;
 pub mod inspect;
+pub mod json;
 pub mod plot;
 pub mod progress;
 pub mod render;
 pub mod replay;
 pub mod resume;
 pub mod run;
+pub mod run_report;
 pub mod simulate;
 pub mod summary;
 

@@ -3,7 +3,9 @@
 //! fitness and metabolic vector, and on request write the trace of the whole world (CSV and
 //! JSON lines) and an animated replay page (HTML) of those very lives.
 
+use crate::cli::compare::{measures_in_order, measures_text, TrialReport};
 use crate::cli::console::{errln, outln};
+use crate::cli::json::{self, Named};
 
 use anyhow::Context;
 use berry_evolve::brain::genome::Genome;
@@ -11,13 +13,14 @@ use berry_evolve::brain::spec::Topology;
 use berry_evolve::evo::evaluate::aggregate;
 use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::trial::{self, NoObserver};
-use berry_evolve::experiment::Experiment;
+use berry_evolve::experiment::{Aggregate, Experiment};
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::record::replay_html;
 use berry_evolve::record::trace::files::{csv_paths, write_csv_files, write_jsonl};
 use berry_evolve::record::trace::recorder::{TraceRecorder, TrialTrace};
 use berry_evolve::seed::{Generation, TrialIndex};
 use clap::Args;
+use serde::Serialize;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `replay`.
@@ -48,6 +51,11 @@ pub struct ReplayArgs {
     /// to this HTML file.
     #[arg(long)]
     pub html: Option<PathBuf>,
+    /// Print one JSON document (schema `berry-evolve/replay/1`) instead of text: fitness,
+    /// metabolic vector, behaviour measures, every trial, seed, generation and the files
+    /// written.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// What a replay needs, checked: the experiment (seed overridden), the genome and its
@@ -191,6 +199,97 @@ pub(crate) fn refuse_overwriting_inputs(
     Ok(())
 }
 
+/// The files a replay wrote, as `replay --json` reports them.
+#[derive(Debug, Default, Serialize)]
+pub struct ReplayFiles {
+    /// `--trace`: the creatures' CSV first, then its -actors.csv, -objects.csv, -events.csv
+    /// and -world.jsonl (empty without `--trace`).
+    pub trace: Vec<String>,
+    /// `--trace-jsonl`.
+    pub trace_jsonl: Option<String>,
+    /// `--html`.
+    pub html: Option<String>,
+}
+
+/// What `replay` prints (as text, or as JSON with `--json`).
+#[derive(Debug, Serialize)]
+pub struct ReplayReport {
+    /// `berry-evolve/replay/1`.
+    pub schema: &'static str,
+    /// The genome file.
+    pub genome: String,
+    /// The experiment's name.
+    pub experiment: String,
+    /// The experiment file given.
+    pub experiment_file: String,
+    /// The seed the worlds derive from (the experiment's, or `--seed`).
+    pub seed: u64,
+    /// Whose trial worlds: this generation's.
+    pub generation: u64,
+    /// The individual index whose worlds these are (0 under common random numbers).
+    pub group: u64,
+    /// How the trials' scores become the fitness.
+    pub aggregate: Aggregate,
+    /// The fitness over the trials replayed (`null` when the brain produced a non-finite
+    /// output).
+    pub fitness: Option<f64>,
+    /// Mean over the trials of the final metabolic vector (A, B, C, D).
+    pub metabolism: [f64; 4],
+    /// Mean over the trials of each behaviour measure the experiment names.
+    pub measures: Named<f64>,
+    /// Every trial replayed.
+    pub trials: Vec<TrialReport>,
+    /// The files written.
+    pub files: ReplayFiles,
+}
+
+impl ReplayReport {
+    /// Prints the report as the text lines `replay` has always printed.
+    fn print_text(&self) {
+        for t in &self.trials {
+            let m = t.metabolism;
+            outln!(
+                "trial {}: score {:.6}  metabolism [{:.4}, {:.4}, {:.4}, {:.4}]  shocked ticks {}{}",
+                t.trial,
+                t.score.unwrap_or(f64::NAN),
+                m[0],
+                m[1],
+                m[2],
+                m[3],
+                t.shocked_ticks,
+                if t.non_finite {
+                    "  (brain produced NaN)"
+                } else {
+                    ""
+                }
+            );
+            if !t.measures.is_empty() {
+                outln!(
+                    "trial {}:  measures:{}",
+                    t.trial,
+                    measures_text(&t.measures)
+                );
+            }
+        }
+        match self.fitness {
+            Some(f) => outln!(
+                "fitness {f:.6} ({:?} over {} trial(s) of generation {})",
+                self.aggregate,
+                self.trials.len(),
+                self.generation
+            ),
+            None => outln!("fitness: none (the brain produced a non-finite output)"),
+        }
+        outln!("metabolism {:?}", self.metabolism);
+        if !self.measures.is_empty() {
+            outln!(
+                "measures (mean over trials):{}",
+                measures_text(&self.measures)
+            );
+        }
+    }
+}
+
 /// Runs the subcommand.
 pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
     let inputs = [args.genome.as_path(), args.experiment.as_path()];
@@ -212,67 +311,62 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
         args.generation,
         args.trial,
     )?;
+    let experiment = &replay.experiment;
     let recording = args.trace.is_some() || args.trace_jsonl.is_some() || args.html.is_some();
-    let mut recorder = recording.then(|| TraceRecorder::new(&replay.experiment));
+    let mut recorder = recording.then(|| TraceRecorder::new(experiment));
     let mut outcomes = Vec::new();
+    let mut trials = Vec::new();
     for &t in &replay.trials {
         let o = replay.run(t, recorder.as_mut())?;
-        outln!(
-            "trial {t}: score {:.6}  metabolism [{:.4}, {:.4}, {:.4}, {:.4}]  shocked ticks {}{}",
-            o.score,
-            o.metabolism[0],
-            o.metabolism[1],
-            o.metabolism[2],
-            o.metabolism[3],
-            o.shocked_ticks,
-            if o.non_finite {
-                "  (brain produced NaN)"
-            } else {
-                ""
-            }
-        );
-        let measures = crate::cli::compare::measure_values_text(&replay.experiment, &o.measures);
-        if !measures.is_empty() {
-            outln!("trial {t}:{measures}");
-        }
+        trials.push(TrialReport::new(experiment, t, &o));
         outcomes.push(o);
     }
-    let experiment = &replay.experiment;
     let evaluation = aggregate(experiment, &outcomes);
-    match evaluation.fitness {
-        Some(f) => outln!(
-            "fitness {f:.6} ({:?} over {} trial(s) of generation {})",
-            experiment.evaluation.aggregate,
-            replay.trials.len(),
-            replay.generation.0
-        ),
-        None => outln!("fitness: none (the brain produced a non-finite output)"),
-    }
-    outln!("metabolism {:?}", evaluation.metabolism);
-    if !experiment.behaviour.measures.is_empty() {
-        outln!(
-            "measures (mean over trials):{}",
-            crate::cli::compare::measures_text(experiment, &evaluation.measures)
-        );
-    }
-    let trials = recorder.map(|r| r.trials).unwrap_or_default();
+    let traces = recorder.map(|r| r.trials).unwrap_or_default();
+    let mut files = ReplayFiles::default();
     if let Some(path) = &args.trace {
-        write_csv_files(&trials, path)?;
+        write_csv_files(&traces, path)?;
         errln!(
             "trace written to {} (and its -actors.csv, -objects.csv, -events.csv, -world.jsonl)",
             path.display()
         );
+        files.trace = csv_paths(path)
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect();
     }
     if let Some(path) = &args.trace_jsonl {
-        write_jsonl(&trials, path)?;
+        write_jsonl(&traces, path)?;
         errln!("trace written to {}", path.display());
+        files.trace_jsonl = Some(path.display().to_string());
     }
     if let Some(path) = &args.html {
-        let first = trials
+        let first = traces
             .first()
             .context("no trial was replayed, so there is no page to write")?;
         replay_html::write(first, path)?;
         errln!("replay page written to {}", path.display());
+        files.html = Some(path.display().to_string());
     }
-    Ok(())
+    let report = ReplayReport {
+        schema: "berry-evolve/replay/1",
+        genome: args.genome.display().to_string(),
+        experiment: experiment.name.clone(),
+        experiment_file: args.experiment.display().to_string(),
+        seed: experiment.seed,
+        generation: replay.generation.0,
+        group: replay.group,
+        aggregate: experiment.evaluation.aggregate,
+        fitness: evaluation.fitness,
+        metabolism: evaluation.metabolism,
+        measures: measures_in_order(experiment, &evaluation.measures),
+        trials,
+        files,
+    };
+    if args.json {
+        json::print(&report)
+    } else {
+        report.print_text();
+        Ok(())
+    }
 }

@@ -2,7 +2,8 @@
 
 use super::progress::reporter;
 use super::run::Interrupting;
-use super::run::{report, stop_flag, ExecutionArgs};
+use super::run::{stop_flag, ExecutionArgs};
+use super::run_report;
 use berry_evolve::run::{resume_target, resume_with, ResumeRequest, RunOptions};
 use clap::Args;
 use std::path::PathBuf;
@@ -26,6 +27,10 @@ pub struct ResumeArgs {
     /// Accept a --generations below what the run plans (recorded in config-changes.log).
     #[arg(long)]
     pub shorten: bool,
+    /// At the end, print one JSON document on stdout instead of the text summary (schema
+    /// `berry-evolve/run/1`, as `run --json`). Progress stays on stderr.
+    #[arg(long)]
+    pub json: bool,
     #[command(flatten)]
     pub execution: ExecutionArgs,
 }
@@ -44,7 +49,7 @@ pub fn run(args: ResumeArgs) -> anyhow::Result<()> {
         });
     let stop = stop_flag(at)?;
     let mut progress = reporter(args.execution.quiet);
-    let summary = resume_with(
+    let result = resume_with(
         &args.target,
         ResumeRequest {
             generations: args.generations,
@@ -57,9 +62,6 @@ pub fn run(args: ResumeArgs) -> anyhow::Result<()> {
             stop: Some(&stop),
         },
         progress.as_mut(),
-    )?;
-    if !args.execution.quiet {
-        report(&summary);
-    }
-    Ok(())
+    );
+    run_report::finish(result, args.json, args.execution.quiet)
 }

@@ -1,8 +1,9 @@
 //! `berry-evolve run`: start a new run of an experiment.
 
-use crate::cli::console::{errln, outln};
+use crate::cli::console::errln;
 
 use super::progress::reporter;
+use super::run_report;
 use anyhow::Context;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::run::{start, RunOptions};
@@ -44,6 +45,12 @@ pub struct RunArgs {
     /// experiment.toml, fitness.csv, best.json, checkpoints, config-changes.log) and says which.
     #[arg(long)]
     pub force: bool,
+    /// At the end, print one JSON document on stdout instead of the text summary (schema
+    /// `berry-evolve/run/1`: status done or interrupted, run folder, generations done, best
+    /// and validation fitness, best.json, resume command; with --seeds
+    /// `berry-evolve/run-seeds/1`, one such entry per seed). Progress stays on stderr.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// How a resumed run executes; none of it changes the results.
@@ -150,7 +157,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         ),
     }))?;
     let mut progress = reporter(args.quiet);
-    let summary = start(
+    let result = start(
         experiment,
         &dir,
         args.force,
@@ -159,29 +166,8 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
             stop: Some(&stop),
         },
         progress.as_mut(),
-    )?;
-    if !args.quiet {
-        report(&summary);
-    }
-    Ok(())
-}
-
-/// Prints where a finished run's results are.
-pub fn report(summary: &berry_evolve::run::RunSummary) {
-    if let Some(best) = &summary.best_ever {
-        errln!(
-            "done: {} generations; best ever {:.4} (generation {}, individual {}), metabolism [{}]",
-            summary.generations,
-            best.fitness,
-            best.generation,
-            best.individual,
-            best.metabolism.map(|m| format!("{m:.4}")).join(", ")
-        );
-    }
-    errln!(
-        "results in {}: fitness.csv, best.json, checkpoints/",
-        summary.dir.display()
     );
+    run_report::finish(result, args.json, args.quiet)
 }
 
 /// The seeds of `--seeds`: `a..b` (a to b inclusive) or a comma-separated list, in the order
@@ -228,6 +214,7 @@ fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
         None => PathBuf::from("results").join(&experiment.name),
     };
     let stop = stop_flag(None)?;
+    let mut report = run_report::SeedsReport::new(args.json);
     for &seed in seeds {
         let mut overrides = experiment.with_overrides().seed(seed);
         if let Some(g) = args.generations {
@@ -246,30 +233,16 @@ fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
         };
         let mut progress = reporter(args.quiet);
         let continued = !args.force && dir.join(berry_evolve::run::EXPERIMENT_FILE).exists();
-        let summary = if continued {
+        let result = if continued {
             berry_evolve::run::resume(&dir, args.generations, false, options, progress.as_mut())
         } else {
             start(e, &dir, args.force, options, progress.as_mut())
-        }
-        .with_context(|| format!("seed {seed} ({})", dir.display()))?;
-        let how = if continued { " (continued)" } else { "" };
-        match &summary.best_ever {
-            Some(best) => outln!(
-                "seed {seed}{how}: {} generations, best ever {:.4} (generation {}, individual {}); results in {}",
-                summary.generations,
-                best.fitness,
-                best.generation,
-                best.individual,
-                summary.dir.display()
-            ),
-            None => outln!(
-                "seed {seed}{how}: {} generations, no finite fitness; results in {}",
-                summary.generations,
-                summary.dir.display()
-            ),
-        }
+        };
+        report
+            .add(seed, continued, result)
+            .with_context(|| format!("seed {seed} ({})", dir.display()))?;
     }
-    Ok(())
+    report.print()
 }
 
 #[cfg(test)]

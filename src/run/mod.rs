@@ -231,6 +231,8 @@ pub enum RunError {
         checkpoint: PathBuf,
         /// The run folder.
         dir: PathBuf,
+        /// Where the run stands (for `run --json`).
+        summary: Box<RunSummary>,
     },
 }
 
@@ -277,6 +279,8 @@ pub struct RunSummary {
     pub best_ever: Option<Champion>,
     /// The last checkpoint written.
     pub checkpoint: Option<PathBuf>,
+    /// The best individual on validation (`[validation]` on), the one best.json holds.
+    pub validated_best: Option<ValidatedChampion>,
 }
 
 fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> RunError + '_ {
@@ -773,6 +777,7 @@ pub fn resume_with(
             generations: state.next_generation,
             best_ever: state.best_ever,
             checkpoint: Some(checkpoint),
+            validated_best: state.validated_best,
         });
     }
     let (population, search) =
@@ -1181,6 +1186,7 @@ fn drive(
                 generations: total,
                 best_ever: state.best_ever.clone(),
                 checkpoint: Some(path),
+                validated_best: state.validated_best.clone(),
             });
         }
         if (generation + 1) % every == 0 || stop_requested {
@@ -1191,8 +1197,15 @@ fn drive(
             if stop_requested {
                 return Err(RunError::Interrupted {
                     generation,
-                    checkpoint: path,
+                    checkpoint: path.clone(),
                     dir: state.dir.clone(),
+                    summary: Box::new(RunSummary {
+                        dir: state.dir.clone(),
+                        generations: generation + 1,
+                        best_ever: state.best_ever.clone(),
+                        checkpoint: Some(path),
+                        validated_best: state.validated_best.clone(),
+                    }),
                 });
             }
         }
