@@ -22,6 +22,7 @@ Usage: python3 scripts/design-behaviour.py EXPERIMENT.toml GENOME.json... [--tri
 """
 import argparse
 import csv
+import json
 import math
 import os
 import re
@@ -51,9 +52,11 @@ def trace(binary, experiment, genome, trials):
         open(exp, "w").write(text)
         out = os.path.join(tmp, "trace.csv")
         res = subprocess.run([binary, "replay", "--experiment", exp, genome, "--generation",
-                              str(HELD_OUT_GENERATION), "--trace", out],
+                              str(HELD_OUT_GENERATION), "--trace", out, "--json"],
                              capture_output=True, text=True, check=True)
-        scores = [float(m) for m in re.findall(r"^trial \d+: score (\S+)", res.stdout, re.M)]
+        # replay --json: one document whose trials carry their scores (null: not finite).
+        scores = [float("nan") if t["score"] is None else t["score"]
+                  for t in json.loads(res.stdout)["trials"]]
         runs, cur, last = [], [], 0
         with open(out) as f:
             for row in csv.DictReader(f):

@@ -18,6 +18,7 @@ Usage: python3 scripts/design2-behaviour.py EXPERIMENT.toml GENOME.json [--trial
 """
 import argparse
 import csv
+import json
 import os
 import re
 import subprocess
@@ -45,11 +46,13 @@ def trace(binary, experiment, genome, trials, seed=None):
         open(exp, "w").write(text)
         out = os.path.join(tmp, "trace.csv")
         cmd = [binary, "replay", "--experiment", exp, genome, "--generation",
-               str(HELD_OUT_GENERATION), "--trace", out]
+               str(HELD_OUT_GENERATION), "--trace", out, "--json"]
         if seed is not None:
             cmd += ["--seed", str(seed)]
         res = subprocess.run(cmd, capture_output=True, text=True, check=True)
-        fitness = [float(m) for m in re.findall(r"^trial \d+: score (\S+)", res.stdout, re.M)]
+        # replay --json: one document whose trials carry their scores (null: not finite).
+        fitness = [float("nan") if t["score"] is None else t["score"]
+                  for t in json.loads(res.stdout)["trials"]]
         runs, cur, last = [], [], 0
         with open(out) as f:
             for row in csv.DictReader(f):

@@ -11,14 +11,16 @@ bin=target/release/berry-evolve
 seeds=("$@")
 [ ${#seeds[@]} -gt 0 ] || seeds=(1 2 3)
 printf '%-6s %-12s %-14s %-14s %-18s\n' seed best_ever evolved_test hand_test random_test_mean
+# Both commands print one JSON document with --json (see the README's "Scripting"); python3
+# reads the numbers from it.
+field() { python3 -c "import json, sys; d = json.load(sys.stdin); print($1)"; }
 for seed in "${seeds[@]}"; do
   out=results/evolution-check/seed-$seed
-  $bin experiments/foraging.toml --seed "$seed" --out "$out" --force --quiet
-  best_ever=$(tail -n 1 "$out/fitness.csv" | cut -d, -f8)
-  report=$($bin compare "$out/best.json" genomes/braitenberg-forager.json \
-    --experiment experiments/foraging.toml --trials 20 --random 32)
-  evolved=$(echo "$report" | grep "^$out/best.json" | awk '{print $3}')
-  hand=$(echo "$report" | grep '^genomes/braitenberg-forager.json' | awk '{print $3}')
-  random=$(echo "$report" | grep 'random genomes' | sed 's/.*fitness mean \([^,]*\),.*/\1/')
+  best_ever=$($bin experiments/foraging.toml --seed "$seed" --out "$out" --force --quiet --json \
+    | field 'd["best_ever"]["fitness"] if d["best_ever"] else "nan"')
+  read -r evolved hand random < <($bin compare "$out/best.json" genomes/braitenberg-forager.json \
+    --experiment experiments/foraging.toml --trials 20 --random 32 --json \
+    | field '" ".join(["non-finite" if g["fitness"] is None else "%.4f" % g["fitness"]
+                       for g in d["genomes"]] + ["%.4f" % d["random"]["fitness"]["mean"]])')
   printf '%-6s %-12.3f %-14s %-14s %-18s\n' "$seed" "$best_ever" "$evolved" "$hand" "$random"
 done

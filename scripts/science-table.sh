@@ -67,25 +67,28 @@ done < <(rows) | xargs -P "$JOBS" -n 2 bash -c 'run_one "$0" "$1"'
 
 # 2. The table.
 ROWS=$(rows) RUNS=$RUNS SEEDS=$SEEDS ONLY=$ONLY BIN=$BIN python3 - <<'PY'
-import os, re, statistics, subprocess, sys
+import json, os, re, statistics, subprocess, sys
 
 runs, seeds, only, binary = (os.environ[k] for k in ("RUNS", "SEEDS", "ONLY", "BIN"))
 seeds = seeds.split()
 
 
 def compare(experiment, genomes, random):
+    """Held-out fitness of each genome file, and the random genomes' (median, best)."""
     out = subprocess.run([binary, "compare", *genomes, "--experiment", experiment,
-                          "--trials", "20", "--random", str(random)],
+                          "--trials", "20", "--random", str(random), "--json"],
                          capture_output=True, text=True, check=True).stdout
-    fit = {}
-    for g in genomes:
-        m = re.search(r"^" + re.escape(g) + r": fitness (\S+)", out, re.M)
-        fit[g] = float(m.group(1))
+    report = json.loads(out)
+    fit = {g["path"]: nan_if_none(g["fitness"]) for g in report["genomes"]}
     rnd = None
-    m = re.search(r"random genomes: fitness mean \S+, std \S+, best (\S+), median (\S+)", out)
-    if m:
-        rnd = (float(m.group(2)), float(m.group(1)))
+    if report["random"]:
+        stats = report["random"]["fitness"]
+        rnd = (stats["median"], stats["best"])
     return fit, rnd
+
+
+def nan_if_none(x):
+    return float("nan") if x is None else x
 
 
 def behaviour(command, genomes):

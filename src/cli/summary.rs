@@ -3,8 +3,9 @@
 //! best, mean and validation fitness) and `held-out.csv` (each seed's best.json, random
 //! genomes and baseline genomes on the held-out worlds `compare` uses).
 
-use crate::cli::compare::HELD_OUT_GENERATION;
+use crate::cli::compare::{measures_in_order, HELD_OUT_GENERATION};
 use crate::cli::console::outln;
+use crate::cli::json::{self, Named};
 
 use anyhow::Context;
 use berry_evolve::brain::genome::Genome;
@@ -15,10 +16,11 @@ use berry_evolve::experiment::Experiment;
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::record::summary::{
     self, held_out_bytes, quartiles, read_seeds, seed_folders, summary_bytes, HeldOutRow,
-    HELD_OUT_FILE, SUMMARY_FILE,
+    SummaryRow, HELD_OUT_FILE, SUMMARY_FILE,
 };
 use berry_evolve::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
 use clap::Args;
+use serde::Serialize;
 use std::path::PathBuf;
 
 /// Arguments of `summary`.
@@ -42,34 +44,157 @@ pub struct SummaryArgs {
     /// Write only summary.csv (no held-out evaluation).
     #[arg(long)]
     pub no_held_out: bool,
+    /// Print one JSON document (schema `berry-evolve/summary/1`) instead of text: the seeds,
+    /// summary.csv's last line, and every line of held-out.csv with its measures by name.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Quartiles of a set of values.
+#[derive(Debug, Serialize)]
+pub struct Quartiles {
+    /// First quartile.
+    pub q1: f64,
+    /// Median.
+    pub median: f64,
+    /// Third quartile.
+    pub q3: f64,
+}
+
+/// One line of held-out.csv, as `summary --json` reports it.
+#[derive(Debug, Serialize)]
+pub struct HeldOutEntry {
+    /// What it is: `seed`, `random_median`, `random_best`, `baseline`.
+    pub who: String,
+    /// The seed (for `seed` entries).
+    pub seed: Option<u64>,
+    /// The genome file, when there is one.
+    pub genome: Option<String>,
+    /// The held-out fitness (`null`: non-finite).
+    pub fitness: Option<f64>,
+    /// The behaviour measures, by name.
+    pub measures: Named<f64>,
+}
+
+/// The held-out part of the summary.
+#[derive(Debug, Serialize)]
+pub struct HeldOutReport {
+    /// The file written.
+    pub held_out_csv: String,
+    /// Held-out trials per genome.
+    pub trials: u64,
+    /// Seeds whose folder has no best.json yet (left out).
+    pub without_best: Vec<u64>,
+    /// Quartiles over the seeds of their best.json's held-out fitness (finite ones).
+    pub seed_fitness: Option<Quartiles>,
+    /// How many seeds' fitness the quartiles are over.
+    pub seeds_with_fitness: usize,
+    /// Every line of held-out.csv, in its order.
+    pub rows: Vec<HeldOutEntry>,
+}
+
+/// What `summary` prints (as text, or as JSON with `--json`).
+#[derive(Debug, Serialize)]
+pub struct SummaryReport {
+    /// `berry-evolve/summary/1`.
+    pub schema: &'static str,
+    /// The experiment's folder summed up.
+    pub folder: String,
+    /// The seeds found (`seed-<s>/` folders), in increasing order.
+    pub seeds: Vec<u64>,
+    /// Generations in summary.csv.
+    pub generations: usize,
+    /// The file written.
+    pub summary_csv: String,
+    /// summary.csv's last line (quartiles across seeds of the last generation).
+    pub last_generation: Option<SummaryRow>,
+    /// The held-out evaluation (absent with `--no-held-out`).
+    pub held_out: Option<HeldOutReport>,
+}
+
+impl SummaryReport {
+    /// Prints the report as the text lines `summary` has always printed.
+    fn print_text(&self) {
+        outln!(
+            "{} seeds, {} generations: {}",
+            self.seeds.len(),
+            self.generations,
+            self.summary_csv
+        );
+        if let Some(last) = &self.last_generation {
+            outln!(
+                "generation {}: best median {:.4} (quartiles {:.4}–{:.4}), mean median {:.4}",
+                last.generation,
+                last.best_median,
+                last.best_q1,
+                last.best_q3,
+                last.mean_median
+            );
+        }
+        let Some(h) = &self.held_out else {
+            return;
+        };
+        for seed in &h.without_best {
+            outln!("seed {seed}: no best.json yet (left out of held-out.csv)");
+        }
+        if let Some(q) = &h.seed_fitness {
+            outln!(
+                "held-out fitness over {} seeds ({} trials): median {:.4} (quartiles {:.4}–{:.4})",
+                h.seeds_with_fitness,
+                h.trials,
+                q.median,
+                q.q1,
+                q.q3
+            );
+        }
+        for r in h.rows.iter().filter(|r| r.who != "seed") {
+            let f = r
+                .fitness
+                .map_or("non-finite".to_string(), |f| format!("{f:.4}"));
+            let name = r.genome.as_deref().unwrap_or(&r.who);
+            outln!("{name}: held-out fitness {f}");
+        }
+        outln!("{}", h.held_out_csv);
+    }
 }
 
 /// Runs the subcommand.
 pub fn run(args: SummaryArgs) -> anyhow::Result<()> {
+    let report = summarize(&args)?;
+    if args.json {
+        json::print(&report)
+    } else {
+        report.print_text();
+        Ok(())
+    }
+}
+
+/// Writes summary.csv (and held-out.csv) and gathers what to report.
+fn summarize(args: &SummaryArgs) -> anyhow::Result<SummaryReport> {
     let seeds = read_seeds(&args.folder)?;
     let tables: Vec<_> = seeds.iter().map(|(_, t)| t.clone()).collect();
     let rows = summary::summarize(&tables);
     let path = args.folder.join(SUMMARY_FILE);
     summary::write(&path, &summary_bytes(&rows)?)?;
-    outln!(
-        "{} seeds, {} generations: {}",
-        seeds.len(),
-        rows.len(),
-        path.display()
-    );
-    if let Some(last) = rows.last() {
-        outln!(
-            "generation {}: best median {:.4} (quartiles {:.4}–{:.4}), mean median {:.4}",
-            last.generation,
-            last.best_median,
-            last.best_q1,
-            last.best_q3,
-            last.mean_median
-        );
-    }
-    if args.no_held_out {
-        return Ok(());
-    }
+    let held_out = if args.no_held_out {
+        None
+    } else {
+        Some(held_out(args)?)
+    };
+    Ok(SummaryReport {
+        schema: "berry-evolve/summary/1",
+        folder: args.folder.display().to_string(),
+        seeds: seeds.iter().map(|(s, _)| *s).collect(),
+        generations: rows.len(),
+        summary_csv: path.display().to_string(),
+        last_generation: rows.last().copied(),
+        held_out,
+    })
+}
+
+/// Evaluates each seed's best.json, random genomes and the baselines on the held-out worlds
+/// and writes held-out.csv.
+fn held_out(args: &SummaryArgs) -> anyhow::Result<HeldOutReport> {
     let folders = seed_folders(&args.folder)?;
     let experiment_path = match &args.experiment {
         Some(p) => p.clone(),
@@ -92,10 +217,11 @@ pub fn run(args: SummaryArgs) -> anyhow::Result<()> {
         Ok(evaluate_in_worlds(&experiment, &topology, &[file.genome()], &worlds)?.remove(0))
     };
     let mut out = Vec::new();
+    let mut without_best = Vec::new();
     for (seed, dir) in &folders {
         let best = dir.join(berry_evolve::run::BEST_FILE);
         if !best.is_file() {
-            outln!("seed {seed}: no best.json yet (left out of held-out.csv)");
+            without_best.push(*seed);
             continue;
         }
         let e = evaluate_file(&best).with_context(|| format!("seed {seed}"))?;
@@ -164,23 +290,25 @@ pub fn run(args: SummaryArgs) -> anyhow::Result<()> {
         .collect();
     let path = args.folder.join(HELD_OUT_FILE);
     summary::write(&path, &held_out_bytes(&names, &out)?)?;
-    if let Some(q) = quartiles(&seed_fitness) {
-        outln!(
-            "held-out fitness over {} seeds ({} trials): median {:.4} (quartiles {:.4}–{:.4})",
-            seed_fitness.len(),
-            experiment.evaluation.trials,
-            q[1],
-            q[0],
-            q[2]
-        );
-    }
-    for r in out.iter().filter(|r| r.who != "seed") {
-        let f = r
-            .fitness
-            .map_or("non-finite".to_string(), |f| format!("{f:.4}"));
-        let name = r.genome.as_deref().unwrap_or(&r.who);
-        outln!("{name}: held-out fitness {f}");
-    }
-    outln!("{}", path.display());
-    Ok(())
+    Ok(HeldOutReport {
+        held_out_csv: path.display().to_string(),
+        trials: experiment.evaluation.trials,
+        without_best,
+        seed_fitness: quartiles(&seed_fitness).map(|q| Quartiles {
+            q1: q[0],
+            median: q[1],
+            q3: q[2],
+        }),
+        seeds_with_fitness: seed_fitness.len(),
+        rows: out
+            .into_iter()
+            .map(|r| HeldOutEntry {
+                measures: measures_in_order(&experiment, &r.measures),
+                who: r.who,
+                seed: r.seed,
+                genome: r.genome,
+                fitness: r.fitness,
+            })
+            .collect(),
+    })
 }
