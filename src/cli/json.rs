@@ -56,7 +56,7 @@ mod tests {
             r#"{"zeta":1.5,"alpha":null}"#
         );
         // Full precision: the shortest text that reads back to the same bits.
-        let x = 0.1 + 0.2;
+        let x: f64 = 0.1 + 0.2;
         let text = serde_json::to_string(&x).unwrap();
         assert_eq!(text.parse::<f64>().unwrap().to_bits(), x.to_bits());
     }

@@ -11,6 +11,7 @@ mod console_output;
 mod dead_end_messages;
 mod gadget_experiments;
 mod hostile_inputs;
+mod json_output;
 mod landmark_experiments;
 mod old_cpus;
 mod one_writer_per_folder;
