@@ -48,7 +48,8 @@ pub struct RunArgs {
     /// At the end, print one JSON document on stdout instead of the text summary (schema
     /// `berry-evolve/run/1`: status done or interrupted, run folder, generations done, best
     /// and validation fitness, best.json, resume command; with --seeds
-    /// `berry-evolve/run-seeds/1`, one such entry per seed). Progress stays on stderr.
+    /// `berry-evolve/run-seeds/1`, one such entry per seed). Progress stays on stderr; --quiet
+    /// silences it but not the document.
     #[arg(long)]
     pub json: bool,
 }
