@@ -88,6 +88,11 @@ pub fn measures_text(measures: &Named<f64>) -> String {
     format!("  {}", parts.join(", "))
 }
 
+/// A fitness as the text output shows it: 4 decimals, or `non-finite`.
+pub fn fitness_text(fitness: Option<f64>) -> String {
+    fitness.map_or("non-finite".to_string(), |f| format!("{f:.4}"))
+}
+
 /// One life in one trial world, as `compare --json` and `replay --json` report it.
 #[derive(Debug, Serialize)]
 pub struct TrialReport {
@@ -167,9 +172,7 @@ impl GenomeReport {
 
     /// `46.0000  (A 22.000, B 10.000, C 8.000, D 6.000)  distinct_food 7.6667`.
     fn text(&self) -> String {
-        let f = self
-            .fitness
-            .map_or("non-finite".to_string(), |f| format!("{f:.4}"));
+        let f = fitness_text(self.fitness);
         let m = self.metabolism;
         format!(
             "{f}  (A {:.3}, B {:.3}, C {:.3}, D {:.3}){}",

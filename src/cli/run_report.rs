@@ -3,6 +3,7 @@
 //! one JSON document on stdout (also when the run was interrupted, before the `stopped:`
 //! line). Both forms are printed from [`RunOutcome`], so they carry the same numbers.
 
+use crate::cli::compare::fitness_text;
 use crate::cli::console::{errln, outln};
 use crate::cli::json;
 
@@ -105,9 +106,7 @@ impl RunOutcome {
             );
         }
         if let Some(v) = &self.validation {
-            let fitness = v
-                .fitness
-                .map_or("non-finite".to_string(), |f| format!("{f:.4}"));
+            let fitness = fitness_text(v.fitness);
             errln!(
                 "validation champion (best.json): fitness {fitness} on the validation worlds \
                  (generation {}{})",

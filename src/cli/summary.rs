@@ -3,7 +3,7 @@
 //! best, mean and validation fitness) and `held-out.csv` (each seed's best.json, random
 //! genomes and baseline genomes on the held-out worlds `compare` uses).
 
-use crate::cli::compare::{measures_in_order, HELD_OUT_GENERATION};
+use crate::cli::compare::{fitness_text, measures_in_order, HELD_OUT_GENERATION};
 use crate::cli::console::outln;
 use crate::cli::json::{self, Named};
 
@@ -148,9 +148,7 @@ impl SummaryReport {
             );
         }
         for r in h.rows.iter().filter(|r| r.who != "seed") {
-            let f = r
-                .fitness
-                .map_or("non-finite".to_string(), |f| format!("{f:.4}"));
+            let f = fitness_text(r.fitness);
             let name = r.genome.as_deref().unwrap_or(&r.who);
             outln!("{name}: held-out fitness {f}");
         }
