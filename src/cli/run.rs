@@ -94,8 +94,9 @@ fn stopping_now(at: Option<&Interrupting>) -> String {
     .and_then(|mut v| v.pop());
     match newest {
         Some((_, path)) => format!(
-            "stopping now; the last checkpoint, {}, is intact. Continue with: berry-evolve resume {}",
+            "stopping now; the last checkpoint, {}, is intact. Continue with: {} resume {}",
             path.display(),
+            berry_evolve::invocation::program(),
             at.dir.display()
         ),
         None => format!(
@@ -144,7 +145,8 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     let stop = stop_flag(Some(Interrupting {
         dir: dir.clone(),
         start_over: format!(
-            "berry-evolve run {} --out {} --force",
+            "{} run {} --out {} --force",
+            berry_evolve::invocation::program(),
             args.experiment.display(),
             dir.display()
         ),
