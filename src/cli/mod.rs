@@ -7,6 +7,7 @@ pub mod completions;
 pub mod console;
 pub mod export;
 pub mod inspect;
+pub mod new;
 pub mod plot;
 pub mod progress;
 pub mod render;
@@ -42,6 +43,8 @@ pub enum Command {
     Replay(replay::ReplayArgs),
     /// Run scripted creatures in an experiment's world and write a per-tick trace.
     Simulate(simulate::SimulateArgs),
+    /// Start a new experiment file from a built-in one (`new NAME --from foraging`; `new --list`).
+    New(new::NewArgs),
     /// Show what an experiment file means: the observation layout, brain size and workload.
     Inspect(inspect::InspectArgs),
     /// Evaluate genome files and random genomes on the same (held-out) trial worlds.
@@ -71,6 +74,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         (Some(Command::Replay(args)), _) => replay::run(args),
         (Some(Command::Simulate(args)), _) => simulate::run(args),
         (Some(Command::Inspect(args)), _) => inspect::run(args),
+        (Some(Command::New(args)), _) => new::run(args),
         (Some(Command::Bench(args)), _) => bench::run(args),
         (Some(Command::Compare(args)), _) => compare::run(args),
         (Some(Command::Plot(args)), _) => plot::run(args),
@@ -103,13 +107,22 @@ pub fn mistyped_subcommand(first: &str) -> Option<String> {
     if names.contains(&first) {
         return None;
     }
-    let (distance, best) = names.iter().map(|n| (edit_distance(first, n), *n)).min()?;
-    (distance <= 2.max(best.len() / 3)).then(|| {
+    closest(first, names).map(|best| {
         format!(
             "`{first}` is not a subcommand; did you mean `{best}`? (`berry-evolve FILE.toml` \
              runs an experiment file; `berry-evolve --help` lists the subcommands)"
         )
     })
+}
+
+/// The name in `names` closest to `word` when it is close enough to be a likely typo (at most
+/// 2 edits, or a third of the name's length for long names).
+pub(crate) fn closest<'a>(word: &str, names: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+    let (distance, best) = names
+        .into_iter()
+        .map(|n| (edit_distance(word, n), n))
+        .min()?;
+    (distance <= 2.max(best.len() / 3)).then_some(best)
 }
 
 /// Levenshtein distance between two short words (insertions, deletions, substitutions).
