@@ -19,10 +19,12 @@ use std::time::Instant;
 
 /// Arguments of `bench`.
 #[derive(Debug, Args)]
-#[command(after_help = "Rates are creature-ticks per second (one creature's tick, senses, \
+#[command(
+    after_help = "Rates are creature-ticks per second (one creature's tick, senses, \
                         brain and move); the reference loops' in steps per second. With --json, \
                         stdout holds one JSON document (schema berry-evolve/bench/1) with the \
-                        same figures at full precision, and the text goes to stderr.")]
+                        same figures at full precision, and the text goes to stderr."
+)]
 pub struct BenchArgs {
     /// Simulator benchmark world(s): experiment files whose [world], [creature] and [brain]
     /// are used, one creature per world driven by a random genome (default: the built-in

@@ -13,8 +13,10 @@ use std::path::{Path, PathBuf};
 
 /// Arguments of `new`.
 #[derive(Debug, Args)]
-#[command(after_help = "Examples:\n  berry-evolve new --list\n  berry-evolve new my-foragers \
-                        --from foraging\n  berry-evolve new maze --from t-maze -o runs/maze.toml")]
+#[command(
+    after_help = "Examples:\n  berry-evolve new --list\n  berry-evolve new my-foragers \
+                        --from foraging\n  berry-evolve new maze --from t-maze -o runs/maze.toml"
+)]
 pub struct NewArgs {
     /// Name of the new experiment: its `name` key, the file NAME.toml and the run folder
     /// results/NAME/seed-<seed>/ (a plain folder name).
@@ -91,7 +93,15 @@ fn list() {
 
 /// The error for a `--from` that names no template, with the closest name when one is close.
 fn unknown_template(asked: &str) -> anyhow::Error {
-    let suggestion = super::closest(asked, TEMPLATES.iter().map(|t| t.name))
+    let names = || TEMPLATES.iter().map(|t| t.name);
+    // A unique prefix (`forag`) is as likely a meaning as a typo.
+    let mut prefixed = names().filter(|n| n.starts_with(asked) && !asked.is_empty());
+    let prefix = match (prefixed.next(), prefixed.next()) {
+        (Some(only), None) => Some(only),
+        _ => None,
+    };
+    let suggestion = prefix
+        .or_else(|| super::closest(asked, names()))
         .map_or(String::new(), |best| format!("did you mean `{best}`? "));
     anyhow::anyhow!(
         "there is no built-in experiment `{asked}`; {suggestion}`{} new --list` names them all",

@@ -151,6 +151,12 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
             dir.display()
         ),
     }))?;
+    if !args.quiet {
+        errln!(
+            "{}",
+            announce(&experiment.name, &format!("seed {}", experiment.seed), &dir)
+        );
+    }
     let mut progress = reporter(args.quiet);
     let summary = start(
         experiment,
@@ -166,6 +172,21 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         report(&summary);
     }
     Ok(())
+}
+
+/// The first line of a run: what runs and where its results go, with the folder a relative
+/// `--out` (or the default results/...) is relative to, since it is the current one.
+fn announce(name: &str, what: &str, dir: &std::path::Path) -> String {
+    let relative_to = match std::env::current_dir() {
+        Ok(cwd) if dir.is_relative() => {
+            format!(" (in {}; --out chooses another folder)", cwd.display())
+        }
+        _ => String::new(),
+    };
+    format!(
+        "running `{name}` {what}: results go to {}{relative_to}",
+        dir.display()
+    )
 }
 
 /// Prints where a finished run's results are.
@@ -229,6 +250,25 @@ fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
         Some(out) => out.clone(),
         None => PathBuf::from("results").join(&experiment.name),
     };
+    if !args.quiet {
+        let consecutive = seeds.windows(2).all(|w| w[1] == w[0] + 1);
+        let what = match seeds {
+            [one] => format!("seed {one}"),
+            [first, .., last] if consecutive => format!("seeds {first} to {last}"),
+            _ => format!(
+                "seeds {}",
+                seeds
+                    .iter()
+                    .map(u64::to_string)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        };
+        errln!(
+            "{}",
+            announce(&experiment.name, &what, &base.join("seed-<s>"))
+        );
+    }
     let stop = stop_flag(None)?;
     for &seed in seeds {
         let mut overrides = experiment.with_overrides().seed(seed);
