@@ -76,18 +76,28 @@ struct Source {
 
 impl Source {
     /// The file at `path`, or the built-in `template` when no path is given.
-    fn load(path: Option<&Path>, template: &Template) -> anyhow::Result<Source> {
-        Ok(match path {
-            Some(path) => Source {
-                label: path.display().to_string(),
-                built_in: false,
-                experiment: Experiment::load(path)?,
-            },
-            None => Source {
-                label: template.file.to_string(),
-                built_in: true,
-                experiment: template.experiment()?,
-            },
+    fn file_or(path: Option<&Path>, template: &Template) -> anyhow::Result<Source> {
+        match path {
+            Some(path) => Source::file(path),
+            None => Source::built_in(template),
+        }
+    }
+
+    /// An experiment file named on the command line.
+    fn file(path: &Path) -> anyhow::Result<Source> {
+        Ok(Source {
+            label: path.display().to_string(),
+            built_in: false,
+            experiment: Experiment::load(path)?,
+        })
+    }
+
+    /// The copy of a shipped file built into the program, labelled with its repository path.
+    fn built_in(template: &Template) -> anyhow::Result<Source> {
+        Ok(Source {
+            label: template.file.to_string(),
+            built_in: true,
+            experiment: template.experiment()?,
         })
     }
 }
@@ -507,12 +517,12 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     let worlds: Vec<Source> = if args.world.is_empty() {
         BENCH_WORLDS
             .iter()
-            .map(|t| Source::load(None, t))
+            .map(Source::built_in)
             .collect::<anyhow::Result<_>>()?
     } else {
         args.world
             .iter()
-            .map(|p| Source::load(Some(p), &BENCH_WORLDS[0]))
+            .map(|p| Source::file(p))
             .collect::<anyhow::Result<_>>()?
     };
     for source in &worlds {
@@ -542,7 +552,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         report.simulator.push(figures);
     }
     if !args.scaling.iter().all(|&k| k == 0) {
-        let source = Source::load(args.scaling_world.as_deref(), &BENCH_WORLDS[0])?;
+        let source = Source::file_or(args.scaling_world.as_deref(), &BENCH_WORLDS[0])?;
         let experiment = &source.experiment;
         let mut first = None;
         for &k in args.scaling.iter().filter(|&&k| k > 0) {
@@ -580,7 +590,7 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     if args.generations > 0 {
         let foraging = berry_evolve::experiment::templates::find("foraging")
             .expect("experiments/foraging.toml is built in");
-        let source = Source::load(args.evolution.as_deref(), foraging)?;
+        let source = Source::file_or(args.evolution.as_deref(), foraging)?;
         let figures = evolution(&source, args.generations, repeat)?;
         for rate in &figures.threads {
             say(json, format_args!(

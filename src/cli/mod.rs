@@ -15,6 +15,7 @@ pub mod replay;
 pub mod resume;
 pub mod run;
 pub mod simulate;
+pub mod suggest;
 pub mod summary;
 
 use clap::{Parser, Subcommand};
@@ -107,7 +108,7 @@ pub fn mistyped_subcommand(first: &str) -> Option<String> {
     if names.contains(&first) {
         return None;
     }
-    closest(first, names).map(|best| {
+    suggest::closest(first, names).map(|best| {
         format!(
             "`{first}` is not a subcommand; did you mean `{best}`? (`berry-evolve FILE.toml` \
              runs an experiment file; `berry-evolve --help` lists the subcommands)"
@@ -115,45 +116,9 @@ pub fn mistyped_subcommand(first: &str) -> Option<String> {
     })
 }
 
-/// The name in `names` closest to `word` when it is close enough to be a likely typo (at most
-/// 2 edits, or a third of the name's length for long names).
-pub(crate) fn closest<'a>(word: &str, names: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
-    let (distance, best) = names
-        .into_iter()
-        .map(|n| (edit_distance(word, n), n))
-        .min()?;
-    (distance <= 2.max(best.len() / 3)).then_some(best)
-}
-
-/// Levenshtein distance between two short words (insertions, deletions, substitutions).
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut diagonal = row[0];
-        row[0] = i + 1;
-        for (j, &cb) in b.iter().enumerate() {
-            let above = row[j + 1];
-            row[j + 1] = (above + 1)
-                .min(row[j] + 1)
-                .min(diagonal + usize::from(ca != cb));
-            diagonal = above;
-        }
-    }
-    row[b.len()]
-}
-
 #[cfg(test)]
 mod tests {
-    use super::{edit_distance, mistyped_subcommand};
-
-    #[test]
-    fn edit_distance_of_hand_checked_pairs() {
-        assert_eq!(edit_distance("inpsect", "inspect"), 2);
-        assert_eq!(edit_distance("resme", "resume"), 1);
-        assert_eq!(edit_distance("", "plot"), 4);
-        assert_eq!(edit_distance("bench", "bench"), 0);
-    }
+    use super::mistyped_subcommand;
 
     #[test]
     fn a_mistyped_subcommand_gets_a_suggestion_and_a_file_does_not() {
