@@ -62,7 +62,7 @@ fn on_path(exe: &Path, path: &OsStr) -> bool {
 
 /// `word` as one shell word: unchanged when it holds only characters no shell treats
 /// specially, else in single quotes.
-fn shell_word(word: &str) -> String {
+pub fn shell_word(word: &str) -> String {
     let plain = |c: char| c.is_ascii_alphanumeric() || "_-./+:@%,=".contains(c);
     if !word.is_empty() && word.chars().all(plain) {
         word.to_string()

@@ -19,7 +19,7 @@
 //!   what exists only for speed is in `sim::index`, bit-identical to the plain loops.
 //! - `brain`: genomes and the controllers they encode (MLP, recurrent, CTRNN).
 //! - `experiment`: TOML experiment files (raw `ExperimentConfig`, validated `Experiment`),
-//!   `[evolution]` included.
+//!   `[evolution]` included; the shipped ones built into the program (`experiment::templates`).
 //! - `evo`: the genetic algorithm and PGPE, and parallel, deterministic evaluation: one trial
 //!   path (`evo::trial`), the parts evaluation and lockstep share (`evo::life`).
 //! - `record`: file output: fitness CSV, checkpoints, genome files, traces, plots, pictures.

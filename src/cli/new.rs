@@ -68,7 +68,7 @@ pub fn run(args: NewArgs) -> anyhow::Result<()> {
 /// Says what was written and what to do next.
 fn written(template: &Template, name: &str, path: &Path, text: &str) -> anyhow::Result<()> {
     let experiment = berry_evolve::experiment::Experiment::from_toml(text, path)?;
-    let file = path.display();
+    let file = berry_evolve::invocation::shell_word(&path.to_string_lossy());
     outln!(
         "wrote {file}: the built-in {} named `{name}`: {}",
         template.file,
