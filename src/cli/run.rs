@@ -5,7 +5,8 @@ use crate::cli::console::{errln, outln};
 use super::progress::reporter;
 use anyhow::Context;
 use berry_evolve::experiment::Experiment;
-use berry_evolve::run::{start, RunOptions};
+use berry_evolve::record::fitness_csv::FitnessRow;
+use berry_evolve::run::{start, Progress, RunOptions};
 use clap::Args;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -151,13 +152,8 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
             dir.display()
         ),
     }))?;
-    if !args.quiet {
-        errln!(
-            "{}",
-            announce(&experiment.name, &format!("seed {}", experiment.seed), &dir)
-        );
-    }
-    let mut progress = reporter(args.quiet);
+    let line = announce(&experiment.name, &format!("seed {}", experiment.seed), &dir);
+    let mut progress = announcing(args.quiet, Some(line));
     let summary = start(
         experiment,
         &dir,
@@ -172,6 +168,54 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         report(&summary);
     }
     Ok(())
+}
+
+/// The progress reporter for this terminal and flags, which first prints `line` (unless
+/// quiet) when the run reports for the first time: a run refused before it starts prints only
+/// its error.
+fn announcing(quiet: bool, line: Option<String>) -> Box<dyn Progress> {
+    let inner = reporter(quiet);
+    match line {
+        Some(line) if !quiet => Box::new(Announcing {
+            line: Some(line),
+            inner,
+        }),
+        _ => inner,
+    }
+}
+
+/// See [`announcing`].
+struct Announcing {
+    line: Option<String>,
+    inner: Box<dyn Progress>,
+}
+
+impl Announcing {
+    fn say(&mut self) {
+        if let Some(line) = self.line.take() {
+            errln!("{line}");
+        }
+    }
+}
+
+impl Progress for Announcing {
+    fn begin(&mut self, first: u64, total: u64) {
+        self.say();
+        self.inner.begin(first, total);
+    }
+    fn generation(&mut self, row: &FitnessRow) {
+        self.inner.generation(row);
+    }
+    fn checkpoint(&mut self, path: &std::path::Path) {
+        self.inner.checkpoint(path);
+    }
+    fn end(&mut self) {
+        self.inner.end();
+    }
+    fn note(&mut self, message: &str) {
+        self.say();
+        self.inner.note(message);
+    }
 }
 
 /// The first line of a run: what runs and where its results go, with the folder a relative
@@ -250,7 +294,7 @@ fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
         Some(out) => out.clone(),
         None => PathBuf::from("results").join(&experiment.name),
     };
-    if !args.quiet {
+    let mut line = {
         let consecutive = seeds.windows(2).all(|w| w[1] == w[0] + 1);
         let what = match seeds {
             [one] => format!("seed {one}"),
@@ -264,11 +308,8 @@ fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
                     .join(", ")
             ),
         };
-        errln!(
-            "{}",
-            announce(&experiment.name, &what, &base.join("seed-<s>"))
-        );
-    }
+        Some(announce(&experiment.name, &what, &base.join("seed-<s>")))
+    };
     let stop = stop_flag(None)?;
     for &seed in seeds {
         let mut overrides = experiment.with_overrides().seed(seed);
@@ -286,7 +327,7 @@ fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
             jobs: args.jobs.unwrap_or(0),
             stop: Some(&stop),
         };
-        let mut progress = reporter(args.quiet);
+        let mut progress = announcing(args.quiet, line.take());
         let continued = !args.force && dir.join(berry_evolve::run::EXPERIMENT_FILE).exists();
         let summary = if continued {
             berry_evolve::run::resume(&dir, args.generations, false, options, progress.as_mut())
