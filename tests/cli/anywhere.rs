@@ -352,40 +352,58 @@ fn run_says_where_results_go_and_hints_name_the_program_as_started() {
             cwd.display()
         )
     );
-    // Started by its path (as the tests start it): hints name that path.
+    let out = ok_in(
+        dir.path(),
+        &[
+            "run",
+            tiny,
+            "--generations",
+            "1",
+            "--seeds",
+            "1,3",
+            "--out",
+            "reps",
+        ],
+    );
+    assert_eq!(
+        text(&out.stderr).lines().next().unwrap(),
+        format!(
+            "running `tiny` seeds 1, 3: results go to reps/seed-<s> (in {}; --out chooses another folder)",
+            cwd.display()
+        )
+    );
+    // A second run into the same folder is refused with a hint; what does it call the program?
+    let hint = |mut command: std::process::Command| {
+        let out = command
+            .current_dir(dir.path())
+            .args(["run", tiny, "--generations", "1"])
+            .output()
+            .unwrap();
+        text(&out.stderr)
+    };
+    // Started by its path (as the tests start it): that path.
     let exe = env!("CARGO_BIN_EXE_berry-evolve");
-    let err = text(&run_in(dir.path(), &["run", tiny, "--generations", "1"]).stderr);
+    let err = hint(bin());
     assert!(
         err.contains(&format!(
             "continue it with `{exe} resume results/tiny/seed-5`"
         )),
         "{err}"
     );
-    // Started by its name from the PATH: the name.
+    // Started by its name from the PATH, or by a path while the PATH's berry-evolve is this
+    // same program (a link to it): the name.
     let bin_dir = dir.path().join("bin");
     std::fs::create_dir(&bin_dir).unwrap();
     std::os::unix::fs::symlink(exe, bin_dir.join("berry-evolve")).unwrap();
-    let out = std::process::Command::new("berry-evolve")
-        .env("PATH", &bin_dir)
-        .current_dir(dir.path())
-        .args(["run", tiny, "--generations", "1"])
-        .output()
-        .unwrap();
-    let err = text(&out.stderr);
-    assert!(
-        err.contains("continue it with `berry-evolve resume results/tiny/seed-5`"),
-        "{err}"
-    );
-    // Started by a path while the PATH's berry-evolve is this same program: the name.
-    let out = bin()
-        .env("PATH", &bin_dir)
-        .current_dir(dir.path())
-        .args(["run", tiny, "--generations", "1"])
-        .output()
-        .unwrap();
-    let err = text(&out.stderr);
-    assert!(
-        err.contains("continue it with `berry-evolve resume results/tiny/seed-5`"),
-        "{err}"
-    );
+    let mut by_name = std::process::Command::new("berry-evolve");
+    by_name.env("PATH", &bin_dir);
+    let mut by_path = bin();
+    by_path.env("PATH", &bin_dir);
+    for command in [by_name, by_path] {
+        let err = hint(command);
+        assert!(
+            err.contains("continue it with `berry-evolve resume results/tiny/seed-5`"),
+            "{err}"
+        );
+    }
 }
