@@ -8,6 +8,7 @@
 #   bash scripts/bench-waterworld.sh      # about 5 minutes on 2 cores
 set -euo pipefail
 cd "$(dirname "$0")/.."
+command -v jq >/dev/null || { echo "$0 needs jq (apt-get install jq)" >&2; exit 2; }
 cargo build --release --quiet
 uname -m; nproc
 grep -m1 'model name' /proc/cpuinfo || true
@@ -19,11 +20,11 @@ sed 's/^precision = "f32".*/precision = "f64"/' experiments/bench/waterworld.tom
 for experiment in experiments/bench/waterworld.toml "$f64"; do
     precision=$(grep -m1 -o '^precision = "f[0-9]*"' "$experiment")
     echo "== $precision"
-    out=$(target/release/berry-evolve bench --repeat 3 --world "$experiment" \
-        --ticks 2000 --scaling 0 --evolution "$experiment" --generations 1 "$@")
-    echo "$out"
-    echo "$out" | awk -v p="$precision" '/^evolution .* on 2 thread/ {
-        for (i = 1; i <= NF; i++) if ($(i + 1) == "creature-ticks/s") rate = $i
+    # The text goes to the terminal (stderr), the figures come as JSON (stdout).
+    rate=$(target/release/berry-evolve bench --repeat 3 --world "$experiment" \
+        --ticks 2000 --scaling 0 --evolution "$experiment" --generations 1 --json "$@" |
+        jq -r '.evolution.threads[] | select(.threads == 2) | .creature_ticks_per_second')
+    awk -v p="$precision" -v rate="$rate" 'BEGIN {
         printf "whole generations on 2 threads (%s): %d agent-steps/s = %.1fx EvoJAX WaterWorld (44,000)\n", p, rate, rate / 44000
     }'
 done

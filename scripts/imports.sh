@@ -24,12 +24,13 @@
 # Layer order, lowest first ("a | b": b may use a, a must not use b; names in one group may use
 # each other), the picture of src/lib.rs:
 #   - geometry, seed, validate (the range checks), input (reading a user's file safely) and cpu
-#     (does this CPU have the build's extensions) use nothing of the crate: the bottom.
+#     (does this CPU have the build's extensions) and invocation (how messages name the program)
+#     use nothing of the crate: the bottom.
 #   - experiment sits under evo: the experiment file, [evolution] included, is data that evo
 #     reads.
 #   - run (one run folder: lock, loop, checkpoints, resume) uses sim, brain, evo, experiment and
 #     record and is used only by main.rs and cli: between record and cli.
-LAYERS="geometry seed validate input cpu | sim | brain | experiment | evo | record | run | cli"
+LAYERS="geometry seed validate input cpu invocation | sim | brain | experiment | evo | record | run | cli"
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:-summary}

@@ -17,9 +17,16 @@ b=$2
 pairs=${3:-10}
 world=${4:-experiments/bench/foraging-world.toml}
 cd "$(dirname "$0")/.."
+command -v jq >/dev/null || { echo "$0 needs jq (apt-get install jq)" >&2; exit 2; }
+# The 1-thread rate from `bench --json`; for an older binary without --json, from its text.
 rate() {
-    "$1" bench --world "$world" --worlds 16 --ticks 5000 --generations 0 --scaling 0 |
-        awk '/^simulator/ { for (i = 1; i <= NF; i++) if ($(i + 1) == "creature-ticks/s") print $i }'
+    local args=(bench --world "$world" --worlds 16 --ticks 5000 --generations 0 --scaling 0)
+    if "$1" bench --help | grep -q -- '--json'; then
+        "$1" "${args[@]}" --json 2>/dev/null | jq -r '.simulator[0].one_thread | floor'
+    else
+        "$1" "${args[@]}" |
+            awk '/^simulator/ { for (i = 1; i <= NF; i++) if ($(i + 1) == "creature-ticks/s") print $i }'
+    fi
 }
 ratios=()
 for i in $(seq "$pairs"); do

@@ -5,20 +5,21 @@
 //! # Layers (dependencies point one way; `bash scripts/imports.sh` checks it)
 //!
 //! ```text
-//! geometry, seed, validate, input, cpu  <-  sim  <-  brain  <-  experiment  <-  evo
+//! geometry, seed, validate, input, cpu, invocation  <-  sim  <-  brain  <-  experiment  <-  evo
 //!                                       <-  record  <-  run  <-  cli
 //! ```
 //!
 //! - [`geometry`]: the report's §6, pure functions on circles, segments and rays.
 //! - [`seed`]: the one function that derives every random stream from the master seed.
 //! - [`validate`]: range checks that name the key; [`input`]: reading a user's file safely;
-//!   [`cpu`]: does this CPU have the extensions the build was compiled for.
+//!   [`cpu`]: does this CPU have the extensions the build was compiled for; [`invocation`]:
+//!   how messages name this program (`berry-evolve`, or the path it was started by).
 //! - `sim`: the world, creatures, sensors and motion (§3–§9); knows nothing of networks. The
 //!   model (`sim::world`, `sim::sensors`, `sim::motion`, `sim::smell`, ...) reads as the report;
 //!   what exists only for speed is in `sim::index`, bit-identical to the plain loops.
 //! - `brain`: genomes and the controllers they encode (MLP, recurrent, CTRNN).
 //! - `experiment`: TOML experiment files (raw `ExperimentConfig`, validated `Experiment`),
-//!   `[evolution]` included.
+//!   `[evolution]` included; the shipped ones built into the program (`experiment::templates`).
 //! - `evo`: the genetic algorithm and PGPE, and parallel, deterministic evaluation: one trial
 //!   path (`evo::trial`), the parts evaluation and lockstep share (`evo::life`).
 //! - `record`: file output: fitness CSV, checkpoints, genome files, traces, plots, pictures.
@@ -61,6 +62,7 @@ pub mod evo;
 pub mod experiment;
 pub mod geometry;
 pub mod input;
+pub mod invocation;
 pub mod record;
 pub mod run;
 pub mod seed;

@@ -13,6 +13,7 @@ fn main() {
     if !berry_evolve::cpu::runs_here() {
         cpu_exit();
     }
+    berry_evolve::invocation::init();
     if let Some(message) = std::env::args()
         .nth(1)
         .and_then(|a| cli::mistyped_subcommand(&a))

@@ -1,29 +1,36 @@
 //! `berry-evolve bench`: speed of the simulator (creature-ticks per second) and of whole
 //! generations, with 1 and 2 threads. Timing lives here and in scripts, never in tests.
 
-use crate::cli::console::outln;
+use crate::cli::console::{errln, outln};
 
 use berry_evolve::brain::{Brain, BrainController};
 use berry_evolve::evo::lockstep::{self, Lockstep};
 use berry_evolve::evo::state::{evaluate, first_population, offspring};
+use berry_evolve::experiment::templates::{Template, BENCH_WORLDS};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
 use berry_evolve::sim::spec::WorldSpec;
 use berry_evolve::sim::world::World;
 use clap::Args;
 use rayon::prelude::*;
-use std::path::PathBuf;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Arguments of `bench`.
 #[derive(Debug, Args)]
+#[command(
+    after_help = "Rates are creature-ticks per second (one creature's tick, senses, \
+                        brain and move); the reference loops' in steps per second. With --json, \
+                        stdout holds one JSON document (schema berry-evolve/bench/1) with the \
+                        same figures at full precision, and the text goes to stderr."
+)]
 pub struct BenchArgs {
     /// Simulator benchmark world(s): experiment files whose [world], [creature] and [brain]
-    /// are used, one creature per world driven by a random genome.
-    #[arg(long, default_values_os_t = vec![
-        PathBuf::from("experiments/bench/foraging-world.toml"),
-        PathBuf::from("experiments/bench/eye-predators-world.toml"),
-    ])]
+    /// are used, one creature per world driven by a random genome (default: the built-in
+    /// experiments/bench/foraging-world.toml and eye-predators-world.toml, as shipped with
+    /// this version, so `bench` works from any folder; name the files to measure edited ones).
+    #[arg(long)]
     pub world: Vec<PathBuf>,
     /// Worlds per simulator measurement. They run in lockstep chunks of 16 worlds, one
     /// rayon job per chunk, as evolution runs trials. Chunks differ in cost (their creatures
@@ -35,9 +42,9 @@ pub struct BenchArgs {
     /// quarter of a second on the standard world).
     #[arg(long, default_value_t = 2500)]
     pub ticks: u64,
-    /// Evolution benchmark experiment.
-    #[arg(long, default_value = "experiments/foraging.toml")]
-    pub evolution: PathBuf,
+    /// Evolution benchmark experiment (default: the built-in experiments/foraging.toml).
+    #[arg(long)]
+    pub evolution: Option<PathBuf>,
     /// Generations for the evolution benchmark (0 skips it).
     #[arg(long, default_value_t = 10)]
     pub generations: u64,
@@ -48,9 +55,139 @@ pub struct BenchArgs {
     /// Runs of every measurement; each figure printed is their median.
     #[arg(long, default_value_t = 1)]
     pub repeat: u32,
-    /// Base world of the scaling series.
-    #[arg(long, default_value = "experiments/bench/foraging-world.toml")]
-    pub scaling_world: PathBuf,
+    /// Base world of the scaling series (default: the built-in
+    /// experiments/bench/foraging-world.toml).
+    #[arg(long)]
+    pub scaling_world: Option<PathBuf>,
+    /// Print one JSON document on stdout (schema `berry-evolve/bench/1`: every figure at full
+    /// precision) and the text on stderr.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// An experiment to measure and how the output names it.
+struct Source {
+    /// The file as given, or the built-in file's path in the repository.
+    label: String,
+    /// Whether it is the copy built into the program.
+    built_in: bool,
+    experiment: Experiment,
+}
+
+impl Source {
+    /// The file at `path`, or the built-in `template` when no path is given.
+    fn file_or(path: Option<&Path>, template: &Template) -> anyhow::Result<Source> {
+        match path {
+            Some(path) => Source::file(path),
+            None => Source::built_in(template),
+        }
+    }
+
+    /// An experiment file named on the command line.
+    fn file(path: &Path) -> anyhow::Result<Source> {
+        Ok(Source {
+            label: path.display().to_string(),
+            built_in: false,
+            experiment: Experiment::load(path)?,
+        })
+    }
+
+    /// The copy of a shipped file built into the program, labelled with its repository path.
+    fn built_in(template: &Template) -> anyhow::Result<Source> {
+        Ok(Source {
+            label: template.file.to_string(),
+            built_in: true,
+            experiment: template.experiment()?,
+        })
+    }
+}
+
+/// What `bench --json` prints: every figure of the text output, at full precision. Rates are
+/// creature-ticks per second, the reference loops' steps per second.
+#[derive(Debug, Serialize)]
+struct BenchReport {
+    schema: &'static str,
+    version: &'static str,
+    cores: usize,
+    /// Runs of every measurement; each figure is their median.
+    repeat: u32,
+    /// Worlds and ticks per world of each simulator measurement.
+    worlds: u64,
+    ticks: u64,
+    simulator: Vec<SimulatorFigures>,
+    scaling: Vec<ScalingFigures>,
+    /// None when `--generations 0` skipped it.
+    evolution: Option<EvolutionFigures>,
+}
+
+/// One simulator world, 1 and 2 threads.
+#[derive(Debug, Serialize)]
+struct SimulatorFigures {
+    world: String,
+    built_in: bool,
+    one_thread: f64,
+    two_threads: f64,
+    /// Median of each round's own 2-thread / 1-thread ratio.
+    speed_up: f64,
+    one_thread_low: f64,
+    one_thread_high: f64,
+    machine: MachineCheck,
+}
+
+/// The reference loops timed around the 1-thread runs (see [`machine_speeds`]).
+#[derive(Debug, Serialize)]
+struct MachineCheck {
+    throughput_low: f64,
+    throughput_high: f64,
+    /// high / low.
+    throughput_spread: f64,
+    latency_low: f64,
+    latency_high: f64,
+    latency_spread: f64,
+    /// Rounds whose throughput loop ran within `quiet_within` of its fastest.
+    quiet_rounds: usize,
+    quiet_within: f64,
+    /// Median 1-thread rate of those rounds.
+    one_thread_quiet: f64,
+}
+
+/// One world of the scaling series, 1 thread.
+#[derive(Debug, Serialize)]
+struct ScalingFigures {
+    world: String,
+    built_in: bool,
+    k: u32,
+    arena: [f64; 2],
+    walls: usize,
+    objects: u64,
+    one_thread: f64,
+    /// Cost per creature-tick relative to the series' first world.
+    cost_relative: f64,
+}
+
+/// Whole generations of an experiment.
+#[derive(Debug, Serialize)]
+struct EvolutionFigures {
+    experiment: String,
+    built_in: bool,
+    generations: u64,
+    /// population × trials × ticks.
+    creature_ticks_per_generation: f64,
+    threads: Vec<EvolutionRate>,
+    /// Median of each round's own 2-thread / 1-thread ratio.
+    speed_up: f64,
+    /// Whether every run (both thread counts, every repeat) found the same best fitness in
+    /// every generation, bit for bit.
+    identical_bests: bool,
+}
+
+/// Whole generations on one thread count.
+#[derive(Debug, Serialize)]
+struct EvolutionRate {
+    threads: usize,
+    generations_per_second: f64,
+    creature_ticks_per_second: f64,
+    ga_share_percent: f64,
 }
 
 fn pool(threads: usize) -> anyhow::Result<rayon::ThreadPool> {
@@ -348,63 +485,75 @@ fn time_evolution(
     Ok(timing)
 }
 
+/// Prints a line of the text output: on stdout, or on stderr when stdout holds the JSON.
+fn say(json: bool, line: std::fmt::Arguments<'_>) {
+    if json {
+        errln!("{line}");
+    } else {
+        outln!("{line}");
+    }
+}
+
 /// Runs the subcommand.
 pub fn run(args: BenchArgs) -> anyhow::Result<()> {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let repeat = args.repeat.max(1);
-    outln!(
+    let json = args.json;
+    let mut report = BenchReport {
+        schema: "berry-evolve/bench/1",
+        version: env!("CARGO_PKG_VERSION"),
+        cores,
+        repeat,
+        worlds: args.worlds,
+        ticks: args.ticks,
+        simulator: Vec::new(),
+        scaling: Vec::new(),
+        evolution: None,
+    };
+    say(json, format_args!(
         "berry-evolve {} bench; {cores} cores available; every figure is the median of {repeat} run(s), 1 and 2 threads measured in alternating rounds",
-        env!("CARGO_PKG_VERSION")
-    );
-    for path in &args.world {
-        let experiment = Experiment::load(path)?;
-        let spec = &experiment.world;
-        // Warm up caches and the allocator once.
-        sim_rate(&experiment, spec, 2, args.ticks.min(500), 1)?;
-        // Rounds of 1 thread then 2 threads back to back: a shared VM's speed drifts from
-        // second to second, so the speed-up is the median of each round's own ratio, not the
-        // ratio of medians measured minutes apart.
-        // The reference loop runs just before and after each 1-thread run, on the same thread.
-        let mut rounds = Vec::with_capacity(repeat as usize);
-        let mut machine = Vec::with_capacity(repeat as usize);
-        for _ in 0..repeat {
-            let before = machine_speeds();
-            let one = sim_rate(&experiment, spec, args.worlds, args.ticks, 1)?;
-            let after = machine_speeds();
-            machine.push([0.5 * (before[0] + after[0]), 0.5 * (before[1] + after[1])]);
-            let two = sim_rate(&experiment, spec, args.worlds, args.ticks, 2)?;
-            rounds.push((one, two));
-        }
-        let ones: Vec<f64> = rounds.iter().map(|r| r.0).collect();
-        let (low, high) = spread(&ones);
-        outln!(
+        report.version
+    ));
+    let worlds: Vec<Source> = if args.world.is_empty() {
+        BENCH_WORLDS
+            .iter()
+            .map(Source::built_in)
+            .collect::<anyhow::Result<_>>()?
+    } else {
+        args.world
+            .iter()
+            .map(|p| Source::file(p))
+            .collect::<anyhow::Result<_>>()?
+    };
+    for source in &worlds {
+        let figures = simulator(source, &args, repeat)?;
+        say(json, format_args!(
             "simulator {}: {:.0} creature-ticks/s on 1 thread, {:.0} on 2 threads ({:.2}x); 1-thread runs {:.0}-{:.0}",
-            path.display(),
-            median(ones.clone()),
-            median(rounds.iter().map(|r| r.1).collect()),
-            median(rounds.iter().map(|r| r.1 / r.0).collect()),
-            low,
-            high
-        );
-        let throughput: Vec<f64> = machine.iter().map(|m| m[0]).collect();
-        let (slowest, fastest) = spread(&throughput);
-        let (latency_low, latency_high) = spread(&machine.iter().map(|m| m[1]).collect::<Vec<_>>());
-        let quiet = quiet_rounds(&throughput, &ones);
-        outln!(
+            figures.world,
+            figures.one_thread,
+            figures.two_threads,
+            figures.speed_up,
+            figures.one_thread_low,
+            figures.one_thread_high
+        ));
+        let m = &figures.machine;
+        say(json, format_args!(
             "  machine check around the 1-thread runs: a high-throughput arithmetic loop ran at {:.1}-{:.1}M steps/s ({:.2}x spread), a latency-bound one at {:.0}-{:.0}M ({:.2}x); 1 thread in the {} round(s) where the first ran within {:.0}% of its fastest: {:.0} creature-ticks/s",
-            slowest / 1e6,
-            fastest / 1e6,
-            fastest / slowest,
-            latency_low / 1e6,
-            latency_high / 1e6,
-            latency_high / latency_low,
-            quiet.len(),
-            100.0 * QUIET,
-            median(quiet)
-        );
+            m.throughput_low / 1e6,
+            m.throughput_high / 1e6,
+            m.throughput_spread,
+            m.latency_low / 1e6,
+            m.latency_high / 1e6,
+            m.latency_spread,
+            m.quiet_rounds,
+            100.0 * m.quiet_within,
+            m.one_thread_quiet
+        ));
+        report.simulator.push(figures);
     }
     if !args.scaling.iter().all(|&k| k == 0) {
-        let experiment = Experiment::load(&args.scaling_world)?;
+        let source = Source::file_or(args.scaling_world.as_deref(), &BENCH_WORLDS[0])?;
+        let experiment = &source.experiment;
         let mut first = None;
         for &k in args.scaling.iter().filter(|&&k| k > 0) {
             let spec = tiled_world(&experiment.world, k)?;
@@ -412,70 +561,158 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
             // gives the same rate as more.
             let worlds = args.worlds.min(berry_evolve::evo::lockstep::CHUNK_TRIALS);
             let rate = median_of(repeat, || {
-                sim_rate(&experiment, &spec, worlds, args.ticks, 1)
+                sim_rate(experiment, &spec, worlds, args.ticks, 1)
             })?;
             let base = *first.get_or_insert(rate);
-            outln!(
+            let figures = ScalingFigures {
+                world: source.label.clone(),
+                built_in: source.built_in,
+                k,
+                arena: spec.arena,
+                walls: wall_count(&spec),
+                objects: object_count(&spec),
+                one_thread: rate,
+                cost_relative: base / rate,
+            };
+            say(json, format_args!(
                 "scaling {} x{k}: {:.0} x {:.0} arena, {} walls, {} objects: {:.0} creature-ticks/s on 1 thread, cost per creature-tick {:.2}x the first",
-                args.scaling_world.display(),
-                spec.arena[0],
-                spec.arena[1],
-                wall_count(&spec),
-                object_count(&spec),
-                rate,
-                base / rate
-            );
+                figures.world,
+                figures.arena[0],
+                figures.arena[1],
+                figures.walls,
+                figures.objects,
+                figures.one_thread,
+                figures.cost_relative
+            ));
+            report.scaling.push(figures);
         }
     }
     if args.generations > 0 {
-        let experiment = Experiment::load(&args.evolution)?;
-        let per_generation = experiment.evolution.population as f64
-            * experiment.evaluation.trials as f64
-            * experiment.evaluation.ticks as f64;
-        let gens = args.generations as f64;
-        // Rounds of 1 thread then 2 threads, as for the simulator.
-        let mut timings: [Vec<EvolutionTiming>; 2] = [Vec::new(), Vec::new()];
-        for _ in 0..repeat {
-            for (threads, runs) in [1usize, 2].into_iter().zip(timings.iter_mut()) {
-                runs.push(time_evolution(&experiment, args.generations, threads)?);
-            }
+        let foraging = berry_evolve::experiment::templates::find("foraging")
+            .expect("experiments/foraging.toml is built in");
+        let source = Source::file_or(args.evolution.as_deref(), foraging)?;
+        let figures = evolution(&source, args.generations, repeat)?;
+        for rate in &figures.threads {
+            say(json, format_args!(
+                "evolution {} on {} thread(s): {:.3} generations/s, {:.0} creature-ticks/s (agent-steps/s), GA share {:.2}%",
+                figures.experiment,
+                rate.threads,
+                rate.generations_per_second,
+                rate.creature_ticks_per_second,
+                rate.ga_share_percent
+            ));
         }
-        let rate = |t: &EvolutionTiming| gens / (t.eval_seconds + t.ga_seconds);
-        for (threads, runs) in [1usize, 2].into_iter().zip(&timings) {
-            let ga_share = median(
-                runs.iter()
-                    .map(|t| 100.0 * t.ga_seconds / (t.eval_seconds + t.ga_seconds))
-                    .collect(),
-            );
-            let rate = median(runs.iter().map(rate).collect());
-            outln!(
-                "evolution {} on {threads} thread(s): {:.3} generations/s, {:.0} creature-ticks/s (agent-steps/s), GA share {:.2}%",
-                args.evolution.display(),
-                rate,
-                per_generation * rate,
-                ga_share
-            );
-        }
-        let speed_up = median(
-            timings[0]
-                .iter()
-                .zip(&timings[1])
-                .map(|(one, two)| rate(two) / rate(one))
-                .collect(),
-        );
-        let mut bests = timings.iter().flatten().map(|t| &t.bests);
-        let first = bests.next();
-        outln!(
+        say(json, format_args!(
             "evolution speed-up 2 vs 1 thread: {:.2}x; best fitness per generation identical in every run: {}",
-            speed_up,
-            if bests.all(|b| Some(b) == first) {
-                "yes"
-            } else {
-                "NO"
-            }
-        );
+            figures.speed_up,
+            if figures.identical_bests { "yes" } else { "NO" }
+        ));
+        report.evolution = Some(figures);
+    }
+    if json {
+        outln!("{}", serde_json::to_string_pretty(&report)?);
     }
     Ok(())
+}
+
+/// The simulator figures of one world: `repeat` rounds of 1 thread then 2 threads.
+fn simulator(source: &Source, args: &BenchArgs, repeat: u32) -> anyhow::Result<SimulatorFigures> {
+    let experiment = &source.experiment;
+    let spec = &experiment.world;
+    // Warm up caches and the allocator once.
+    sim_rate(experiment, spec, 2, args.ticks.min(500), 1)?;
+    // Rounds of 1 thread then 2 threads back to back: a shared VM's speed drifts from
+    // second to second, so the speed-up is the median of each round's own ratio, not the
+    // ratio of medians measured minutes apart.
+    // The reference loop runs just before and after each 1-thread run, on the same thread.
+    let mut rounds = Vec::with_capacity(repeat as usize);
+    let mut machine = Vec::with_capacity(repeat as usize);
+    for _ in 0..repeat {
+        let before = machine_speeds();
+        let one = sim_rate(experiment, spec, args.worlds, args.ticks, 1)?;
+        let after = machine_speeds();
+        machine.push([0.5 * (before[0] + after[0]), 0.5 * (before[1] + after[1])]);
+        let two = sim_rate(experiment, spec, args.worlds, args.ticks, 2)?;
+        rounds.push((one, two));
+    }
+    let ones: Vec<f64> = rounds.iter().map(|r| r.0).collect();
+    let (one_thread_low, one_thread_high) = spread(&ones);
+    let throughput: Vec<f64> = machine.iter().map(|m| m[0]).collect();
+    let (throughput_low, throughput_high) = spread(&throughput);
+    let (latency_low, latency_high) = spread(&machine.iter().map(|m| m[1]).collect::<Vec<_>>());
+    let quiet = quiet_rounds(&throughput, &ones);
+    Ok(SimulatorFigures {
+        world: source.label.clone(),
+        built_in: source.built_in,
+        one_thread: median(ones),
+        two_threads: median(rounds.iter().map(|r| r.1).collect()),
+        speed_up: median(rounds.iter().map(|r| r.1 / r.0).collect()),
+        one_thread_low,
+        one_thread_high,
+        machine: MachineCheck {
+            throughput_low,
+            throughput_high,
+            throughput_spread: throughput_high / throughput_low,
+            latency_low,
+            latency_high,
+            latency_spread: latency_high / latency_low,
+            quiet_rounds: quiet.len(),
+            quiet_within: QUIET,
+            one_thread_quiet: median(quiet),
+        },
+    })
+}
+
+/// The evolution figures: `repeat` rounds of `generations` generations on 1 then 2 threads.
+fn evolution(source: &Source, generations: u64, repeat: u32) -> anyhow::Result<EvolutionFigures> {
+    let experiment = &source.experiment;
+    let per_generation = experiment.evolution.population as f64
+        * experiment.evaluation.trials as f64
+        * experiment.evaluation.ticks as f64;
+    let gens = generations as f64;
+    // Rounds of 1 thread then 2 threads, as for the simulator.
+    let mut timings: [Vec<EvolutionTiming>; 2] = [Vec::new(), Vec::new()];
+    for _ in 0..repeat {
+        for (threads, runs) in [1usize, 2].into_iter().zip(timings.iter_mut()) {
+            runs.push(time_evolution(experiment, generations, threads)?);
+        }
+    }
+    let rate = |t: &EvolutionTiming| gens / (t.eval_seconds + t.ga_seconds);
+    let threads = [1usize, 2]
+        .into_iter()
+        .zip(&timings)
+        .map(|(threads, runs)| {
+            let generations_per_second = median(runs.iter().map(rate).collect());
+            EvolutionRate {
+                threads,
+                generations_per_second,
+                creature_ticks_per_second: per_generation * generations_per_second,
+                ga_share_percent: median(
+                    runs.iter()
+                        .map(|t| 100.0 * t.ga_seconds / (t.eval_seconds + t.ga_seconds))
+                        .collect(),
+                ),
+            }
+        })
+        .collect();
+    let speed_up = median(
+        timings[0]
+            .iter()
+            .zip(&timings[1])
+            .map(|(one, two)| rate(two) / rate(one))
+            .collect(),
+    );
+    let mut bests = timings.iter().flatten().map(|t| &t.bests);
+    let first = bests.next();
+    Ok(EvolutionFigures {
+        experiment: source.label.clone(),
+        built_in: source.built_in,
+        generations,
+        creature_ticks_per_generation: per_generation,
+        threads,
+        speed_up,
+        identical_bests: bests.all(|b| Some(b) == first),
+    })
 }
 
 #[cfg(test)]

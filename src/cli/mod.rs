@@ -8,6 +8,7 @@ pub mod console;
 pub mod export;
 pub mod inspect;
 pub mod json;
+pub mod new;
 pub mod plot;
 pub mod progress;
 pub mod render;
@@ -16,6 +17,7 @@ pub mod resume;
 pub mod run;
 pub mod run_report;
 pub mod simulate;
+pub mod suggest;
 pub mod summary;
 
 use clap::{Parser, Subcommand};
@@ -44,6 +46,8 @@ pub enum Command {
     Replay(replay::ReplayArgs),
     /// Run scripted creatures in an experiment's world and write a per-tick trace.
     Simulate(simulate::SimulateArgs),
+    /// Start a new experiment file from a built-in one (`new NAME --from foraging`; `new --list`).
+    New(new::NewArgs),
     /// Show what an experiment file means: the observation layout, brain size and workload.
     Inspect(inspect::InspectArgs),
     /// Evaluate genome files and random genomes on the same (held-out) trial worlds.
@@ -73,6 +77,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         (Some(Command::Replay(args)), _) => replay::run(args),
         (Some(Command::Simulate(args)), _) => simulate::run(args),
         (Some(Command::Inspect(args)), _) => inspect::run(args),
+        (Some(Command::New(args)), _) => new::run(args),
         (Some(Command::Bench(args)), _) => bench::run(args),
         (Some(Command::Compare(args)), _) => compare::run(args),
         (Some(Command::Plot(args)), _) => plot::run(args),
@@ -105,8 +110,7 @@ pub fn mistyped_subcommand(first: &str) -> Option<String> {
     if names.contains(&first) {
         return None;
     }
-    let (distance, best) = names.iter().map(|n| (edit_distance(first, n), *n)).min()?;
-    (distance <= 2.max(best.len() / 3)).then(|| {
+    suggest::closest(first, names).map(|best| {
         format!(
             "`{first}` is not a subcommand; did you mean `{best}`? (`berry-evolve FILE.toml` \
              runs an experiment file; `berry-evolve --help` lists the subcommands)"
@@ -114,35 +118,9 @@ pub fn mistyped_subcommand(first: &str) -> Option<String> {
     })
 }
 
-/// Levenshtein distance between two short words (insertions, deletions, substitutions).
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut diagonal = row[0];
-        row[0] = i + 1;
-        for (j, &cb) in b.iter().enumerate() {
-            let above = row[j + 1];
-            row[j + 1] = (above + 1)
-                .min(row[j] + 1)
-                .min(diagonal + usize::from(ca != cb));
-            diagonal = above;
-        }
-    }
-    row[b.len()]
-}
-
 #[cfg(test)]
 mod tests {
-    use super::{edit_distance, mistyped_subcommand};
-
-    #[test]
-    fn edit_distance_of_hand_checked_pairs() {
-        assert_eq!(edit_distance("inpsect", "inspect"), 2);
-        assert_eq!(edit_distance("resme", "resume"), 1);
-        assert_eq!(edit_distance("", "plot"), 4);
-        assert_eq!(edit_distance("bench", "bench"), 0);
-    }
+    use super::mistyped_subcommand;
 
     #[test]
     fn a_mistyped_subcommand_gets_a_suggestion_and_a_file_does_not() {

@@ -41,7 +41,8 @@ pub fn run(args: ResumeArgs) -> anyhow::Result<()> {
         .ok()
         .map(|(dir, _)| Interrupting {
             start_over: format!(
-                "berry-evolve run {}/experiment.toml --out {} --force",
+                "{} run {}/experiment.toml --out {} --force",
+                berry_evolve::invocation::program(),
                 dir.display(),
                 dir.display()
             ),

@@ -6,7 +6,8 @@ use super::progress::reporter;
 use super::run_report;
 use anyhow::Context;
 use berry_evolve::experiment::Experiment;
-use berry_evolve::run::{start, RunOptions};
+use berry_evolve::record::fitness_csv::FitnessRow;
+use berry_evolve::run::{start, Progress, RunOptions};
 use clap::Args;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -102,8 +103,9 @@ fn stopping_now(at: Option<&Interrupting>) -> String {
     .and_then(|mut v| v.pop());
     match newest {
         Some((_, path)) => format!(
-            "stopping now; the last checkpoint, {}, is intact. Continue with: berry-evolve resume {}",
+            "stopping now; the last checkpoint, {}, is intact. Continue with: {} resume {}",
             path.display(),
+            berry_evolve::invocation::program(),
             at.dir.display()
         ),
         None => format!(
@@ -152,12 +154,14 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     let stop = stop_flag(Some(Interrupting {
         dir: dir.clone(),
         start_over: format!(
-            "berry-evolve run {} --out {} --force",
+            "{} run {} --out {} --force",
+            berry_evolve::invocation::program(),
             args.experiment.display(),
             dir.display()
         ),
     }))?;
-    let mut progress = reporter(args.quiet);
+    let line = announce(&experiment.name, &format!("seed {}", experiment.seed), &dir);
+    let mut progress = announcing(args.quiet, Some(line));
     let result = start(
         experiment,
         &dir,
@@ -169,6 +173,69 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         progress.as_mut(),
     );
     run_report::finish(result, args.json, args.quiet)
+}
+
+/// The progress reporter for this terminal and flags, which first prints `line` (unless
+/// quiet) when the run reports for the first time: a run refused before it starts prints only
+/// its error.
+fn announcing(quiet: bool, line: Option<String>) -> Box<dyn Progress> {
+    let inner = reporter(quiet);
+    match line {
+        Some(line) if !quiet => Box::new(Announcing {
+            line: Some(line),
+            inner,
+        }),
+        _ => inner,
+    }
+}
+
+/// See [`announcing`].
+struct Announcing {
+    line: Option<String>,
+    inner: Box<dyn Progress>,
+}
+
+impl Announcing {
+    fn say(&mut self) {
+        if let Some(line) = self.line.take() {
+            errln!("{line}");
+        }
+    }
+}
+
+impl Progress for Announcing {
+    fn begin(&mut self, first: u64, total: u64) {
+        self.say();
+        self.inner.begin(first, total);
+    }
+    fn generation(&mut self, row: &FitnessRow) {
+        self.inner.generation(row);
+    }
+    fn checkpoint(&mut self, path: &std::path::Path) {
+        self.inner.checkpoint(path);
+    }
+    fn end(&mut self) {
+        self.inner.end();
+    }
+    fn note(&mut self, message: &str) {
+        self.say();
+        self.inner.note(message);
+    }
+}
+
+/// The first line of a run: what runs and where its results go, with the folder a relative
+/// `--out` (or the default results/...) is relative to, since it is the current one.
+fn announce(name: &str, what: &str, dir: &std::path::Path) -> String {
+    let relative_to = match std::env::current_dir() {
+        Ok(cwd) if dir.is_relative() => {
+            format!(" (in {}; --out chooses another folder)", cwd.display())
+        }
+        _ => String::new(),
+    };
+    format!(
+        "running `{name}` {what}: results go to {}{relative_to}",
+        dir.display()
+    )
 }
 
 /// The seeds of `--seeds`: `a..b` (a to b inclusive) or a comma-separated list, in the order
@@ -214,6 +281,22 @@ fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
         Some(out) => out.clone(),
         None => PathBuf::from("results").join(&experiment.name),
     };
+    let mut line = {
+        let consecutive = seeds.windows(2).all(|w| w[1] == w[0] + 1);
+        let what = match seeds {
+            [one] => format!("seed {one}"),
+            [first, .., last] if consecutive => format!("seeds {first} to {last}"),
+            _ => format!(
+                "seeds {}",
+                seeds
+                    .iter()
+                    .map(u64::to_string)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        };
+        Some(announce(&experiment.name, &what, &base.join("seed-<s>")))
+    };
     let stop = stop_flag(None)?;
     let mut report = run_report::SeedsReport::new(args.json);
     for &seed in seeds {
@@ -232,7 +315,7 @@ fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
             jobs: args.jobs.unwrap_or(0),
             stop: Some(&stop),
         };
-        let mut progress = reporter(args.quiet);
+        let mut progress = announcing(args.quiet, line.take());
         let continued = !args.force && dir.join(berry_evolve::run::EXPERIMENT_FILE).exists();
         let result = if continued {
             berry_evolve::run::resume(&dir, args.generations, false, options, progress.as_mut())

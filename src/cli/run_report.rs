@@ -89,7 +89,11 @@ impl RunOutcome {
             }),
             best_json: best.is_file().then(|| best.display().to_string()),
             checkpoint: summary.checkpoint.as_ref().map(|p| p.display().to_string()),
-            resume_command: format!("berry-evolve resume {}", summary.dir.display()),
+            resume_command: format!(
+                "{} resume {}",
+                berry_evolve::invocation::program(),
+                summary.dir.display()
+            ),
         }
     }
 

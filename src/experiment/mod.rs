@@ -13,6 +13,7 @@
 pub mod diff;
 pub mod evolution;
 pub mod tables;
+pub mod templates;
 
 pub use evolution::{
     Algorithm, CrossoverSpec, EvolutionSpec, MutationSpec, PgpeSpec, SelectionSpec, SelfAdaptation,

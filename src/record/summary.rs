@@ -33,7 +33,7 @@ pub enum SummaryError {
         error: std::io::Error,
     },
     /// No `seed-<s>/` folder with a fitness.csv.
-    #[error("{path} holds no seed-<s>/ run folder with a fitness.csv; make them with `berry-evolve run EXPERIMENT.toml --seeds 1..5 --out {path}`")]
+    #[error("{path} holds no seed-<s>/ run folder with a fitness.csv; make them with `{program} run EXPERIMENT.toml --seeds 1..5 --out {path}`", program = crate::invocation::program())]
     NoSeeds {
         /// The folder.
         path: PathBuf,

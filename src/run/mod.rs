@@ -71,7 +71,7 @@ pub struct CheckpointPayload {
 #[derive(Debug, Error)]
 pub enum RunError {
     /// The run folder already holds a run.
-    #[error("{dir} already holds a run; continue it with `berry-evolve resume {dir}` or start over with --force")]
+    #[error("{dir} already holds a run; continue it with `{program} resume {dir}` or start over with --force", program = crate::invocation::program())]
     FolderInUse {
         /// The folder.
         dir: PathBuf,
@@ -95,7 +95,7 @@ pub enum RunError {
         error: std::io::Error,
     },
     /// The run folder holds a run's files but no checkpoint: nothing to resume.
-    #[error("{dir} holds the files of a run that stopped before its first checkpoint, so there is nothing to resume; start it over with: berry-evolve run {experiment} --out {dir} --force")]
+    #[error("{dir} holds the files of a run that stopped before its first checkpoint, so there is nothing to resume; start it over with: {program} run {experiment} --out {dir} --force", program = crate::invocation::program())]
     NothingToResume {
         /// The folder.
         dir: PathBuf,
@@ -223,7 +223,7 @@ pub enum RunError {
         source: Box<RunError>,
     },
     /// Stopped by the user (Ctrl-C / SIGTERM) after writing a checkpoint.
-    #[error("interrupted after generation {generation}; the checkpoint {checkpoint} holds it. Continue with: berry-evolve resume {dir}")]
+    #[error("interrupted after generation {generation}; the checkpoint {checkpoint} holds it. Continue with: {program} resume {dir}", program = crate::invocation::program())]
     Interrupted {
         /// Last completed generation.
         generation: u64,
@@ -529,9 +529,10 @@ pub fn resume_target(target: &Path) -> Result<(PathBuf, Option<PathBuf>), RunErr
     match in_checkpoints(&real) {
         Some(dir) => Ok((dir, Some(real))),
         None => Err(refuse(format!(
-            "{} is not inside a run folder's {CHECKPOINT_DIR}/ folder, so there is no run to continue; put it in one and resume that folder: mkdir -p RUN/{CHECKPOINT_DIR} && cp {} RUN/{CHECKPOINT_DIR}/ && berry-evolve resume RUN",
+            "{} is not inside a run folder's {CHECKPOINT_DIR}/ folder, so there is no run to continue; put it in one and resume that folder: mkdir -p RUN/{CHECKPOINT_DIR} && cp {} RUN/{CHECKPOINT_DIR}/ && {} resume RUN",
             real.display(),
-            target.display()
+            target.display(),
+            crate::invocation::program()
         ))),
     }
 }
@@ -597,7 +598,8 @@ pub fn resume_with(
                 checkpoint: loaded_path,
                 newer: names.join(", "),
                 command: format!(
-                    "berry-evolve resume {} --discard-newer{}",
+                    "{} resume {} --discard-newer{}",
+                    crate::invocation::program(),
                     target.display(),
                     generations.map_or(String::new(), |g| format!(" --generations {g}"))
                 ),
@@ -672,7 +674,8 @@ pub fn resume_with(
                 .find(|(og, _)| *og < g)
                 .map_or(String::new(), |(_, p)| {
                     format!(
-                        ", or continue from an older checkpoint: berry-evolve resume {} --discard-newer --generations {g}{}",
+                        ", or continue from an older checkpoint: {} resume {} --discard-newer --generations {g}{}",
+                        crate::invocation::program(),
                         p.display(),
                         if g < experiment.evolution.generations { " --shorten" } else { "" }
                     )
@@ -691,7 +694,8 @@ pub fn resume_with(
                     requested: g,
                     planned,
                     command: format!(
-                        "berry-evolve resume {} --generations {g} --shorten{}",
+                        "{} resume {} --generations {g} --shorten{}",
+                        crate::invocation::program(),
                         target.display(),
                         if request.discard_newer {
                             " --discard-newer"
@@ -1097,8 +1101,9 @@ fn output_failed(dir: &Path, source: RunError) -> RunError {
     let advice = match newest {
         Some(path) => format!(
             "The last good checkpoint, {}, is kept. Fix the cause below (disk space, permissions, \
-             the folder) and continue with: berry-evolve resume {}",
+             the folder) and continue with: {} resume {}",
             path.display(),
+            crate::invocation::program(),
             dir.display()
         ),
         None => "No checkpoint was written yet. Fix the cause below (disk space, permissions, \

@@ -1,10 +1,11 @@
 //! End-to-end through the `berry-evolve` binary (`env!("CARGO_BIN_EXE_berry-evolve")`):
 //! reproducibility, errors and reliability of every command, pictures, replay, replicates, and
-//! the start-up CPU check.
+//! the start-up CPU check, and working outside the repository (`new`, `bench`'s built-in worlds).
 
 #[path = "../cli_common/mod.rs"]
 mod cli_common;
 
+mod anywhere;
 mod atomic_outputs;
 mod completions_and_man;
 mod console_output;
