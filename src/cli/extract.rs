@@ -27,7 +27,20 @@ pub struct ExtractArgs {
 
 /// Runs the subcommand.
 pub fn run(args: ExtractArgs) -> anyhow::Result<()> {
-    let (dir, path, payload, _) = load_checkpoint(&args.checkpoint)?;
+    let (dir, path, payload, _) = load_checkpoint(&args.checkpoint).with_context(|| {
+        let genome = !args.checkpoint.is_dir()
+            && GenomeFile::load(&args.checkpoint).is_ok();
+        format!(
+            "cannot extract from {}: {}; give a checkpoint (RUN/checkpoints/gen-NNNNNN.json) or \
+             a run folder",
+            args.checkpoint.display(),
+            if genome {
+                "it is a genome file, which holds one genome already (replay or compare it as it is)"
+            } else {
+                "it is not a readable checkpoint"
+            }
+        )
+    })?;
     super::export::refuse_over_run_files(&args.output, &dir, &path)?;
     let generation = payload.last.generation;
     let count = payload.last.individuals.len();
