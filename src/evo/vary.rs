@@ -1,5 +1,6 @@
 //! Variation: crossover and mutation, and [`next_generation`], which makes generation g + 1
-//! from evaluated generation g (elitism, selection, crossover, mutation).
+//! from evaluated generation g (elitism, selection, crossover, mutation), and
+//! [`next_generation_with_lineage`], which also says who each offspring's parents were.
 //!
 //! # Draw order (part of the reproducibility contract)
 //!

@@ -1,7 +1,8 @@
 //! A run: one experiment evolving in a run folder. Owns the folder's files (effective
-//! `experiment.toml`, `fitness.csv` written row by row, `best.json`, `checkpoints/`) and the
-//! generation loop that connects evolution to them, including resuming from a checkpoint so
-//! that a stopped run finishes with the same bytes as one never stopped.
+//! `experiment.toml`, `fitness.csv` written row by row, `best.json`, `champions.jsonl`,
+//! `checkpoints/`) and the generation loop that connects evolution to them, including
+//! resuming from a checkpoint so that a stopped run finishes with the same bytes as one never
+//! stopped.
 
 pub mod lock;
 
