@@ -1,11 +1,9 @@
 //! The run folder's `champions.jsonl` (see [`crate::record::champions`]): which genome of a
-//! generation is its champion, and how the log is reopened when a run resumes.
+//! generation is its champion.
 
-use super::{Loop, Progress, RunError};
+use super::{Loop, RunError};
 use crate::evo::state::{EvaluatedGeneration, GenerationSummary};
-use crate::record::champions::ChampionsLog;
 use crate::record::genome_file::{GenomeFile, Origin};
-use std::path::Path;
 
 impl Loop {
     /// Appends generation `evaluated`'s best individual (the highest fitness, ties to the
@@ -34,26 +32,4 @@ impl Loop {
         );
         Ok(self.champions.append(&file)?)
     }
-}
-
-/// Reopens `champions.jsonl` for a run resuming after generation `last_generation` from
-/// `checkpoint`, telling the user what was dropped or why the file starts later.
-pub(super) fn reopen_champions(
-    path: &Path,
-    last_generation: u64,
-    checkpoint: &Path,
-    progress: &mut dyn Progress,
-) -> Result<ChampionsLog, RunError> {
-    let reopened = ChampionsLog::reopen_for_resume(path, last_generation)?;
-    if reopened.created {
-        progress.note(&format!(
-            "{} was missing (deleted, or the run was started by a version that did not write \
-             it): it starts with generation {}; the champions of generations 0..={last_generation} \
-             are not in it (extract any individual of {} with berry-evolve extract)",
-            path.display(),
-            last_generation + 1,
-            checkpoint.display()
-        ));
-    }
-    Ok(reopened.log)
 }

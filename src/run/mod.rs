@@ -774,7 +774,7 @@ pub fn resume_with(
     } else {
         FitnessCsv::reopen_for_resume_with(&csv_path, last_generation, &columns)?.csv
     };
-    let champions = champions::reopen_champions(
+    let champions = reopen_champions(
         &dir.join(CHAMPIONS_FILE),
         last_generation,
         &loaded_path,
@@ -811,6 +811,28 @@ pub fn resume_with(
         next_generation_of(&state.experiment, &payload.last, payload.search.as_ref());
     state.search = population.search.take();
     drive(state, population, options, progress)
+}
+
+/// Reopens `champions.jsonl` for a run resuming after generation `last_generation` from
+/// `checkpoint`, telling the user what was dropped or why the file starts later.
+fn reopen_champions(
+    path: &Path,
+    last_generation: u64,
+    checkpoint: &Path,
+    progress: &mut dyn Progress,
+) -> Result<ChampionsLog, RunError> {
+    let reopened = ChampionsLog::reopen_for_resume(path, last_generation)?;
+    if reopened.created {
+        progress.note(&format!(
+            "{} was missing (deleted, or the run was started by a version that did not write \
+             it): it starts with generation {}; the champions of generations 0..={last_generation} \
+             are not in it (extract any individual of {} with berry-evolve extract)",
+            path.display(),
+            last_generation + 1,
+            checkpoint.display()
+        ));
+    }
+    Ok(reopened.log)
 }
 
 /// Makes `fitness.csv` begin with exactly the rows the checkpoint carries (the true ones):

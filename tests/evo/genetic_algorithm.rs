@@ -531,6 +531,19 @@ fn next_generation_without_crossover_is_pinned() {
     let genes: Vec<f64> = next.iter().map(|g| g.parameters[0]).collect();
     assert_eq!(genes, [1.0, 3.0, 2.0, 1.0]);
     assert_eq!(unit(&mut r), U[9], "exactly nine draws were made");
+    // The lineage names the elite and the tournament winners worked out above.
+    let (same, lineage) =
+        next_generation_with_lineage(&spec, &parents, &[1.0, 4.0, 2.0, 4.0], &mut pinned());
+    assert_eq!(same, next);
+    assert_eq!(
+        lineage,
+        [
+            Lineage::of(Birth::Elite, &[1]),
+            Lineage::of(Birth::Mutated, &[3]),
+            Lineage::of(Birth::Mutated, &[2]),
+            Lineage::of(Birth::Mutated, &[1]),
+        ]
+    );
 }
 
 #[test]
@@ -553,9 +566,18 @@ fn next_generation_with_crossover_is_pinned() {
     let parents: Vec<Genome> = (0..4)
         .map(|i| genome(&[i as f64, 10.0 + i as f64]))
         .collect();
-    let next = next_generation(&spec, &parents, &[0.0, 3.0, 1.0, 2.0], &mut pinned());
+    let (next, lineage) =
+        next_generation_with_lineage(&spec, &parents, &[0.0, 3.0, 1.0, 2.0], &mut pinned());
     let genes: Vec<Vec<f64>> = next.into_iter().map(|g| g.parameters).collect();
     assert_eq!(genes, [vec![1.0, 11.0], vec![3.0, 11.0], vec![1.0, 11.0]]);
+    assert_eq!(
+        lineage,
+        [
+            Lineage::of(Birth::Elite, &[1]),
+            Lineage::of(Birth::Crossover, &[1, 3]),
+            Lineage::of(Birth::Crossover, &[1, 3]),
+        ]
+    );
 }
 
 #[test]
@@ -1166,55 +1188,6 @@ fn gaussian_helper_matches_the_seed_module() {
 }
 
 // ---------------------------------------------------------------- lineage
-
-#[test]
-fn lineage_of_the_pinned_cases_names_the_hand_worked_parents() {
-    // The two pinned cases above: no crossover (elite 1, then tournament winners 3, 2, 1),
-    // and uniform crossover (elite 1, then x = 1, y = 3 twice).
-    let spec = spec_with(
-        4,
-        1,
-        SelectionSpec::Tournament { size: 2 },
-        CrossoverSpec::None,
-        no_mutation(),
-    );
-    let parents: Vec<Genome> = (0..4).map(|i| genome(&[i as f64])).collect();
-    let (next, lineage) =
-        next_generation_with_lineage(&spec, &parents, &[1.0, 4.0, 2.0, 4.0], &mut pinned());
-    assert_eq!(
-        next,
-        next_generation(&spec, &parents, &[1.0, 4.0, 2.0, 4.0], &mut pinned())
-    );
-    assert_eq!(
-        lineage,
-        [
-            Lineage::of(Birth::Elite, &[1]),
-            Lineage::of(Birth::Mutated, &[3]),
-            Lineage::of(Birth::Mutated, &[2]),
-            Lineage::of(Birth::Mutated, &[1]),
-        ]
-    );
-    let spec = spec_with(
-        3,
-        1,
-        SelectionSpec::Truncation { fraction: 0.5 },
-        CrossoverSpec::Uniform { probability: 1.0 },
-        no_mutation(),
-    );
-    let parents: Vec<Genome> = (0..4)
-        .map(|i| genome(&[i as f64, 10.0 + i as f64]))
-        .collect();
-    let (_, lineage) =
-        next_generation_with_lineage(&spec, &parents, &[0.0, 3.0, 1.0, 2.0], &mut pinned());
-    assert_eq!(
-        lineage,
-        [
-            Lineage::of(Birth::Elite, &[1]),
-            Lineage::of(Birth::Crossover, &[1, 3]),
-            Lineage::of(Birth::Crossover, &[1, 3]),
-        ]
-    );
-}
 
 /// Seeded randomized invariant: with mutation off, the recorded parents explain every
 /// offspring (an elite or mutated child equals its parent, a crossover child takes each gene
