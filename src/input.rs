@@ -23,6 +23,10 @@ pub const MAX_GENOME_BYTES: u64 = 512 << 20;
 /// parameters (about 5 GiB of JSON).
 pub const MAX_CHECKPOINT_BYTES: u64 = 8 << 30;
 
+/// The largest `champions.jsonl` read by default (8 GiB: one genome per generation, about
+/// 20 bytes per parameter).
+pub const MAX_CHAMPIONS_BYTES: u64 = 8 << 30;
+
 /// The largest fitness CSV read by default (1 GiB; a row is about 300 bytes).
 pub const MAX_CSV_BYTES: u64 = 1 << 30;
 

@@ -17,8 +17,11 @@ pub struct ExportArgs {
     /// Output file (default: standard output).
     #[arg(short, long)]
     pub output: Option<PathBuf>,
-    /// Write the last generation's individuals (id, fitness, metabolic components) instead
-    /// of the fitness curve.
+    /// Write the last generation's individuals instead of the fitness curve: id, fitness,
+    /// metabolic components, and lineage: `birth` (random, elite, mutated, crossover,
+    /// pgpe_sample, pgpe_centre) and `parent_a`, `parent_b` (indices into the previous
+    /// generation; empty when there is none, and all three empty for checkpoints written
+    /// before lineage was recorded).
     #[arg(long)]
     pub population: bool,
 }
@@ -32,7 +35,10 @@ pub fn run(args: ExportArgs) -> anyhow::Result<()> {
     let mut bytes = Vec::new();
     if args.population {
         let mut w = csv::Writer::from_writer(&mut bytes);
-        w.write_record(["id", "fitness", "food_a", "food_b", "food_c", "food_d"])?;
+        w.write_record([
+            "id", "fitness", "food_a", "food_b", "food_c", "food_d", "birth", "parent_a",
+            "parent_b",
+        ])?;
         for (id, individual) in payload.last.individuals.iter().enumerate() {
             let e = &individual.evaluation;
             let fitness = e
@@ -40,6 +46,15 @@ pub fn run(args: ExportArgs) -> anyhow::Result<()> {
                 .map_or(String::from("non_finite"), |f| f.to_string());
             let mut record = vec![id.to_string(), fitness];
             record.extend(e.metabolism.iter().map(|m| m.to_string()));
+            let lineage = individual.lineage.as_ref();
+            record.push(lineage.map_or(String::new(), |l| l.birth.name().to_string()));
+            for k in 0..2 {
+                record.push(
+                    lineage
+                        .and_then(|l| l.parents.get(k))
+                        .map_or(String::new(), u64::to_string),
+                );
+            }
             w.write_record(&record)?;
         }
         w.flush()?;
@@ -66,9 +81,16 @@ pub fn run(args: ExportArgs) -> anyhow::Result<()> {
 }
 
 /// `-o` must not name the checkpoint read, nor any file of its run folder that resume reads
-/// (other checkpoints, fitness.csv, best.json, experiment.toml), nor look like a checkpoint.
-fn refuse_over_run_files(out: &Path, dir: &Path, checkpoint: &Path) -> anyhow::Result<()> {
-    use berry_evolve::run::{BEST_FILE, CHECKPOINT_DIR, EXPERIMENT_FILE, FITNESS_FILE};
+/// (other checkpoints, fitness.csv, best.json, champions.jsonl, experiment.toml), nor look
+/// like a checkpoint. `extract` uses it too.
+pub(crate) fn refuse_over_run_files(
+    out: &Path,
+    dir: &Path,
+    checkpoint: &Path,
+) -> anyhow::Result<()> {
+    use berry_evolve::run::{
+        BEST_FILE, CHAMPIONS_FILE, CHECKPOINT_DIR, EXPERIMENT_FILE, FITNESS_FILE,
+    };
     if out
         .file_name()
         .and_then(|n| n.to_str())
@@ -76,13 +98,13 @@ fn refuse_over_run_files(out: &Path, dir: &Path, checkpoint: &Path) -> anyhow::R
         .is_some()
     {
         anyhow::bail!(
-            "-o {}: a gen-NNNNNN.json name is a checkpoint's, and a CSV there would pass for a \
-             damaged checkpoint; choose another output file (e.g. fitness-export.csv)",
+            "-o {}: a gen-NNNNNN.json name is a checkpoint's, and another file there would pass \
+             for a damaged checkpoint; choose another output file name",
             out.display()
         );
     }
     let mut inputs: Vec<PathBuf> = vec![checkpoint.to_path_buf()];
-    for f in [FITNESS_FILE, BEST_FILE, EXPERIMENT_FILE] {
+    for f in [FITNESS_FILE, BEST_FILE, CHAMPIONS_FILE, EXPERIMENT_FILE] {
         inputs.push(dir.join(f));
     }
     for d in [

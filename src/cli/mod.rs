@@ -6,6 +6,7 @@ pub mod compare;
 pub mod completions;
 pub mod console;
 pub mod export;
+pub mod extract;
 pub mod inspect;
 pub mod json;
 pub mod new;
@@ -42,6 +43,8 @@ pub enum Command {
     Resume(resume::ResumeArgs),
     /// Write the fitness curve (or the last population) of a checkpoint or run folder as CSV.
     ExportCsv(export::ExportArgs),
+    /// Write individual K of a checkpoint's population as a genome file (for replay, compare).
+    Extract(extract::ExtractArgs),
     /// Evaluate one genome as evolution did and print its fitness and metabolic vector.
     Replay(replay::ReplayArgs),
     /// Run scripted creatures in an experiment's world and write a per-tick trace.
@@ -74,6 +77,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         (Some(Command::Run(args)), _) | (None, Some(args)) => run::run(args),
         (Some(Command::Resume(args)), _) => resume::run(args),
         (Some(Command::ExportCsv(args)), _) => export::run(args),
+        (Some(Command::Extract(args)), _) => extract::run(args),
         (Some(Command::Replay(args)), _) => replay::run(args),
         (Some(Command::Simulate(args)), _) => simulate::run(args),
         (Some(Command::Inspect(args)), _) => inspect::run(args),

@@ -8,6 +8,7 @@ pub mod evaluate;
 pub mod fitness;
 pub mod init;
 pub mod life;
+pub mod lineage;
 pub mod lockstep;
 pub mod pgpe;
 pub mod select;

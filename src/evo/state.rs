@@ -8,9 +8,10 @@ use crate::brain::spec::Topology;
 use crate::evo::evaluate::{evaluate_population, Evaluation};
 use crate::evo::init::initial_population;
 use crate::evo::life::EvaluationError;
+use crate::evo::lineage::{Birth, Lineage};
 use crate::evo::pgpe::{self, PgpeState};
 use crate::evo::stats::FitnessStats;
-use crate::evo::vary::next_generation;
+use crate::evo::vary::next_generation_with_lineage;
 use crate::experiment::Experiment;
 use crate::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
 use crate::sim::metabolism::Metabolism;
@@ -23,6 +24,10 @@ pub struct Individual {
     pub genome: Genome,
     /// Its evaluation in its generation's trial worlds.
     pub evaluation: Evaluation,
+    /// How it was born and from which individuals of the previous generation; absent in
+    /// checkpoints written before lineage was recorded (berry-evolve 0.3.5 and earlier).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lineage: Option<Lineage>,
 }
 
 /// The best individual seen so far, with where it came from.
@@ -127,24 +132,51 @@ pub enum SearchState {
     Pgpe(PgpeState),
 }
 
+/// A generation before its evaluation: its genomes in population order, where each came
+/// from, and the search state that sampled it (PGPE).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Unevaluated {
+    /// The genomes.
+    pub genomes: Vec<Genome>,
+    /// One lineage per genome, in the same order.
+    pub lineage: Vec<Lineage>,
+    /// The search distribution that sampled it (PGPE only).
+    pub search: Option<SearchState>,
+}
+
+/// The lineage of a PGPE generation of `population` samples and the centre: the samples
+/// have no parent index (see [`Birth::PgpeSample`]); the centre's parent is `centre_parent`.
+fn pgpe_lineage(population: usize, centre_parent: Option<usize>) -> Vec<Lineage> {
+    let mut lineage = vec![Lineage::orphan(Birth::PgpeSample); population];
+    lineage.push(match centre_parent {
+        Some(p) => Lineage::of(Birth::PgpeCentre, &[p]),
+        None => Lineage::orphan(Birth::PgpeCentre),
+    });
+    lineage
+}
+
 /// Generation 0 of the experiment's algorithm and the search state that sampled it: the
 /// GA's random population ([`first_population`]), or PGPE's samples around its initial
 /// centre followed by the centre.
-pub fn first_generation(
-    experiment: &Experiment,
-    topology: &Topology,
-) -> (Vec<Genome>, Option<SearchState>) {
+pub fn first_generation(experiment: &Experiment, topology: &Topology) -> Unevaluated {
     match experiment.evolution.pgpe_settings() {
-        None => (first_population(experiment, topology), None),
+        None => {
+            let genomes = first_population(experiment, topology);
+            Unevaluated {
+                lineage: vec![Lineage::orphan(Birth::Random); genomes.len()],
+                genomes,
+                search: None,
+            }
+        }
         Some(spec) => {
             let state = PgpeState::initial(&spec, topology.parameter_count());
-            let genomes = pgpe::sample(
-                experiment.seed(),
-                Generation(0),
-                &state,
-                experiment.evolution.population,
-            );
-            (genomes, Some(SearchState::Pgpe(state)))
+            let population = experiment.evolution.population;
+            let genomes = pgpe::sample(experiment.seed(), Generation(0), &state, population);
+            Unevaluated {
+                lineage: pgpe_lineage(population, None),
+                genomes,
+                search: Some(SearchState::Pgpe(state)),
+            }
         }
     }
 }
@@ -158,23 +190,34 @@ pub fn next_generation_of(
     experiment: &Experiment,
     parents: &EvaluatedGeneration,
     search: Option<&SearchState>,
-) -> (Vec<Genome>, Option<SearchState>) {
+) -> Unevaluated {
     let Some(spec) = experiment.evolution.pgpe_settings() else {
-        return (offspring(experiment, parents), None);
+        let (genomes, lineage) = offspring_with_lineage(experiment, parents);
+        return Unevaluated {
+            genomes,
+            lineage,
+            search: None,
+        };
     };
     let population = experiment.evolution.population;
     let fitness = parents.selection_fitness();
-    let next = match search {
-        Some(SearchState::Pgpe(state)) if fitness.len() == population + 1 => pgpe::step(
-            experiment.seed(),
-            &spec,
-            state,
-            Generation(parents.generation),
-            &fitness[..population],
+    let (next, centre_parent) = match search {
+        Some(SearchState::Pgpe(state)) if fitness.len() == population + 1 => (
+            pgpe::step(
+                experiment.seed(),
+                &spec,
+                state,
+                Generation(parents.generation),
+                &fitness[..population],
+            ),
+            population,
         ),
         _ => {
             let best = parents.summary().best_individual.unwrap_or(0);
-            PgpeState::centred_on(&spec, &parents.individuals[best].genome.parameters)
+            (
+                PgpeState::centred_on(&spec, &parents.individuals[best].genome.parameters),
+                best,
+            )
         }
     };
     let genomes = pgpe::sample(
@@ -183,7 +226,11 @@ pub fn next_generation_of(
         &next,
         population,
     );
-    (genomes, Some(SearchState::Pgpe(next)))
+    Unevaluated {
+        genomes,
+        lineage: pgpe_lineage(population, Some(centre_parent)),
+        search: Some(SearchState::Pgpe(next)),
+    }
 }
 
 /// Generation 0: drawn from the seed's initialisation stream.
@@ -200,6 +247,14 @@ pub fn first_population(experiment: &Experiment, topology: &Topology) -> Vec<Gen
 
 /// Generation g + 1 from evaluated generation g, drawn from the variation stream of g.
 pub fn offspring(experiment: &Experiment, parents: &EvaluatedGeneration) -> Vec<Genome> {
+    offspring_with_lineage(experiment, parents).0
+}
+
+/// [`offspring`] with each one's lineage.
+pub fn offspring_with_lineage(
+    experiment: &Experiment,
+    parents: &EvaluatedGeneration,
+) -> (Vec<Genome>, Vec<Lineage>) {
     let mut rng = stream(
         experiment.seed(),
         Purpose::Variation,
@@ -212,7 +267,7 @@ pub fn offspring(experiment: &Experiment, parents: &EvaluatedGeneration) -> Vec<
         .iter()
         .map(|i| i.genome.clone())
         .collect();
-    next_generation(
+    next_generation_with_lineage(
         &experiment.evolution,
         &genomes,
         &parents.selection_fitness(),
@@ -221,6 +276,7 @@ pub fn offspring(experiment: &Experiment, parents: &EvaluatedGeneration) -> Vec<
 }
 
 /// Evaluates `population` as generation `generation` (in parallel on the current rayon pool).
+/// The individuals carry no lineage; [`EvaluatedGeneration::with_lineage`] adds it.
 pub fn evaluate(
     experiment: &Experiment,
     topology: &Topology,
@@ -234,9 +290,24 @@ pub fn evaluate(
         individuals: population
             .into_iter()
             .zip(evaluations)
-            .map(|(genome, evaluation)| Individual { genome, evaluation })
+            .map(|(genome, evaluation)| Individual {
+                genome,
+                evaluation,
+                lineage: None,
+            })
             .collect(),
     })
+}
+
+impl EvaluatedGeneration {
+    /// The generation with `lineage[i]` recorded for individual i (in population order; an
+    /// individual beyond the list keeps none).
+    pub fn with_lineage(mut self, lineage: Vec<Lineage>) -> EvaluatedGeneration {
+        for (individual, born) in self.individuals.iter_mut().zip(lineage) {
+            individual.lineage = Some(born);
+        }
+        self
+    }
 }
 
 /// The new champion under the experiment's algorithm: for the GA any individual

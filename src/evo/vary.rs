@@ -1,5 +1,6 @@
 //! Variation: crossover and mutation, and [`next_generation`], which makes generation g + 1
-//! from evaluated generation g (elitism, selection, crossover, mutation).
+//! from evaluated generation g (elitism, selection, crossover, mutation), and
+//! [`next_generation_with_lineage`], which also says who each offspring's parents were.
 //!
 //! # Draw order (part of the reproducibility contract)
 //!
@@ -28,6 +29,7 @@
 //! (rarely, on rejection) more.
 
 use crate::brain::genome::Genome;
+use crate::evo::lineage::{Birth, Lineage};
 use crate::evo::select::Selector;
 use crate::experiment::evolution::{CrossoverSpec, EvolutionSpec, MutationSpec, MAX_MAGNITUDE};
 use crate::seed::{below, chance, gaussian, unit, Rng};
@@ -49,6 +51,20 @@ pub fn next_generation(
     fitness: &[f64],
     rng: &mut Rng,
 ) -> Vec<Genome> {
+    next_generation_with_lineage(spec, parents, fitness, rng).0
+}
+
+/// [`next_generation`], also saying where each offspring came from (the same genomes and
+/// draws: recording the parents' indices draws nothing).
+///
+/// # Panics
+/// As [`next_generation`].
+pub fn next_generation_with_lineage(
+    spec: &EvolutionSpec,
+    parents: &[Genome],
+    fitness: &[f64],
+    rng: &mut Rng,
+) -> (Vec<Genome>, Vec<Lineage>) {
     assert_eq!(
         parents.len(),
         fitness.len(),
@@ -63,22 +79,24 @@ pub fn next_generation(
         );
     }
     let mut next = Vec::with_capacity(spec.population);
+    let mut lineage = Vec::with_capacity(spec.population);
     if spec.population == 0 {
-        return next;
+        return (next, lineage);
     }
     let mut selector = Selector::new(&spec.selection, fitness);
     let elites = spec.elitism.min(parents.len()).min(spec.population);
-    next.extend(
-        selector.ranking()[..elites]
-            .iter()
-            .map(|&i| parents[i].clone()),
-    );
+    for &i in &selector.ranking()[..elites] {
+        next.push(parents[i].clone());
+        lineage.push(Lineage::of(Birth::Elite, &[i]));
+    }
     while next.len() < spec.population {
-        let x = &parents[selector.pick(rng)];
-        let mut child = match spec.crossover {
-            CrossoverSpec::None => x.clone(),
+        let xi = selector.pick(rng);
+        let x = &parents[xi];
+        let (mut child, born) = match spec.crossover {
+            CrossoverSpec::None => (x.clone(), Lineage::of(Birth::Mutated, &[xi])),
             crossover => {
-                let y = &parents[selector.pick(rng)];
+                let yi = selector.pick(rng);
+                let y = &parents[yi];
                 if chance(rng, crossover.probability()) {
                     let mut child = recombine(&crossover, x, y, rng);
                     if spec.mutation.self_adaptive.is_some() {
@@ -86,16 +104,17 @@ pub fn next_generation(
                         let sy = y.step_size.unwrap_or(spec.mutation.sigma);
                         child.step_size = Some(sx.sqrt() * sy.sqrt());
                     }
-                    child
+                    (child, Lineage::of(Birth::Crossover, &[xi, yi]))
                 } else {
-                    x.clone()
+                    (x.clone(), Lineage::of(Birth::Mutated, &[xi]))
                 }
             }
         };
         mutate(&mut child, &spec.mutation, rng);
         next.push(child);
+        lineage.push(born);
     }
-    next
+    (next, lineage)
 }
 
 /// Recombines `x` and `y` by `crossover` (always: the crossover probability is the caller's

@@ -44,6 +44,29 @@ pub struct Origin {
     pub metabolism: Option<Metabolism>,
 }
 
+impl Origin {
+    /// The origin of an individual evolved by `experiment`: its name, config hash and seed,
+    /// and where in the run the individual was evaluated and how it did.
+    pub fn evolved(
+        experiment: &Experiment,
+        generation: u64,
+        individual: Option<u64>,
+        fitness: Option<f64>,
+        metabolism: Option<Metabolism>,
+    ) -> Origin {
+        Origin {
+            description: None,
+            experiment: Some(experiment.name.clone()),
+            config_hash: Some(experiment.config_hash()),
+            seed: Some(experiment.seed),
+            generation: Some(generation),
+            individual,
+            fitness,
+            metabolism,
+        }
+    }
+}
+
 /// A genome file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -224,14 +247,45 @@ impl GenomeFile {
         bytes
     }
 
-    /// Writes the file atomically. Non-finite parameters are refused before writing.
-    pub fn save(&self, path: &Path) -> Result<(), GenomeFileError> {
-        if let Some(i) = self.parameters.iter().position(|p| !p.is_finite()) {
-            return Err(GenomeFileError::Mismatch {
+    /// The file as one line of compact JSON ending in a newline (a line of a JSON Lines
+    /// file such as `champions.jsonl`; the same fields and values as [`GenomeFile::to_json`]).
+    pub fn to_json_line(&self) -> Vec<u8> {
+        let mut bytes = serde_json::to_vec(self).expect("genome file serialises");
+        bytes.push(b'\n');
+        bytes
+    }
+
+    /// Refuses, naming `path`, a file whose numbers JSON cannot hold (serde_json would write
+    /// a NaN or an infinity as `null`, which no reader accepts back).
+    pub fn check_finite(&self, path: &Path) -> Result<(), GenomeFileError> {
+        let refuse = |what: String| {
+            Err(GenomeFileError::Mismatch {
                 path: path.to_path_buf(),
-                reason: format!("refusing to write: parameters[{i}] is not finite"),
-            });
+                reason: format!("refusing to write: {what} is not finite"),
+            })
+        };
+        if let Some(i) = self.parameters.iter().position(|p| !p.is_finite()) {
+            return refuse(format!("parameters[{i}]"));
         }
+        if self.step_size.is_some_and(|s| !s.is_finite()) {
+            return refuse("step_size".to_string());
+        }
+        if self.origin.fitness.is_some_and(|f| !f.is_finite()) {
+            return refuse("origin.fitness".to_string());
+        }
+        if let Some(i) = self
+            .origin
+            .metabolism
+            .and_then(|m| m.iter().position(|x| !x.is_finite()))
+        {
+            return refuse(format!("origin.metabolism[{i}]"));
+        }
+        Ok(())
+    }
+
+    /// Writes the file atomically. Non-finite values are refused before writing.
+    pub fn save(&self, path: &Path) -> Result<(), GenomeFileError> {
+        self.check_finite(path)?;
         write_atomic(path, &self.to_json()).map_err(|error| GenomeFileError::Io {
             path: path.to_path_buf(),
             error,

@@ -1,21 +1,25 @@
 //! A run: one experiment evolving in a run folder. Owns the folder's files (effective
-//! `experiment.toml`, `fitness.csv` written row by row, `best.json`, `checkpoints/`) and the
-//! generation loop that connects evolution to them, including resuming from a checkpoint so
-//! that a stopped run finishes with the same bytes as one never stopped.
+//! `experiment.toml`, `fitness.csv` written row by row, `best.json`, `champions.jsonl`,
+//! `checkpoints/`) and the generation loop that connects evolution to them, including
+//! resuming from a checkpoint so that a stopped run finishes with the same bytes as one never
+//! stopped.
 
 pub mod lock;
+
+mod champions;
 
 use crate::brain::spec::Topology;
 use crate::evo::life::EvaluationError;
 use crate::evo::state::{
     evaluate, first_generation, improved_champion_for, next_generation_of, Champion,
-    EvaluatedGeneration, GenerationSummary, SearchState,
+    EvaluatedGeneration, GenerationSummary, SearchState, Unevaluated,
 };
 use crate::evo::validation::{self, ValidatedChampion};
 use crate::experiment::diff::changed_keys;
 use crate::experiment::{Experiment, ExperimentConfig, ExperimentError};
 use crate::input::{read_regular, read_regular_text, MAX_CSV_BYTES, MAX_EXPERIMENT_BYTES};
 use crate::record::atomic::{remove_stale_temp_files, write_atomic};
+use crate::record::champions::{ChampionsError, ChampionsLog};
 use crate::record::checkpoint::{self, CheckpointError, CheckpointErrorKind, ContentError};
 use crate::record::fitness_csv::{extra_columns, FitnessCsv, FitnessRow};
 use crate::record::genome_file::{GenomeFile, GenomeFileError, Origin};
@@ -33,6 +37,8 @@ pub const EXPERIMENT_FILE: &str = "experiment.toml";
 pub const FITNESS_FILE: &str = "fitness.csv";
 /// The best genome so far.
 pub const BEST_FILE: &str = "best.json";
+/// Each generation's best genome, one genome file per line.
+pub const CHAMPIONS_FILE: &str = "champions.jsonl";
 /// The checkpoint folder.
 pub const CHECKPOINT_DIR: &str = "checkpoints";
 /// Where `resume --discard-newer` moves the checkpoints newer than the one resumed.
@@ -174,6 +180,9 @@ pub enum RunError {
     /// best.json could not be written.
     #[error(transparent)]
     Genome(#[from] GenomeFileError),
+    /// champions.jsonl could not be read or written.
+    #[error(transparent)]
+    Champions(#[from] ChampionsError),
     /// Evaluation failed.
     #[error(transparent)]
     Evaluation(#[from] EvaluationError),
@@ -292,9 +301,15 @@ fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> RunError + '_ {
 
 /// Does `dir` already hold (part of) a run?
 fn holds_run(dir: &Path) -> bool {
-    [EXPERIMENT_FILE, FITNESS_FILE, BEST_FILE, CHECKPOINT_DIR]
-        .iter()
-        .any(|f| dir.join(f).exists())
+    [
+        EXPERIMENT_FILE,
+        FITNESS_FILE,
+        BEST_FILE,
+        CHAMPIONS_FILE,
+        CHECKPOINT_DIR,
+    ]
+    .iter()
+    .any(|f| dir.join(f).exists())
 }
 
 /// Takes the run folder's lock (see [`lock`]): the first thing every writer does.
@@ -344,7 +359,13 @@ fn remove_own_files(dir: &Path) -> Result<Vec<String>, RunError> {
         return Err(RunError::NotOwnExperiment { path: experiment });
     }
     let mut files: Vec<(PathBuf, String)> = Vec::new();
-    for f in [EXPERIMENT_FILE, FITNESS_FILE, BEST_FILE, CHANGES_FILE] {
+    for f in [
+        EXPERIMENT_FILE,
+        FITNESS_FILE,
+        BEST_FILE,
+        CHAMPIONS_FILE,
+        CHANGES_FILE,
+    ] {
         let p = dir.join(f);
         if p.symlink_metadata().is_ok_and(|m| m.is_file()) {
             files.push((p, f.to_string()));
@@ -426,14 +447,18 @@ pub fn start(
         .map_err(|e| output_failed(dir, e))?;
     let csv = FitnessCsv::create_with(&dir.join(FITNESS_FILE), &extra_columns(&experiment))
         .map_err(|e| output_failed(dir, e.into()))?;
+    let champions = ChampionsLog::create(&dir.join(CHAMPIONS_FILE))
+        .map_err(|e| output_failed(dir, e.into()))?;
     let topology = experiment.topology();
-    let (population, search) = first_generation(&experiment, &topology);
+    let mut population = first_generation(&experiment, &topology);
+    let search = population.search.take();
     drive(
         Loop {
             experiment,
             topology,
             dir: dir.to_path_buf(),
             csv,
+            champions,
             history: Vec::new(),
             best_ever: None,
             next_generation: 0,
@@ -757,11 +782,18 @@ pub fn resume_with(
     } else {
         FitnessCsv::reopen_for_resume_with(&csv_path, last_generation, &columns)?.csv
     };
+    let champions = reopen_champions(
+        &dir.join(CHAMPIONS_FILE),
+        last_generation,
+        &loaded_path,
+        progress,
+    )?;
     let topology = experiment.topology();
     let mut state = Loop {
         topology,
         dir: dir.clone(),
         csv,
+        champions,
         history: payload.history,
         best_ever: payload.best_ever,
         next_generation: last_generation + 1,
@@ -784,10 +816,32 @@ pub fn resume_with(
             validated_best: state.validated_best,
         });
     }
-    let (population, search) =
+    let mut population =
         next_generation_of(&state.experiment, &payload.last, payload.search.as_ref());
-    state.search = search;
+    state.search = population.search.take();
     drive(state, population, options, progress)
+}
+
+/// Reopens `champions.jsonl` for a run resuming after generation `last_generation` from
+/// `checkpoint`, telling the user what was dropped or why the file starts later.
+fn reopen_champions(
+    path: &Path,
+    last_generation: u64,
+    checkpoint: &Path,
+    progress: &mut dyn Progress,
+) -> Result<ChampionsLog, RunError> {
+    let reopened = ChampionsLog::reopen_for_resume(path, last_generation)?;
+    if reopened.created {
+        progress.note(&format!(
+            "{} was missing (deleted, or the run was started by a version that did not write \
+             it): it starts with generation {}; the champions of generations 0..={last_generation} \
+             are not in it (extract any individual of {} with berry-evolve extract)",
+            path.display(),
+            last_generation + 1,
+            checkpoint.display()
+        ));
+    }
+    Ok(reopened.log)
 }
 
 /// Makes `fitness.csv` begin with exactly the rows the checkpoint carries (the true ones):
@@ -1003,6 +1057,8 @@ struct Loop {
     topology: Topology,
     dir: PathBuf,
     csv: FitnessCsv,
+    /// `champions.jsonl`, appended with the CSV row.
+    champions: ChampionsLog,
     history: Vec<FitnessRow>,
     best_ever: Option<Champion>,
     next_generation: u64,
@@ -1049,16 +1105,13 @@ impl Loop {
             let file = GenomeFile::new(
                 &self.experiment,
                 &c.genome,
-                Origin {
-                    description: None,
-                    experiment: Some(self.experiment.name.clone()),
-                    config_hash: Some(self.experiment.config_hash()),
-                    seed: Some(self.experiment.seed),
-                    generation: Some(c.generation),
-                    individual: Some(c.individual),
-                    fitness: Some(c.fitness),
-                    metabolism: Some(c.metabolism),
-                },
+                Origin::evolved(
+                    &self.experiment,
+                    c.generation,
+                    Some(c.individual),
+                    Some(c.fitness),
+                    Some(c.metabolism),
+                ),
             );
             file.save(&self.dir.join(BEST_FILE))?;
         }
@@ -1066,8 +1119,9 @@ impl Loop {
     }
 
     fn write_checkpoint(&mut self, last: &EvaluatedGeneration) -> Result<PathBuf, RunError> {
-        // The checkpoint must never be ahead of the CSV on disk (power loss).
+        // The checkpoint must never be ahead of the CSV or the champions on disk (power loss).
         self.csv.sync()?;
+        self.champions.sync()?;
         let payload = CheckpointPayload {
             experiment: self.experiment.config().clone(),
             last: last.clone(),
@@ -1120,7 +1174,7 @@ fn output_failed(dir: &Path, source: RunError) -> RunError {
 /// The generation loop: evaluate, record, checkpoint, vary, until done or stopped.
 fn drive(
     mut state: Loop,
-    mut population: Vec<crate::brain::genome::Genome>,
+    mut population: Unevaluated,
     options: RunOptions<'_>,
     progress: &mut dyn Progress,
 ) -> Result<RunSummary, RunError> {
@@ -1136,8 +1190,16 @@ fn drive(
     progress.begin(state.next_generation, total);
     let mut generation = state.next_generation;
     loop {
-        let evaluated =
-            pool.install(|| evaluate(&state.experiment, &state.topology, generation, population))?;
+        let evaluated = pool
+            .install(|| {
+                evaluate(
+                    &state.experiment,
+                    &state.topology,
+                    generation,
+                    population.genomes,
+                )
+            })?
+            .with_lineage(population.lineage);
         let summary = evaluated.summary();
         let improved = improved_champion_for(
             &state.experiment,
@@ -1173,6 +1235,9 @@ fn drive(
             .csv
             .append_with(&row, &extras)
             .map_err(|e| output_failed(&state.dir, e.into()))?;
+        state
+            .append_champion(&evaluated, &summary)
+            .map_err(|e| output_failed(&state.dir, e))?;
         state.history.push(row);
         if !extras.is_empty() {
             state.history_extra.push(extras);
@@ -1214,10 +1279,9 @@ fn drive(
                 });
             }
         }
-        let (next, search) = pool
+        population = pool
             .install(|| next_generation_of(&state.experiment, &evaluated, state.search.as_ref()));
-        population = next;
-        state.search = search;
+        state.search = population.search.take();
         generation += 1;
     }
 }

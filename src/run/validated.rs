@@ -28,13 +28,13 @@ impl Loop {
             &v.genome,
             Origin {
                 description: Some(description),
-                experiment: Some(self.experiment.name.clone()),
-                config_hash: Some(self.experiment.config_hash()),
-                seed: Some(self.experiment.seed),
-                generation: Some(v.generation),
-                individual: v.individual,
-                fitness: v.training_fitness,
-                metabolism: v.training_metabolism,
+                ..Origin::evolved(
+                    &self.experiment,
+                    v.generation,
+                    v.individual,
+                    v.training_fitness,
+                    v.training_metabolism,
+                )
             },
         );
         file.save(&self.dir.join(BEST_FILE))?;

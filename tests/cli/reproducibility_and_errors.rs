@@ -20,6 +20,7 @@ fn outputs(dir: &Path) -> Vec<(String, Vec<u8>)> {
     vec![
         ("fitness.csv".into(), read(&dir.join("fitness.csv"))),
         ("best.json".into(), read(&dir.join("best.json"))),
+        ("champions.jsonl".into(), read(&dir.join("champions.jsonl"))),
         ("experiment.toml".into(), read(&dir.join("experiment.toml"))),
         (
             format!(
@@ -124,6 +125,10 @@ fn resumed_run_equals_uninterrupted_run() {
     csv.extend_from_slice(b"8,108,0.5,0.");
     std::fs::write(killed.join("fitness.csv"), csv).unwrap();
     std::fs::write(killed.join("best.json"), b"{ half a file").unwrap();
+    // champions.jsonl holds lines past the checkpoint (generations 4 to 7) and a half line.
+    let mut champions = read(&killed.join("champions.jsonl"));
+    champions.extend_from_slice(b"{\"format\":1,\"brain\":{\"kind");
+    std::fs::write(killed.join("champions.jsonl"), champions).unwrap();
     std::fs::write(
         killed.join("checkpoints/.gen-000005.json.tmp-999-0"),
         b"junk",
@@ -148,7 +153,7 @@ fn export_csv_reproduces_fitness_csv() {
     assert_eq!(out.stdout, read(&dir.join("fitness.csv")));
     let out = run_ok(&["export-csv", dir.to_str().unwrap(), "--population"]);
     let text = String::from_utf8(out.stdout).unwrap();
-    assert!(text.starts_with("id,fitness,food_a,food_b,food_c,food_d\n"));
+    assert!(text.starts_with("id,fitness,food_a,food_b,food_c,food_d,birth,parent_a,parent_b\n"));
     assert_eq!(text.lines().count(), 1 + 12);
 }
 
@@ -449,4 +454,229 @@ fn resuming_another_versions_checkpoint_says_so() {
         .unwrap();
     assert!(out.status.success());
     assert!(!String::from_utf8_lossy(&out.stderr).contains("was written by"));
+}
+
+/// champions.jsonl: one genome file per generation, each that generation's best individual
+/// (fitness.csv's `best`), which replays to its recorded fitness; --force removes it.
+#[test]
+fn champions_jsonl_holds_each_generations_best_genome() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("run");
+    run_tiny(&dir, &[]);
+    let text = String::from_utf8(read(&dir.join("champions.jsonl"))).unwrap();
+    let csv = String::from_utf8(read(&dir.join("fitness.csv"))).unwrap();
+    let best_column: Vec<f64> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(2).unwrap().parse().unwrap())
+        .collect();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 8, "one line per generation:\n{text}");
+    for (g, line) in lines.iter().enumerate() {
+        let v: serde_json::Value = serde_json::from_str(line).unwrap();
+        assert_eq!(v["origin"]["generation"], g as u64, "line {g}");
+        assert_eq!(v["origin"]["seed"], 5, "line {g}");
+        assert_eq!(
+            v["origin"]["fitness"].as_f64(),
+            Some(best_column[g]),
+            "line {g}"
+        );
+    }
+    // A line is a genome file: written out on its own, replay reproduces its fitness.
+    let last: serde_json::Value = serde_json::from_str(lines[7]).unwrap();
+    let genome = tmp.path().join("champion-7.json");
+    std::fs::write(&genome, lines[7]).unwrap();
+    let out = run_ok(&[
+        "replay",
+        genome.to_str().unwrap(),
+        "--experiment",
+        dir.join("experiment.toml").to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let recorded = last["origin"]["fitness"].as_f64().unwrap();
+    assert!(
+        stdout.contains(&format!("fitness {recorded:.6}")),
+        "recorded {recorded}:\n{stdout}"
+    );
+}
+
+/// The checkpoint in tests/fixtures/checkpoint-v035/ was written by berry-evolve 0.3.5 (its
+/// binary, `run experiment.toml --out RUN`, the fixture's experiment.toml), before lineage
+/// was recorded. It still resumes, and the run extended from it ends byte-identical to a run
+/// made entirely with this version; champions.jsonl then starts after the checkpoint, with a
+/// note. Its population exports with empty lineage columns and extracts as genome files.
+#[test]
+fn a_checkpoint_from_before_lineage_resumes_to_the_same_bytes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let old = fixture("checkpoint-v035/gen-000002.json");
+    let text = String::from_utf8(read(&old)).unwrap();
+    assert!(text.contains("\"program\":\"berry-evolve 0.3.5\""));
+    assert!(!text.contains("lineage"), "the fixture predates lineage");
+    let experiment = fixture("checkpoint-v035/experiment.toml");
+
+    let full = tmp.path().join("full");
+    run_ok(&[
+        "run",
+        experiment.to_str().unwrap(),
+        "--generations",
+        "8",
+        "--out",
+        full.to_str().unwrap(),
+        "--quiet",
+    ]);
+    let dir = tmp.path().join("resumed");
+    std::fs::create_dir_all(dir.join("checkpoints")).unwrap();
+    std::fs::copy(&old, dir.join("checkpoints/gen-000002.json")).unwrap();
+
+    let population = run_ok(&["export-csv", dir.to_str().unwrap(), "--population"]);
+    let csv = String::from_utf8(population.stdout).unwrap();
+    assert!(csv.starts_with("id,fitness,food_a,food_b,food_c,food_d,birth,parent_a,parent_b\n"));
+    assert!(csv.lines().nth(1).unwrap().ends_with(",,,"), "{csv}");
+    let g = tmp.path().join("old-1.json");
+    run_ok(&[
+        "extract",
+        dir.to_str().unwrap(),
+        "--individual",
+        "1",
+        "-o",
+        g.to_str().unwrap(),
+    ]);
+    run_ok(&[
+        "compare",
+        g.to_str().unwrap(),
+        "--experiment",
+        experiment.to_str().unwrap(),
+    ]);
+
+    let out = bin()
+        .args(["resume", dir.to_str().unwrap(), "--generations", "8"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("champions.jsonl was missing")
+            && stderr.contains("starts with generation 3"),
+        "{stderr}"
+    );
+    for f in ["fitness.csv", "best.json", "experiment.toml"] {
+        assert!(read(&full.join(f)) == read(&dir.join(f)), "{f} differs");
+    }
+    let (a, b) = (
+        checkpoints(&full).pop().unwrap(),
+        checkpoints(&dir).pop().unwrap(),
+    );
+    assert_eq!(a.file_name(), b.file_name());
+    assert!(read(&a) == read(&b), "the final checkpoint differs");
+    // champions.jsonl: the uninterrupted run's lines of generations 3 to 7.
+    let whole = String::from_utf8(read(&full.join("champions.jsonl"))).unwrap();
+    let tail: String = whole.lines().skip(3).map(|l| format!("{l}\n")).collect();
+    assert_eq!(
+        String::from_utf8(read(&dir.join("champions.jsonl"))).unwrap(),
+        tail
+    );
+}
+
+/// `extract` writes individual K of a checkpoint as a genome file that replay and compare
+/// take, whose replay gives the fitness the checkpoint recorded; K out of range, a file that
+/// is not a checkpoint and an output naming an input are refused with what to do.
+#[test]
+fn extract_writes_an_individual_that_replays_to_its_recorded_fitness() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("run");
+    run_tiny(&dir, &[]);
+    let population = run_ok(&["export-csv", dir.to_str().unwrap(), "--population"]);
+    let csv = String::from_utf8(population.stdout).unwrap();
+    // The individual with the highest fitness that is not an elite copy (so that its
+    // genome is not also best.json's), with its lineage.
+    let rows: Vec<Vec<String>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    assert_eq!(rows.len(), 12);
+    assert!(rows.iter().any(|r| r[6] == "elite"), "{csv}");
+    assert!(
+        rows.iter().all(|r| match r[6].as_str() {
+            "elite" | "mutated" => !r[7].is_empty() && r[8].is_empty(),
+            "crossover" => !r[7].is_empty() && !r[8].is_empty(),
+            other => panic!("birth {other} in a GA run"),
+        }),
+        "{csv}"
+    );
+    let k = rows
+        .iter()
+        .filter(|r| r[6] != "elite")
+        .max_by(|a, b| {
+            let f = |r: &Vec<String>| r[1].parse::<f64>().unwrap();
+            f(a).total_cmp(&f(b))
+        })
+        .unwrap()[0]
+        .clone();
+    let genome = tmp.path().join("k.json");
+    let out = run_ok(&[
+        "extract",
+        dir.join("checkpoints/gen-000007.json").to_str().unwrap(),
+        "--individual",
+        &k,
+        "-o",
+        genome.to_str().unwrap(),
+    ]);
+    assert!(String::from_utf8_lossy(&out.stderr).contains("wrote individual"));
+    let file: serde_json::Value = serde_json::from_slice(&read(&genome)).unwrap();
+    assert_eq!(file["origin"]["generation"], 7);
+    assert_eq!(file["origin"]["individual"].to_string(), k);
+    assert_eq!(file["origin"]["seed"], 5);
+    let recorded = file["origin"]["fitness"].as_f64().unwrap();
+    let experiment = dir.join("experiment.toml");
+    let out = run_ok(&[
+        "replay",
+        genome.to_str().unwrap(),
+        "--experiment",
+        experiment.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains(&format!("fitness {recorded:.6}")),
+        "recorded {recorded}:\n{stdout}"
+    );
+    run_ok(&[
+        "compare",
+        genome.to_str().unwrap(),
+        dir.join("best.json").to_str().unwrap(),
+        "--experiment",
+        experiment.to_str().unwrap(),
+    ]);
+
+    let extract = |target: &Path, k: &str, output: &Path| {
+        run_err(&[
+            "extract",
+            target.to_str().unwrap(),
+            "--individual",
+            k,
+            "-o",
+            output.to_str().unwrap(),
+        ])
+    };
+    let elsewhere = tmp.path().join("x.json");
+    let err = extract(&dir, "12", &elsewhere);
+    assert!(
+        err.contains("--individual 12") && err.contains("numbered 0 to 11"),
+        "{err}"
+    );
+    let err = extract(&dir.join("best.json"), "0", &elsewhere);
+    assert!(err.contains("it is a genome file"), "{err}");
+    let err = extract(&dir.join("fitness.csv"), "0", &elsewhere);
+    assert!(err.contains("not a readable checkpoint"), "{err}");
+    assert!(!elsewhere.exists());
+    for input in [
+        "best.json",
+        "champions.jsonl",
+        "checkpoints/gen-000005.json",
+    ] {
+        let before = read(&dir.join(input));
+        let err = extract(&dir, "0", &dir.join(input));
+        assert!(err.contains("-o"), "{input}: {err}");
+        assert!(read(&dir.join(input)) == before, "{input} was changed");
+    }
 }

@@ -24,7 +24,7 @@ fn checkpoints(dir: &Path) -> Vec<PathBuf> {
 }
 
 fn same_run(a: &Path, b: &Path, what: &str) {
-    for f in ["fitness.csv", "best.json"] {
+    for f in ["fitness.csv", "best.json", "champions.jsonl"] {
         assert!(read(&a.join(f)) == read(&b.join(f)), "{what}: {f} differs");
     }
     let (x, y) = (checkpoints(a).pop().unwrap(), checkpoints(b).pop().unwrap());
@@ -44,9 +44,13 @@ fn force_removes_only_the_runs_own_files_and_says_which() {
     assert!(
         stderr.contains("--force removed")
             && stderr.contains("fitness.csv")
+            && stderr.contains("champions.jsonl")
             && stderr.contains("checkpoints/gen-000007.json"),
         "{stderr}"
     );
+    // The old run's champions are gone, not continued: the new run's two generations only.
+    let champions = String::from_utf8(read(&dir.join("champions.jsonl"))).unwrap();
+    assert_eq!(champions.lines().count(), 2, "{champions}");
     assert!(!stderr.contains("model.pt"), "{stderr}");
     assert_eq!(read(&dir.join("checkpoints/model.pt")), b"user's model");
     assert_eq!(read(&dir.join("notes.txt")), b"user's notes");

@@ -16,9 +16,10 @@
 
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::init::initial_population;
+use berry_evolve::evo::lineage::{Birth, Lineage};
 use berry_evolve::evo::select::{rank_probability, ranking, truncation_count, Selector};
 use berry_evolve::evo::stats::FitnessStats;
-use berry_evolve::evo::vary::{mutate, next_generation, recombine};
+use berry_evolve::evo::vary::{mutate, next_generation, next_generation_with_lineage, recombine};
 use berry_evolve::experiment::evolution::{
     CrossoverSpec, EvolutionSpec, MutationSpec, SelectionSpec, SelfAdaptation,
 };
@@ -530,6 +531,19 @@ fn next_generation_without_crossover_is_pinned() {
     let genes: Vec<f64> = next.iter().map(|g| g.parameters[0]).collect();
     assert_eq!(genes, [1.0, 3.0, 2.0, 1.0]);
     assert_eq!(unit(&mut r), U[9], "exactly nine draws were made");
+    // The lineage names the elite and the tournament winners worked out above.
+    let (same, lineage) =
+        next_generation_with_lineage(&spec, &parents, &[1.0, 4.0, 2.0, 4.0], &mut pinned());
+    assert_eq!(same, next);
+    assert_eq!(
+        lineage,
+        [
+            Lineage::of(Birth::Elite, &[1]),
+            Lineage::of(Birth::Mutated, &[3]),
+            Lineage::of(Birth::Mutated, &[2]),
+            Lineage::of(Birth::Mutated, &[1]),
+        ]
+    );
 }
 
 #[test]
@@ -552,9 +566,18 @@ fn next_generation_with_crossover_is_pinned() {
     let parents: Vec<Genome> = (0..4)
         .map(|i| genome(&[i as f64, 10.0 + i as f64]))
         .collect();
-    let next = next_generation(&spec, &parents, &[0.0, 3.0, 1.0, 2.0], &mut pinned());
+    let (next, lineage) =
+        next_generation_with_lineage(&spec, &parents, &[0.0, 3.0, 1.0, 2.0], &mut pinned());
     let genes: Vec<Vec<f64>> = next.into_iter().map(|g| g.parameters).collect();
     assert_eq!(genes, [vec![1.0, 11.0], vec![3.0, 11.0], vec![1.0, 11.0]]);
+    assert_eq!(
+        lineage,
+        [
+            Lineage::of(Birth::Elite, &[1]),
+            Lineage::of(Birth::Crossover, &[1, 3]),
+            Lineage::of(Birth::Crossover, &[1, 3]),
+        ]
+    );
 }
 
 #[test]
@@ -1161,5 +1184,83 @@ fn gaussian_helper_matches_the_seed_module() {
         let g = gaussian(&mut a);
         let (u1, u2) = (unit(&mut b), unit(&mut b));
         assert_eq!(g, box_muller(u1, u2));
+    }
+}
+
+// ---------------------------------------------------------------- lineage
+
+/// Seeded randomized invariant: with mutation off, the recorded parents explain every
+/// offspring (an elite or mutated child equals its parent, a crossover child takes each gene
+/// from one of its two parents), recording draws nothing (the same genomes and stream
+/// position as `next_generation`), and every selection method and crossover is covered.
+#[test]
+fn recorded_parents_explain_every_offspring() {
+    let mut r = rng(77);
+    let selections = [
+        SelectionSpec::Tournament { size: 3 },
+        SelectionSpec::Truncation { fraction: 0.3 },
+        SelectionSpec::Rank { pressure: 1.7 },
+    ];
+    let crossovers = [
+        CrossoverSpec::None,
+        CrossoverSpec::Uniform { probability: 0.6 },
+        CrossoverSpec::OnePoint { probability: 0.6 },
+    ];
+    let mut births = std::collections::BTreeMap::new();
+    for case in 0..1000 {
+        let n = 2 + below(&mut r, 10) as usize;
+        let genes = 1 + below(&mut r, 6) as usize;
+        // Distinct genes per parent, so a gene names the parent it came from.
+        let parents: Vec<Genome> = (0..n)
+            .map(|i| genome(&(0..genes).map(|j| (100 * i + j) as f64).collect::<Vec<_>>()))
+            .collect();
+        let fitness: Vec<f64> = (0..n).map(|_| unit(&mut r)).collect();
+        let spec = spec_with(
+            n + below(&mut r, 3) as usize,
+            below(&mut r, 3) as usize,
+            selections[case % 3],
+            crossovers[(case / 3) % 3],
+            no_mutation(),
+        );
+        let seed = below(&mut r, 1 << 40);
+        let (mut a, mut b) = (rng(seed), rng(seed));
+        let (next, lineage) = next_generation_with_lineage(&spec, &parents, &fitness, &mut a);
+        assert_eq!(
+            next,
+            next_generation(&spec, &parents, &fitness, &mut b),
+            "case {case}"
+        );
+        assert_eq!(
+            unit(&mut a),
+            unit(&mut b),
+            "case {case}: a different number of draws"
+        );
+        assert_eq!(lineage.len(), next.len(), "case {case}");
+        for (k, (child, l)) in next.iter().zip(&lineage).enumerate() {
+            *births.entry(l.birth.name()).or_insert(0) += 1;
+            let parent = |i: usize| &parents[l.parents[i] as usize].parameters;
+            match l.birth {
+                Birth::Elite | Birth::Mutated => {
+                    assert_eq!(l.parents.len(), 1, "case {case} child {k}");
+                    assert_eq!(&child.parameters, parent(0), "case {case} child {k}: {l:?}");
+                }
+                Birth::Crossover => {
+                    assert_eq!(l.parents.len(), 2, "case {case} child {k}");
+                    for (j, gene) in child.parameters.iter().enumerate() {
+                        assert!(
+                            *gene == parent(0)[j] || *gene == parent(1)[j],
+                            "case {case} child {k} gene {j}: {gene} from neither of {l:?}"
+                        );
+                    }
+                }
+                other => panic!("case {case}: the GA made a {other:?}"),
+            }
+            if k < spec.elitism.min(n) {
+                assert_eq!(l.birth, Birth::Elite, "case {case} child {k}");
+            }
+        }
+    }
+    for birth in ["elite", "mutated", "crossover"] {
+        assert!(births.get(birth).copied().unwrap_or(0) > 100, "{births:?}");
     }
 }

@@ -257,6 +257,7 @@ fn outputs(dir: &Path) -> Vec<(String, Vec<u8>)> {
     vec![
         ("fitness.csv".into(), read(&dir.join("fitness.csv"))),
         ("best.json".into(), read(&dir.join("best.json"))),
+        ("champions.jsonl".into(), read(&dir.join("champions.jsonl"))),
         ("experiment.toml".into(), read(&dir.join("experiment.toml"))),
         (
             format!(
@@ -342,6 +343,9 @@ fn pgpe_resumed_run_equals_uninterrupted_run() {
     let mut csv = read(&killed.join("fitness.csv"));
     csv.extend_from_slice(b"8,117,0.5,0.");
     std::fs::write(killed.join("fitness.csv"), csv).unwrap();
+    let mut champions = read(&killed.join("champions.jsonl"));
+    champions.extend_from_slice(b"{\"format\":1,");
+    std::fs::write(killed.join("champions.jsonl"), champions).unwrap();
     run_ok(&["resume", killed.to_str().unwrap(), "--quiet"]);
     assert_same_outputs(&full, &killed, "pgpe resume after a kill");
 }
@@ -365,4 +369,50 @@ fn ga_checkpoint_holds_no_search_state() {
         !cp.contains("\"search\""),
         "a GA checkpoint with a search state"
     );
+}
+
+/// PGPE's lineage says what a parent is there: a sample has none in the previous generation
+/// (it is its own generation's centre plus noise); the centre's parent is the previous
+/// centre (individual 12), which the update moved; generation 0's centre has none. A
+/// generation's champions.jsonl line is its best scorer, a sample or the centre.
+#[test]
+fn pgpe_lineage_names_the_previous_centre_as_the_centres_parent() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("run");
+    run_tiny_pgpe(&dir, &["--generations", "2"]);
+    let lineage = |checkpoint: &str| -> Vec<serde_json::Value> {
+        let text = read(&dir.join("checkpoints").join(checkpoint));
+        let v: serde_json::Value = serde_json::from_slice(&text).unwrap();
+        v["payload"]["last"]["individuals"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|i| i["lineage"].clone())
+            .collect()
+    };
+    let l = lineage("gen-000001.json");
+    assert_eq!(l.len(), 13);
+    for sample in &l[..12] {
+        assert_eq!(sample, &serde_json::json!({"birth": "pgpe_sample"}));
+    }
+    assert_eq!(
+        l[12],
+        serde_json::json!({"birth": "pgpe_centre", "parents": [12]})
+    );
+    let first = tmp.path().join("first");
+    run_tiny_pgpe(&first, &["--generations", "1"]);
+    let text = read(&first.join("checkpoints/gen-000000.json"));
+    let v: serde_json::Value = serde_json::from_slice(&text).unwrap();
+    assert_eq!(
+        v["payload"]["last"]["individuals"][12]["lineage"],
+        serde_json::json!({"birth": "pgpe_centre"})
+    );
+    let csv = String::from_utf8(read(&dir.join("fitness.csv"))).unwrap();
+    let champions = String::from_utf8(read(&dir.join("champions.jsonl"))).unwrap();
+    for (row, line) in csv.lines().skip(1).zip(champions.lines()) {
+        let best: f64 = row.split(',').nth(2).unwrap().parse().unwrap();
+        let v: serde_json::Value = serde_json::from_str(line).unwrap();
+        assert_eq!(v["origin"]["fitness"].as_f64(), Some(best), "{line}");
+    }
+    assert_eq!(champions.lines().count(), 2);
 }

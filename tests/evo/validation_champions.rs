@@ -34,6 +34,7 @@ fn fake(genome: &Genome, fitness: f64) -> Individual {
             metabolism: [0.0; 4],
             measures: Vec::new(),
         },
+        lineage: None,
     }
 }
 

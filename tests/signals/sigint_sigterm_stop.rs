@@ -52,10 +52,16 @@ fn reference() -> &'static Path {
     })
 }
 
-/// fitness.csv, best.json, experiment.toml and the final checkpoint must be byte-identical.
+/// fitness.csv, best.json, champions.jsonl, experiment.toml and the final checkpoint must be
+/// byte-identical.
 fn assert_same_as_reference(dir: &Path, what: &str) {
     let reference = reference();
-    for name in ["fitness.csv", "best.json", "experiment.toml"] {
+    for name in [
+        "fitness.csv",
+        "best.json",
+        "champions.jsonl",
+        "experiment.toml",
+    ] {
         assert!(
             read(&reference.join(name)) == read(&dir.join(name)),
             "{what}: {name} differs from the uninterrupted run"

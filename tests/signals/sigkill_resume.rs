@@ -1,7 +1,8 @@
 //! SIGKILL at random moments: a real run of slow.toml is killed again and again (at seeded
 //! random delays after each start), resumed each time (started over with --force while no
 //! checkpoint has been written yet), and must finish with fitness.csv, best.json,
-//! experiment.toml and the final checkpoint byte-identical to an uninterrupted run.
+//! champions.jsonl, experiment.toml and the final checkpoint byte-identical to an
+//! uninterrupted run.
 //!
 //! After every kill, every `gen-*.json` in the folder must read back intact, and once a
 //! checkpoint has been written there must always be one. When a round finishes, no temporary
@@ -75,10 +76,15 @@ fn temp_files(dir: &Path) -> Vec<PathBuf> {
 
 fn outputs(dir: &Path) -> Vec<(String, Vec<u8>)> {
     let last = checkpoint_files(dir).pop().expect("a final checkpoint");
-    let mut v: Vec<(String, Vec<u8>)> = ["fitness.csv", "best.json", "experiment.toml"]
-        .iter()
-        .map(|n| (n.to_string(), read(&dir.join(n))))
-        .collect();
+    let mut v: Vec<(String, Vec<u8>)> = [
+        "fitness.csv",
+        "best.json",
+        "champions.jsonl",
+        "experiment.toml",
+    ]
+    .iter()
+    .map(|n| (n.to_string(), read(&dir.join(n))))
+    .collect();
     v.push((
         last.file_name().unwrap().to_string_lossy().to_string(),
         read(&last),
