@@ -13,6 +13,7 @@ use crate::geometry::{circles_touch, Vec2};
 use crate::sim::area::Area;
 use crate::sim::gadgets::Role;
 use crate::sim::metabolism::Metabolism;
+use crate::sim::motion::Pose;
 use crate::sim::world::{Creature, World};
 
 /// How many behaviour measures there are ([`MEASURES`]); a trial's measure values are an
@@ -102,6 +103,7 @@ pub struct LifePlan {
     /// The goal, its bonus, its range and when the distance is taken.
     goal: Option<(Goal, f64, f64, GoalAt)>,
     distinct_food_bonus: f64,
+    forward_bonus: f64,
     /// The measures the experiment reports, in its order.
     measures: Vec<Measure>,
     /// `[behaviour] area`.
@@ -129,6 +131,7 @@ impl LifePlan {
             area_bonus: None,
             goal: None,
             distinct_food_bonus: spec.distinct_food_bonus,
+            forward_bonus: spec.forward_bonus,
             measures: Vec::new(),
             behaviour_area: None,
             threat_radius: 0.0,
@@ -166,6 +169,7 @@ impl LifePlan {
         let closest = matches!(plan.goal, Some((_, _, _, GoalAt::Closest)));
         plan.per_tick = plan.area_bonus.is_some()
             || closest
+            || plan.forward_bonus != 0.0
             || plan.measures.iter().any(|m| {
                 matches!(
                     m,
@@ -243,6 +247,9 @@ pub struct LifeScore {
     strikes_survived: u64,
     touching_aversive: bool,
     aversive_contacts: u64,
+    /// The pose at the end of the previous tick (or the start), for `forward_distance`.
+    last_pose: Option<Pose>,
+    forward_distance: f64,
 }
 
 impl LifeScore {
@@ -274,6 +281,8 @@ impl LifeScore {
             strikes_survived: 0,
             touching_aversive: false,
             aversive_contacts: 0,
+            last_pose: None,
+            forward_distance: 0.0,
         }
     }
 
@@ -288,6 +297,9 @@ impl LifeScore {
         let p = world.creatures()[creature].pose.position;
         if let Some((goal, _, _, GoalAt::Closest)) = &plan.goal {
             score.goal_closest = goal.distance(p);
+        }
+        if plan.forward_bonus != 0.0 {
+            score.last_pose = Some(world.creatures()[creature].pose);
         }
         if let Some(a) = &plan.behaviour_area {
             score.area_reached = a.contains(p);
@@ -329,6 +341,10 @@ impl LifeScore {
         let p = world.creatures()[creature].pose.position;
         if let Some((area, _)) = &plan.area_bonus {
             self.ticks_in_fitness_area += u64::from(area.contains(p));
+        }
+        if let Some(last) = self.last_pose {
+            self.forward_distance += (p - last.position).dot(last.heading).max(0.0);
+            self.last_pose = Some(world.creatures()[creature].pose);
         }
         if let Some((goal, _, _, GoalAt::Closest)) = &plan.goal {
             self.goal_closest = self.goal_closest.min(goal.distance(p));
@@ -440,6 +456,9 @@ impl LifeScore {
         let distinct = bitten.iter().filter(|&&b| b).count();
         if plan.distinct_food_bonus != 0.0 {
             score += plan.distinct_food_bonus * distinct as f64;
+        }
+        if plan.forward_bonus != 0.0 {
+            score += plan.forward_bonus * self.forward_distance;
         }
         if plan.death_penalty != 0.0 && !c.alive {
             score -= plan.death_penalty;
