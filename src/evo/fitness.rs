@@ -111,6 +111,9 @@ pub struct LifePlan {
     threat_radius: f64,
     /// Some term or measure needs the world at the end of every tick.
     per_tick: bool,
+    /// ... and it is more than the forward distance: an area, the closest approach to a goal
+    /// or a measure that looks around the creature.
+    watches_places: bool,
     /// Some term or measure needs the food objects each creature eats from.
     bites: bool,
 }
@@ -136,6 +139,7 @@ impl LifePlan {
             behaviour_area: None,
             threat_radius: 0.0,
             per_tick: false,
+            watches_places: false,
             bites: spec.distinct_food_bonus != 0.0,
         }
     }
@@ -167,9 +171,8 @@ impl LifePlan {
         plan.behaviour_area = area(&behaviour.area);
         plan.threat_radius = behaviour.threat_radius;
         let closest = matches!(plan.goal, Some((_, _, _, GoalAt::Closest)));
-        plan.per_tick = plan.area_bonus.is_some()
+        plan.watches_places = plan.area_bonus.is_some()
             || closest
-            || plan.forward_bonus != 0.0
             || plan.measures.iter().any(|m| {
                 matches!(
                     m,
@@ -181,6 +184,7 @@ impl LifePlan {
                         | Measure::AversiveContacts
                 )
             });
+        plan.per_tick = plan.watches_places || plan.forward_bonus != 0.0;
         plan.bites = spec.distinct_food_bonus != 0.0
             || plan
                 .measures
@@ -248,7 +252,7 @@ pub struct LifeScore {
     touching_aversive: bool,
     aversive_contacts: u64,
     /// The pose at the end of the previous tick (or the start), for `forward_distance`.
-    last_pose: Option<Pose>,
+    last_pose: Pose,
     forward_distance: f64,
 }
 
@@ -281,7 +285,10 @@ impl LifeScore {
             strikes_survived: 0,
             touching_aversive: false,
             aversive_contacts: 0,
-            last_pose: None,
+            last_pose: Pose {
+                position: Vec2::ZERO,
+                heading: Vec2::X,
+            },
             forward_distance: 0.0,
         }
     }
@@ -298,9 +305,7 @@ impl LifeScore {
         if let Some((goal, _, _, GoalAt::Closest)) = &plan.goal {
             score.goal_closest = goal.distance(p);
         }
-        if plan.forward_bonus != 0.0 {
-            score.last_pose = Some(world.creatures()[creature].pose);
-        }
+        score.last_pose = world.creatures()[creature].pose;
         if let Some(a) = &plan.behaviour_area {
             score.area_reached = a.contains(p);
         }
@@ -335,16 +340,27 @@ impl LifeScore {
 
     /// Records what `plan` watches in `world` at the end of a tick that creature `creature`
     /// lived through (after [`LifeScore::record_tick`]; only when
-    /// [`LifePlan::needs_world_every_tick`]).
-    #[inline(never)]
+    /// [`LifePlan::needs_world_every_tick`]). The forward distance is summed inline (it is
+    /// the main job's one per-tick term); the rest is looked up out of line, only when the
+    /// plan watches places or gadgets.
+    #[inline]
     pub fn record_world(&mut self, plan: &LifePlan, world: &World, creature: usize) {
-        let p = world.creatures()[creature].pose.position;
+        let pose = world.creatures()[creature].pose;
+        if plan.forward_bonus != 0.0 {
+            let last = self.last_pose;
+            self.forward_distance += (pose.position - last.position).dot(last.heading).max(0.0);
+            self.last_pose = pose;
+        }
+        if plan.watches_places {
+            self.record_places(plan, world, pose.position);
+        }
+    }
+
+    /// The areas, the goal and the measures that look at the world around position `p`.
+    #[inline(never)]
+    fn record_places(&mut self, plan: &LifePlan, world: &World, p: Vec2) {
         if let Some((area, _)) = &plan.area_bonus {
             self.ticks_in_fitness_area += u64::from(area.contains(p));
-        }
-        if let Some(last) = self.last_pose {
-            self.forward_distance += (p - last.position).dot(last.heading).max(0.0);
-            self.last_pose = Some(world.creatures()[creature].pose);
         }
         if let Some((goal, _, _, GoalAt::Closest)) = &plan.goal {
             self.goal_closest = self.goal_closest.min(goal.distance(p));
