@@ -13,6 +13,7 @@ use crate::geometry::{circles_touch, Vec2};
 use crate::sim::area::Area;
 use crate::sim::gadgets::Role;
 use crate::sim::metabolism::Metabolism;
+use crate::sim::motion::Pose;
 use crate::sim::world::{Creature, World};
 
 /// How many behaviour measures there are ([`MEASURES`]); a trial's measure values are an
@@ -102,6 +103,7 @@ pub struct LifePlan {
     /// The goal, its bonus, its range and when the distance is taken.
     goal: Option<(Goal, f64, f64, GoalAt)>,
     distinct_food_bonus: f64,
+    forward_bonus: f64,
     /// The measures the experiment reports, in its order.
     measures: Vec<Measure>,
     /// `[behaviour] area`.
@@ -109,6 +111,9 @@ pub struct LifePlan {
     threat_radius: f64,
     /// Some term or measure needs the world at the end of every tick.
     per_tick: bool,
+    /// ... and it is more than the forward distance: an area, the closest approach to a goal
+    /// or a measure that looks around the creature.
+    watches_places: bool,
     /// Some term or measure needs the food objects each creature eats from.
     bites: bool,
 }
@@ -129,10 +134,12 @@ impl LifePlan {
             area_bonus: None,
             goal: None,
             distinct_food_bonus: spec.distinct_food_bonus,
+            forward_bonus: spec.forward_bonus,
             measures: Vec::new(),
             behaviour_area: None,
             threat_radius: 0.0,
             per_tick: false,
+            watches_places: false,
             bites: spec.distinct_food_bonus != 0.0,
         }
     }
@@ -164,7 +171,7 @@ impl LifePlan {
         plan.behaviour_area = area(&behaviour.area);
         plan.threat_radius = behaviour.threat_radius;
         let closest = matches!(plan.goal, Some((_, _, _, GoalAt::Closest)));
-        plan.per_tick = plan.area_bonus.is_some()
+        plan.watches_places = plan.area_bonus.is_some()
             || closest
             || plan.measures.iter().any(|m| {
                 matches!(
@@ -177,6 +184,7 @@ impl LifePlan {
                         | Measure::AversiveContacts
                 )
             });
+        plan.per_tick = plan.watches_places || plan.forward_bonus != 0.0;
         plan.bites = spec.distinct_food_bonus != 0.0
             || plan
                 .measures
@@ -243,6 +251,9 @@ pub struct LifeScore {
     strikes_survived: u64,
     touching_aversive: bool,
     aversive_contacts: u64,
+    /// The pose at the end of the previous tick (or the start), for `forward_distance`.
+    last_pose: Pose,
+    forward_distance: f64,
 }
 
 impl LifeScore {
@@ -274,6 +285,11 @@ impl LifeScore {
             strikes_survived: 0,
             touching_aversive: false,
             aversive_contacts: 0,
+            last_pose: Pose {
+                position: Vec2::ZERO,
+                heading: Vec2::X,
+            },
+            forward_distance: 0.0,
         }
     }
 
@@ -289,6 +305,7 @@ impl LifeScore {
         if let Some((goal, _, _, GoalAt::Closest)) = &plan.goal {
             score.goal_closest = goal.distance(p);
         }
+        score.last_pose = world.creatures()[creature].pose;
         if let Some(a) = &plan.behaviour_area {
             score.area_reached = a.contains(p);
         }
@@ -323,10 +340,25 @@ impl LifeScore {
 
     /// Records what `plan` watches in `world` at the end of a tick that creature `creature`
     /// lived through (after [`LifeScore::record_tick`]; only when
-    /// [`LifePlan::needs_world_every_tick`]).
-    #[inline(never)]
+    /// [`LifePlan::needs_world_every_tick`]). The forward distance is summed inline (it is
+    /// the main job's one per-tick term); the rest is looked up out of line, only when the
+    /// plan watches places or gadgets.
+    #[inline]
     pub fn record_world(&mut self, plan: &LifePlan, world: &World, creature: usize) {
-        let p = world.creatures()[creature].pose.position;
+        let pose = world.creatures()[creature].pose;
+        if plan.forward_bonus != 0.0 {
+            let last = self.last_pose;
+            self.forward_distance += (pose.position - last.position).dot(last.heading).max(0.0);
+            self.last_pose = pose;
+        }
+        if plan.watches_places {
+            self.record_places(plan, world, pose.position);
+        }
+    }
+
+    /// The areas, the goal and the measures that look at the world around position `p`.
+    #[inline(never)]
+    fn record_places(&mut self, plan: &LifePlan, world: &World, p: Vec2) {
         if let Some((area, _)) = &plan.area_bonus {
             self.ticks_in_fitness_area += u64::from(area.contains(p));
         }
@@ -440,6 +472,9 @@ impl LifeScore {
         let distinct = bitten.iter().filter(|&&b| b).count();
         if plan.distinct_food_bonus != 0.0 {
             score += plan.distinct_food_bonus * distinct as f64;
+        }
+        if plan.forward_bonus != 0.0 {
+            score += plan.forward_bonus * self.forward_distance;
         }
         if plan.death_penalty != 0.0 && !c.alive {
             score -= plan.death_penalty;

@@ -162,6 +162,7 @@ fn is_default<T: Default + PartialEq>(x: &T) -> bool {
 ///       + area_bonus × ticks_in_area
 ///       + goal_bonus × max(0, 1 − d / goal_range)
 ///       + distinct_food_bonus × distinct_food
+///       + forward_bonus × forward_distance
 ///       − shock_penalty × shocked_ticks
 ///       − death_penalty × (1 if dead at the end, else 0)
 /// ```
@@ -229,6 +230,13 @@ pub struct FitnessSpec {
     /// over parking on one regrowing object.
     #[serde(skip_serializing_if = "is_zero")]
     pub distinct_food_bonus: f64,
+    /// Locomotion shaping in the manner of Floreano & Mondada (1994): added per LU the
+    /// creature's centre moves forward, along its heading at the start of each tick alive;
+    /// moving backwards or being pushed back earns nothing: `forward_bonus ×
+    /// forward_distance` (default: 0). Rewards driving where the whiskers and the smell
+    /// receptors point over circling backwards.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub forward_bonus: f64,
 }
 
 impl Default for FitnessSpec {
@@ -249,6 +257,7 @@ impl Default for FitnessSpec {
             goal_range: None,
             goal_at: GoalAt::End,
             distinct_food_bonus: 0.0,
+            forward_bonus: 0.0,
         }
     }
 }
@@ -265,6 +274,7 @@ impl FitnessSpec {
         finite("fitness.area_bonus", self.area_bonus)?;
         finite("fitness.goal_bonus", self.goal_bonus)?;
         finite("fitness.distinct_food_bonus", self.distinct_food_bonus)?;
+        finite("fitness.forward_bonus", self.forward_bonus)?;
         if let Some(p) = self.goal_point {
             all_finite("fitness.goal_point", &p)?;
         }
@@ -313,6 +323,7 @@ impl FitnessSpec {
             && self.area_bonus == 0.0
             && self.goal_bonus == 0.0
             && self.distinct_food_bonus == 0.0
+            && self.forward_bonus == 0.0
     }
 }
 

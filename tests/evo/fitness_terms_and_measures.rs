@@ -416,6 +416,7 @@ goal = "goal"
 goal_bonus = 1.0
 goal_at = "closest"
 distinct_food_bonus = 0.3
+forward_bonus = 0.02
 death_penalty = 1.0
 
 [behaviour]
@@ -516,4 +517,93 @@ fn fitness_csv_carries_measure_columns() {
         assert!(values[0].is_some() && values[1].is_some());
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn forward_bonus_pays_for_forward_motion_only() {
+    let e = experiment(
+        "heading = 0.0\n",
+        r#"
+[fitness]
+weights = [0.0, 0.0, 0.0, 0.0]
+forward_bonus = 0.5
+"#,
+    );
+    let rng = stream(
+        Seed(1),
+        Purpose::Demo,
+        Generation(0),
+        IndividualId(0),
+        TrialIndex(0),
+    );
+    let x0 = World::new(&e.world, &e.creature, 1, rng)
+        .unwrap()
+        .creatures()[0]
+        .pose
+        .position
+        .x;
+    // Facing +x all along: 50 − x0 and 10 forward, 5 back (nothing), 30 sideways (nothing),
+    // 15 forward.
+    let path = [
+        at(50.0, 50.0),
+        at(60.0, 50.0),
+        at(55.0, 50.0),
+        at(55.0, 80.0),
+        at(70.0, 80.0),
+    ];
+    let (score, _, _) = live(&e, &path);
+    assert_eq!(score, 0.5 * ((50.0 - x0) + 10.0 + 15.0));
+}
+
+/// Both wheels at the same signal for every tick.
+struct Drive(f64);
+
+impl Controller for Drive {
+    fn act(&mut self, _: &[f64]) -> MotorCommand {
+        MotorCommand {
+            left: self.0,
+            right: self.0,
+            ..MotorCommand::default()
+        }
+    }
+}
+
+#[test]
+fn driving_backwards_earns_no_forward_bonus() {
+    let e = experiment(
+        "heading = 270.0\n",
+        r#"
+[fitness]
+weights = [0.0, 0.0, 0.0, 0.0]
+forward_bonus = 1.0
+"#,
+    );
+    for (signal, forward) in [(0.1, true), (-0.1, false)] {
+        let rng = stream(
+            Seed(1),
+            Purpose::Demo,
+            Generation(0),
+            IndividualId(0),
+            TrialIndex(0),
+        );
+        let mut world = World::new(&e.world, &e.creature, 1, rng).unwrap();
+        let plan = LifePlan::new(&e, &world);
+        let mut score = LifeScore::start(&plan, &world, 0);
+        let start = world.creatures()[0].pose.position;
+        // Heading up the screen (270°) from near the bottom: 10 ticks straight, no wall hit.
+        for _ in 0..10 {
+            world.step(&mut [Drive(signal)]);
+            let c = &world.creatures()[0];
+            score.record_tick(&c.metabolism, c.shocked);
+            score.record_world(&plan, &world, 0);
+        }
+        let travelled = (world.creatures()[0].pose.position - start).length();
+        assert!(travelled > 5.0, "the creature hardly moved: {travelled}");
+        let (s, _) = score.finish_in(&plan, &world, 0);
+        if forward {
+            assert!((s - travelled).abs() < 1e-9, "{s} vs {travelled}");
+        } else {
+            assert_eq!(s, 0.0);
+        }
+    }
 }
