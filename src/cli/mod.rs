@@ -5,6 +5,7 @@ pub mod bench;
 pub mod compare;
 pub mod completions;
 pub mod console;
+pub mod estimate;
 pub mod export;
 pub mod inspect;
 pub mod plot;

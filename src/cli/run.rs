@@ -2,6 +2,7 @@
 
 use crate::cli::console::{errln, outln};
 
+use super::estimate;
 use super::progress::reporter;
 use anyhow::Context;
 use berry_evolve::experiment::Experiment;
@@ -44,6 +45,11 @@ pub struct RunArgs {
     /// experiment.toml, fitness.csv, best.json, checkpoints, config-changes.log) and says which.
     #[arg(long)]
     pub force: bool,
+    /// Before the first generation, a run times a few of its own evaluations (under a
+    /// second; results do not depend on it) and prints its estimated wall time; above an hour
+    /// it warns on stderr (also with --quiet) and starts anyway. This flag skips both.
+    #[arg(long)]
+    pub no_estimate: bool,
 }
 
 /// How a resumed run executes; none of it changes the results.
@@ -62,7 +68,7 @@ pub struct ExecutionArgs {
 pub const MAX_JOBS: usize = 1024;
 
 /// `--jobs`: 1 to [`MAX_JOBS`].
-fn parse_jobs(text: &str) -> Result<usize, String> {
+pub(crate) fn parse_jobs(text: &str) -> Result<usize, String> {
     let jobs: usize = text
         .parse()
         .map_err(|_| format!("`{text}` is not a whole number of threads"))?;
@@ -140,7 +146,10 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
             args.experiment.display()
         )
     })?;
-    let dir = args.out.unwrap_or_else(|| experiment.default_run_dir());
+    let dir = args
+        .out
+        .clone()
+        .unwrap_or_else(|| experiment.default_run_dir());
     let stop = stop_flag(Some(Interrupting {
         dir: dir.clone(),
         start_over: format!(
@@ -149,7 +158,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
             dir.display()
         ),
     }))?;
-    let mut progress = reporter(args.quiet);
+    let mut progress = announced(reporter(args.quiet), &experiment, &args);
     let summary = start(
         experiment,
         &dir,
@@ -164,6 +173,42 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         report(&summary);
     }
     Ok(())
+}
+
+/// `progress`, preceded by the estimate and the long-run warning unless --no-estimate.
+fn announced(
+    progress: Box<dyn berry_evolve::run::Progress>,
+    experiment: &Experiment,
+    args: &RunArgs,
+) -> Box<dyn berry_evolve::run::Progress> {
+    if args.no_estimate {
+        return progress;
+    }
+    Box::new(estimate::Announced {
+        inner: progress,
+        experiment: experiment.clone(),
+        jobs: args.jobs.unwrap_or(0),
+        quiet: args.quiet,
+    })
+}
+
+/// `run --seeds`: the batch's estimate (timed with the first seed) and warning, before the
+/// first seed starts.
+fn announce_batch(experiment: &Experiment, args: &RunArgs, seeds: usize) {
+    if args.no_estimate {
+        return;
+    }
+    let generations = 0..experiment.evolution.generations;
+    let Some(mut e) = estimate::estimate(experiment, args.jobs.unwrap_or(0), generations) else {
+        return;
+    };
+    if !args.quiet {
+        errln!("{} per seed", estimate::run_line(&e));
+    }
+    e.total_seconds *= seeds as f64;
+    if let Some(w) = estimate::long_run_warning(&e, &format!("this batch of {seeds} seeds")) {
+        errln!("{w}");
+    }
 }
 
 /// Prints where a finished run's results are.
@@ -228,6 +273,15 @@ fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
         None => PathBuf::from("results").join(&experiment.name),
     };
     let stop = stop_flag(None)?;
+    if let Some(&first) = seeds.first() {
+        let mut overrides = experiment.with_overrides().seed(first);
+        if let Some(g) = args.generations {
+            overrides = overrides.generations(g);
+        }
+        if let Ok(e) = overrides.build() {
+            announce_batch(&e, args, seeds.len());
+        }
+    }
     for &seed in seeds {
         let mut overrides = experiment.with_overrides().seed(seed);
         if let Some(g) = args.generations {
