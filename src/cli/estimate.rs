@@ -5,14 +5,15 @@
 use crate::cli::console::errln;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::fitness_csv::FitnessRow;
-use berry_evolve::run::estimate::{calibrate, Estimate, Workload};
+use berry_evolve::run::estimate::{calibrate, Estimate, Workload, RUN_CALIBRATION_TARGET};
 use berry_evolve::run::{JobHook, Progress};
 use std::path::Path;
+use std::time::Duration;
 
 /// A run estimated longer than this many seconds (one hour) gets a warning before it starts.
 pub const LONG_RUN_SECONDS: f64 = 3600.0;
 
-/// A duration for people: "40 s", "12 min", "3 h 20 min", "4.5 days", "120 years".
+/// A duration for people: "12 ms", "40 s", "12 min", "3 h 20 min", "4.5 days", "120 years".
 pub fn duration(seconds: f64) -> String {
     const MINUTE: f64 = 60.0;
     const HOUR: f64 = 3600.0;
@@ -21,7 +22,9 @@ pub fn duration(seconds: f64) -> String {
     if !seconds.is_finite() {
         return "forever".to_string();
     }
-    if seconds < 10.0 {
+    if seconds < 0.1 {
+        format!("{:.0} ms", (seconds * 1000.0).max(1.0))
+    } else if seconds < 10.0 {
         format!("{seconds:.1} s")
     } else if seconds < 90.0 {
         format!("{seconds:.0} s")
@@ -121,7 +124,9 @@ pub fn time_lines(e: &Estimate) -> Vec<String> {
 pub fn run_line(e: &Estimate) -> String {
     let c = &e.calibration;
     format!(
-        "estimated wall time: {} for {} generations ({} each) on {} worker thread{}, from {}          creature-ticks per second measured just now (`berry-evolve inspect` says more;          --no-estimate skips it)",
+        "estimated wall time: {} for {} generations ({} each) on {} worker thread{}, from {} \
+         creature-ticks per second measured just now (`berry-evolve inspect` says more; \
+         --no-estimate skips it)",
         duration(e.total_seconds),
         count(e.workload.generations),
         duration(e.seconds_per_generation),
@@ -138,8 +143,9 @@ pub fn estimate(
     experiment: &Experiment,
     jobs: usize,
     generations: std::ops::Range<u64>,
+    target: Duration,
 ) -> Option<Estimate> {
-    match calibrate(experiment, jobs) {
+    match calibrate(experiment, jobs, target) {
         Ok(c) => Some(Estimate::new(Workload::of(experiment, generations), c)),
         Err(e) => {
             errln!("note: no time estimate: {e}");
@@ -180,7 +186,12 @@ pub struct Announced {
 
 impl Progress for Announced {
     fn begin(&mut self, first: u64, total: u64) {
-        if let Some(e) = estimate(&self.experiment, self.jobs, first..total) {
+        if let Some(e) = estimate(
+            &self.experiment,
+            self.jobs,
+            first..total,
+            RUN_CALIBRATION_TARGET,
+        ) {
             if !self.quiet {
                 errln!("{}", run_line(&e));
             }
@@ -213,6 +224,8 @@ mod tests {
 
     #[test]
     fn durations_and_counts_in_words() {
+        assert_eq!(duration(0.0123), "12 ms");
+        assert_eq!(duration(0.0), "1 ms");
         assert_eq!(duration(5.25), "5.2 s");
         assert_eq!(duration(42.4), "42 s");
         assert_eq!(duration(600.0), "10 min");

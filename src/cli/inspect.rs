@@ -91,6 +91,7 @@ pub fn run(args: InspectArgs) -> anyhow::Result<()> {
             &experiment,
             args.jobs.unwrap_or(0),
             0..experiment.evolution.generations,
+            berry_evolve::run::estimate::CALIBRATION_TARGET,
         )
     };
     let out = if args.json {

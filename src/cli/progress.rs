@@ -34,10 +34,10 @@ struct Bar {
 }
 
 impl Bar {
-    /// The bar, made at once so that jobs finished before `begin` would still count (none
-    /// do: `within_generation` is asked first).
+    /// The bar: made hidden by whichever of `within_generation` and `begin` comes first
+    /// (the job hook needs it before the first generation starts), drawn from `begin` on.
     fn bar(&mut self) -> &ProgressBar {
-        self.bar.get_or_insert_with(|| ProgressBar::new(0))
+        self.bar.get_or_insert_with(ProgressBar::hidden)
     }
 }
 
@@ -52,8 +52,6 @@ impl Progress for Bar {
     fn begin(&mut self, first: u64, total: u64) {
         let jobs = self.jobs;
         let bar = self.bar().clone();
-        bar.set_length(total.saturating_mul(jobs));
-        bar.set_position(first.saturating_mul(jobs));
         bar.set_style(
             ProgressStyle::with_template(
                 "{spinner} gen {gen}/{gens} [{bar:30}] {within}{msg} ({elapsed}, eta {eta})",
@@ -82,8 +80,11 @@ impl Progress for Bar {
             )
             .progress_chars("=> "),
         );
+        bar.set_length(total.saturating_mul(jobs));
+        bar.set_position(first.saturating_mul(jobs));
         bar.reset_eta();
         // Redraw (elapsed, spinner) when jobs are minutes long.
+        bar.set_draw_target(indicatif::ProgressDrawTarget::stderr());
         bar.enable_steady_tick(Duration::from_millis(500));
     }
     fn generation(&mut self, row: &FitnessRow) {

@@ -199,7 +199,9 @@ fn announce_batch(experiment: &Experiment, args: &RunArgs, seeds: usize) {
         return;
     }
     let generations = 0..experiment.evolution.generations;
-    let Some(mut e) = estimate::estimate(experiment, args.jobs.unwrap_or(0), generations) else {
+    let target = berry_evolve::run::estimate::RUN_CALIBRATION_TARGET;
+    let Some(mut e) = estimate::estimate(experiment, args.jobs.unwrap_or(0), generations, target)
+    else {
         return;
     };
     if !args.quiet {

@@ -172,21 +172,29 @@ pub enum CalibrationError {
     Evaluation(#[from] EvaluationError),
 }
 
-/// How long the calibration's last, measured evaluation should take: long enough that the
-/// clock's and the scheduler's noise is small, short enough that the whole calibration (a
-/// short probe, then doubling evaluations whose sum is below twice the last) stays well
-/// under a second.
+/// How long the calibration's last, measured evaluation should take for `inspect`: long
+/// enough that the clock's and the scheduler's noise is small, short enough that the whole
+/// calibration (a short probe, then growing evaluations whose sum is below twice the last)
+/// stays well under a second.
 pub const CALIBRATION_TARGET: Duration = Duration::from_millis(250);
+
+/// The same for the note a run prints before it starts: it only has to tell minutes from
+/// hours, and every run pays for it.
+pub const RUN_CALIBRATION_TARGET: Duration = Duration::from_millis(100);
 
 /// Ticks of the probe that sizes the calibration.
 const PROBE_TICKS: u64 = 40;
 
 /// Times the evaluation of generation 0's first individuals on a pool of `jobs` threads (0:
 /// one per core, as a run) and returns what it measured. Grows the number of individuals,
-/// one group at first, doubling, until an evaluation lasts [`CALIBRATION_TARGET`] or the
-/// whole generation is timed; lives are shortened only when a single group's trials would
-/// last longer than the target.
-pub fn calibrate(experiment: &Experiment, jobs: usize) -> Result<Calibration, CalibrationError> {
+/// one group at first, until an evaluation lasts `target` (e.g. [`CALIBRATION_TARGET`]) or
+/// the whole generation is timed; lives are shortened only when a single group's trials
+/// would last longer than the target.
+pub fn calibrate(
+    experiment: &Experiment,
+    jobs: usize,
+    target: Duration,
+) -> Result<Calibration, CalibrationError> {
     let started = Instant::now();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs)
@@ -195,7 +203,7 @@ pub fn calibrate(experiment: &Experiment, jobs: usize) -> Result<Calibration, Ca
             jobs,
             message: e.to_string(),
         })?;
-    pool.install(|| measure(experiment, started))
+    pool.install(|| measure(experiment, target.as_secs_f64(), started))
         .map(|c| Calibration {
             threads: pool.current_num_threads(),
             ..c
@@ -203,7 +211,11 @@ pub fn calibrate(experiment: &Experiment, jobs: usize) -> Result<Calibration, Ca
 }
 
 /// [`calibrate`]'s work, on the current pool.
-fn measure(experiment: &Experiment, started: Instant) -> Result<Calibration, CalibrationError> {
+fn measure(
+    experiment: &Experiment,
+    target: f64,
+    started: Instant,
+) -> Result<Calibration, CalibrationError> {
     let topology = experiment.topology();
     let k = experiment.evaluation.group_size.max(1) as usize;
     let all = experiment.evolution.evaluated_per_generation();
@@ -212,7 +224,6 @@ fn measure(experiment: &Experiment, started: Instant) -> Result<Calibration, Cal
     let (trials, ticks) = (experiment.evaluation.trials, experiment.evaluation.ticks);
     // The probe: one group, one trial, a few ticks, to see whether one group's full lives
     // fit in the target.
-    let target = CALIBRATION_TARGET.as_secs_f64();
     let probe_ticks = ticks.min(PROBE_TICKS);
     let mut timed = None;
     if let Some(probe) = shortened(experiment, 1, probe_ticks) {
