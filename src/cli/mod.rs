@@ -43,7 +43,8 @@ pub enum Command {
     Replay(replay::ReplayArgs),
     /// Run scripted creatures in an experiment's world and write a per-tick trace.
     Simulate(simulate::SimulateArgs),
-    /// Show what an experiment file means: the observation layout, brain size and workload.
+    /// Show what an experiment file means in plain words: the observation layout, the brain,
+    /// the workload of the whole run and its estimated wall time on this machine (--json).
     Inspect(inspect::InspectArgs),
     /// Evaluate genome files and random genomes on the same (held-out) trial worlds.
     Compare(compare::CompareArgs),

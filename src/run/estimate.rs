@@ -290,3 +290,82 @@ fn time(work: impl FnOnce() -> Result<(), EvaluationError>) -> Result<f64, Evalu
     work()?;
     Ok(start.elapsed().as_secs_f64())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{calibrate, Estimate, Workload, RUN_CALIBRATION_TARGET};
+    use crate::experiment::Experiment;
+    use std::path::Path;
+
+    fn experiment(extra: &str) -> Experiment {
+        let text = format!(
+            "name = \"w\"\nseed = 3\n[evolution]\npopulation = 8\ngenerations = 25\nelitism = 1\n\
+             [evaluation]\ntrials = 3\nticks = 50\n{extra}"
+        );
+        Experiment::from_toml(&text, Path::new("w.toml")).unwrap()
+    }
+
+    #[test]
+    fn workload_counts_generations_individuals_trials_ticks_and_validation() {
+        let plain = Workload::of(&experiment(""), 0..25);
+        assert_eq!(plain.creature_ticks_per_generation, 8 * 3 * 50);
+        assert_eq!(plain.validations, 0);
+        assert_eq!(plain.total_creature_ticks, 25 * 8 * 3 * 50);
+
+        // Validation after generations 9, 19 and the last, 24 (0-based).
+        let validated = experiment("[validation]\nevery = 10\ntop = 2\ntrials = 4\n");
+        let w = Workload::of(&validated, 0..25);
+        assert_eq!(w.validations, 3);
+        assert_eq!(w.validation_creature_ticks, 3 * 2 * 4 * 50);
+        assert_eq!(w.total_creature_ticks, 25 * 8 * 3 * 50 + 3 * 2 * 4 * 50);
+        // Resumed at generation 15: rounds after 19 and 24 are left.
+        assert_eq!(Workload::of(&validated, 15..25).validations, 2);
+        assert_eq!(Workload::of(&validated, 15..25).generations, 10);
+        // A run that ends on a multiple validates once after its last generation.
+        let even = experiment("[validation]\nevery = 5\ntop = 1\ntrials = 1\n");
+        assert_eq!(Workload::of(&even, 0..25).validations, 5);
+        // Checked against the rule the run applies, generation by generation.
+        for (first, every) in [(0, 10), (3, 7), (24, 4), (25, 10)] {
+            let e = experiment(&format!("[validation]\nevery = {every}\n"));
+            let due = (first..25)
+                .filter(|&g| crate::evo::validation::is_due(&e.validation, g, 25))
+                .count() as u64;
+            assert_eq!(
+                Workload::of(&e, first..25).validations,
+                due,
+                "{first} {every}"
+            );
+        }
+    }
+
+    #[test]
+    fn pgpe_also_evaluates_its_centre() {
+        let text = "name = \"p\"\nseed = 3\n[evolution]\nalgorithm = \"pgpe\"\npopulation = 8\n\
+                    generations = 25\n[evaluation]\ntrials = 3\nticks = 50\n";
+        let pgpe = Experiment::from_toml(text, Path::new("p.toml")).unwrap();
+        let w = Workload::of(&pgpe, 0..25);
+        assert_eq!(w.individuals, 9);
+        assert_eq!(w.creature_ticks_per_generation, 9 * 3 * 50);
+    }
+
+    #[test]
+    fn a_calibration_times_real_lives_and_scales_to_the_workload() {
+        let e = experiment("");
+        let c = calibrate(&e, 1, RUN_CALIBRATION_TARGET).unwrap();
+        assert_eq!(c.threads, 1);
+        assert!(c.individuals >= 1 && c.individuals <= 8, "{c:?}");
+        assert_eq!((c.trials, c.ticks), (3, 50), "{c:?}");
+        assert_eq!(c.creature_ticks, c.individuals * 3 * 50);
+        assert!(c.seconds > 0.0 && c.elapsed_seconds < 1.0, "{c:?}");
+        let estimate = Estimate::new(Workload::of(&e, 0..25), c);
+        let per_tick = c.seconds / c.creature_ticks as f64;
+        assert_eq!(
+            estimate.seconds_per_generation,
+            c.world_seconds + per_tick * (8 * 3 * 50) as f64
+        );
+        assert_eq!(
+            estimate.total_seconds,
+            25.0 * estimate.seconds_per_generation
+        );
+    }
+}
