@@ -24,6 +24,8 @@ pub fn duration(seconds: f64) -> String {
     }
     if seconds < 0.1 {
         format!("{:.0} ms", (seconds * 1000.0).max(1.0))
+    } else if seconds < 1.0 {
+        format!("{seconds:.2} s")
     } else if seconds < 10.0 {
         format!("{seconds:.1} s")
     } else if seconds < 90.0 {
@@ -226,6 +228,7 @@ mod tests {
     fn durations_and_counts_in_words() {
         assert_eq!(duration(0.0123), "12 ms");
         assert_eq!(duration(0.0), "1 ms");
+        assert_eq!(duration(0.145), "0.14 s");
         assert_eq!(duration(5.25), "5.2 s");
         assert_eq!(duration(42.4), "42 s");
         assert_eq!(duration(600.0), "10 min");

@@ -182,6 +182,11 @@ pub const CALIBRATION_TARGET: Duration = Duration::from_millis(250);
 /// hours, and every run pays for it.
 pub const RUN_CALIBRATION_TARGET: Duration = Duration::from_millis(100);
 
+/// The calibration stops growing when its next evaluation would end later than this after
+/// it started (it then uses the last one, even if shorter than the target): a busy machine
+/// must not make it cost a second.
+const CALIBRATION_BUDGET: f64 = 0.8;
+
 /// Ticks of the probe that sizes the calibration.
 const PROBE_TICKS: u64 = 40;
 
@@ -252,7 +257,10 @@ fn measure(
             evaluate_population(&timed, &topology, &genomes[..n * k], Generation(0)).map(drop)
         })?;
         let lives = seconds - world_seconds;
-        if seconds >= target || n == groups {
+        // Aim the next evaluation at the target (at most 8× as many), within the generation.
+        let grow = (target / seconds.max(1e-6)).clamp(2.0, 8.0);
+        let late = started.elapsed().as_secs_f64() + seconds * grow > CALIBRATION_BUDGET;
+        if seconds >= target || n == groups || late {
             let creature_ticks = (n * k) as u64 * trials * ticks;
             return Ok(Calibration {
                 threads: 0,
@@ -267,8 +275,6 @@ fn measure(
                 elapsed_seconds: started.elapsed().as_secs_f64(),
             });
         }
-        // Aim the next evaluation at the target (at most 8× as many), within the generation.
-        let grow = (target / seconds.max(1e-6)).clamp(2.0, 8.0);
         n = ((n as f64 * grow).ceil() as usize).min(groups);
     }
 }
