@@ -206,6 +206,10 @@ pub fn first_genomes(experiment: &Experiment, topology: &Topology, n: usize) -> 
             );
             initial_population(&spec, topology.parameter_count(), &mut rng)
         }
+        // The whole generation (PGPE's ends with its centre).
+        Some(_) if n == experiment.evolution.evaluated_per_generation() => {
+            first_generation(experiment, topology).0
+        }
         // PGPE's samples come in mirrored pairs from one noise stream, then the centre: the
         // pairs of a smaller sample are the first pairs of the full one.
         Some(spec) => {
