@@ -111,13 +111,12 @@ def med_range(values):
 
 
 def workload(experiment):
-    out = subprocess.run([binary, "inspect", experiment], capture_output=True, text=True,
-                         check=True).stdout
-    m = re.search(r"^workload: (\d+) generations x (\d+) individuals x (\d+) trials x "
-                  r"(\d+) ticks", out, re.M)
-    text = open(experiment).read()
-    algo = "pgpe" if re.search(r'(?m)^algorithm\s*=\s*"pgpe"', text) else "ga"
-    return f"{algo} {m.group(2)}×{m.group(1)}×{m.group(3)}×{m.group(4)}" if m else algo
+    out = subprocess.run([binary, "inspect", experiment, "--json", "--no-estimate"],
+                         capture_output=True, text=True, check=True).stdout
+    d = json.loads(out)
+    w = d["workload"]
+    population = w["individuals"] - (1 if d["algorithm"] == "pgpe" else 0)
+    return f"{d['algorithm']} {population}×{w['generations']}×{w['trials']}×{w['ticks']}"
 
 
 print("| experiment | algorithm, pop×gens×trials×ticks | wall (s, median) | held-out fitness, "

@@ -43,6 +43,7 @@ mod lanes;
 pub mod mlp;
 pub mod recurrent;
 pub mod spec;
+pub mod summary;
 
 pub use activation::Activation;
 pub use controller::{output_count, BrainController};

@@ -1,9 +1,14 @@
-//! `berry-evolve inspect`: what an experiment file means, so a user can see which input is
-//! which before running it.
+//! `berry-evolve inspect`: what an experiment file means, in plain words, so a user can see
+//! which input is which, how big the brain is and how long a run will take before running
+//! it; `--json` gives the same numbers as one JSON document.
 
+use crate::cli::estimate::{self, count};
 use anyhow::Context;
+use berry_evolve::brain::summary::BrainSummary;
 use berry_evolve::experiment::Experiment;
+use berry_evolve::run::estimate::{Estimate, Workload};
 use clap::Args;
+use serde::Serialize;
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::PathBuf;
@@ -13,47 +18,212 @@ use std::path::PathBuf;
 pub struct InspectArgs {
     /// The experiment file.
     pub file: PathBuf,
+    /// Worker threads to estimate the wall time for, 1 to 1024 (default: one per core, as
+    /// `run` uses).
+    #[arg(long, value_parser = super::run::parse_jobs)]
+    pub jobs: Option<usize>,
+    /// Skip the timing calibration (a fraction of a second) and the estimated wall time;
+    /// the workload is still counted.
+    #[arg(long)]
+    pub no_estimate: bool,
+    /// Print one JSON document (`"schema": "berry-evolve/inspect/1"`) with the same numbers
+    /// on stdout instead of the text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `inspect --json`: everything the text says, as numbers.
+#[derive(Debug, Serialize)]
+struct Report<'a> {
+    schema: &'static str,
+    file: String,
+    experiment: &'a str,
+    seed: u64,
+    config_hash: String,
+    algorithm: &'static str,
+    observation: Vec<Group>,
+    inputs: usize,
+    outputs: Vec<String>,
+    brain: BrainJson,
+    workload: Workload,
+    /// `null` with `--no-estimate`, or when the calibration could not run.
+    estimate: Option<EstimateJson>,
+}
+
+/// One sensor group of the observation.
+#[derive(Debug, Serialize)]
+struct Group {
+    group: serde_json::Value,
+    label: &'static str,
+    /// First input index.
+    first: usize,
+    /// One past the last input index.
+    end: usize,
+    names: Vec<String>,
+}
+
+/// The brain's numbers and its line of text.
+#[derive(Debug, Serialize)]
+struct BrainJson {
+    #[serde(flatten)]
+    summary: BrainSummary,
+    description: String,
+}
+
+/// The estimate without the workload (given beside it).
+#[derive(Debug, Serialize)]
+struct EstimateJson {
+    total_seconds: f64,
+    seconds_per_generation: f64,
+    validation_seconds: f64,
+    creature_ticks_per_second: f64,
+    calibration: berry_evolve::run::estimate::Calibration,
 }
 
 /// Runs the subcommand.
 pub fn run(args: InspectArgs) -> anyhow::Result<()> {
     let experiment = Experiment::load(&args.file)?;
-    let layout = experiment.layout();
-    let topology = experiment.topology();
-    let mut out = String::new();
-    writeln!(
-        out,
-        "experiment `{}`, seed {}",
-        experiment.name, experiment.seed
-    )?;
-    writeln!(out, "config hash {}", experiment.config_hash())?;
-    writeln!(out, "observation: {} inputs", layout.len())?;
-    for (group, range) in layout.groups() {
-        writeln!(out, "  {group:?}: inputs {}..{}", range.start, range.end)?;
-        for i in range.clone() {
-            writeln!(out, "    [{i:>3}] {}", layout.names()[i])?;
-        }
-    }
-    writeln!(out, "outputs: {}", experiment.output_names().join(", "))?;
-    writeln!(
-        out,
-        "brain: {:?}, {} parameters",
-        experiment.brain,
-        topology.parameter_count()
-    )?;
-    let e = &experiment.evaluation;
-    let per_generation = experiment.evolution.population as u64 * e.trials * e.ticks;
-    writeln!(out,
-        "workload: {} generations x {} individuals x {} trials x {} ticks = {} creature-ticks per generation",
-        experiment.evolution.generations,
-        experiment.evolution.population,
-        e.trials,
-        e.ticks,
-        per_generation
-    )?;
+    let workload = Workload::of(&experiment, 0..experiment.evolution.generations);
+    let estimate = if args.no_estimate {
+        None
+    } else {
+        estimate::estimate(
+            &experiment,
+            args.jobs.unwrap_or(0),
+            0..experiment.evolution.generations,
+            berry_evolve::run::estimate::CALIBRATION_TARGET,
+        )
+    };
+    let out = if args.json {
+        let mut text =
+            serde_json::to_string_pretty(&report(&args, &experiment, workload, estimate.as_ref()))?;
+        text.push('\n');
+        text
+    } else {
+        text(&experiment, &workload, estimate.as_ref(), args.no_estimate)?
+    };
     // One write, so a closed pipe (`| head`) is a single error that main treats as done.
     std::io::stdout()
         .write_all(out.as_bytes())
         .context("cannot write to standard output")?;
     Ok(())
+}
+
+/// The algorithm in words.
+fn algorithm(experiment: &Experiment) -> &'static str {
+    if experiment.evolution.algorithm.is_ga() {
+        "genetic algorithm"
+    } else {
+        "PGPE"
+    }
+}
+
+/// The text output.
+fn text(
+    experiment: &Experiment,
+    workload: &Workload,
+    estimate: Option<&Estimate>,
+    skipped: bool,
+) -> anyhow::Result<String> {
+    let layout = experiment.layout();
+    let mut out = String::new();
+    writeln!(
+        out,
+        "experiment `{}`, seed {}, config hash {}",
+        experiment.name,
+        experiment.seed,
+        experiment.config_hash()
+    )?;
+    writeln!(out, "observation: {} inputs", layout.len())?;
+    for (group, range) in layout.groups() {
+        let inputs = match range.len() {
+            1 => format!("input {}", range.start),
+            _ => format!("inputs {} to {}", range.start, range.end - 1),
+        };
+        writeln!(out, "  {}: {inputs}", group.label())?;
+        for i in range.clone() {
+            writeln!(out, "    [{i:>3}] {}", layout.names()[i])?;
+        }
+    }
+    writeln!(out, "outputs: {}", experiment.output_names().join(", "))?;
+    writeln!(out, "brain: {}", experiment.topology().summary())?;
+    writeln!(
+        out,
+        "evolution: {}, {} generations of {} individuals",
+        algorithm(experiment),
+        count(experiment.evolution.generations),
+        count(experiment.evolution.population as u64)
+    )?;
+    for line in estimate::workload_lines(workload) {
+        writeln!(out, "{line}")?;
+    }
+    match estimate {
+        Some(e) => {
+            for line in estimate::time_lines(e) {
+                writeln!(out, "{line}")?;
+            }
+            if e.total_seconds > estimate::LONG_RUN_SECONDS {
+                writeln!(
+                    out,
+                    "  above an hour: `run` will warn before it starts; --generations N, or \
+                     fewer evolution.population, evaluation.trials or evaluation.ticks, make \
+                     it shorter"
+                )?;
+            }
+        }
+        None if skipped => writeln!(out, "estimated wall time: not measured (--no-estimate)")?,
+        None => writeln!(
+            out,
+            "estimated wall time: not measured (see the note on stderr)"
+        )?,
+    }
+    Ok(out)
+}
+
+/// The `--json` document.
+fn report<'a>(
+    args: &InspectArgs,
+    experiment: &'a Experiment,
+    workload: Workload,
+    estimate: Option<&Estimate>,
+) -> Report<'a> {
+    let layout = experiment.layout();
+    let summary = experiment.topology().summary();
+    Report {
+        schema: "berry-evolve/inspect/1",
+        file: args.file.display().to_string(),
+        experiment: &experiment.name,
+        seed: experiment.seed,
+        config_hash: experiment.config_hash(),
+        algorithm: if experiment.evolution.algorithm.is_ga() {
+            "ga"
+        } else {
+            "pgpe"
+        },
+        observation: layout
+            .groups()
+            .iter()
+            .map(|(group, range)| Group {
+                group: serde_json::to_value(group).unwrap_or_default(),
+                label: group.label(),
+                first: range.start,
+                end: range.end,
+                names: layout.names()[range.clone()].to_vec(),
+            })
+            .collect(),
+        inputs: layout.len(),
+        outputs: experiment.output_names(),
+        brain: BrainJson {
+            description: summary.to_string(),
+            summary,
+        },
+        workload,
+        estimate: estimate.map(|e| EstimateJson {
+            total_seconds: e.total_seconds,
+            seconds_per_generation: e.seconds_per_generation,
+            validation_seconds: e.validation_seconds,
+            creature_ticks_per_second: e.calibration.rate(),
+            calibration: e.calibration,
+        }),
+    }
 }

@@ -5,6 +5,7 @@ pub mod bench;
 pub mod compare;
 pub mod completions;
 pub mod console;
+pub mod estimate;
 pub mod export;
 pub mod extract;
 pub mod inspect;
@@ -51,7 +52,8 @@ pub enum Command {
     Simulate(simulate::SimulateArgs),
     /// Start a new experiment file from a built-in one (`new NAME --from foraging`; `new --list`).
     New(new::NewArgs),
-    /// Show what an experiment file means: the observation layout, brain size and workload.
+    /// Show what an experiment file means in plain words: the observation layout, the brain,
+    /// the workload of the whole run and its estimated wall time on this machine (--json).
     Inspect(inspect::InspectArgs),
     /// Evaluate genome files and random genomes on the same (held-out) trial worlds.
     Compare(compare::CompareArgs),

@@ -2,12 +2,13 @@
 
 use crate::cli::console::errln;
 
+use super::estimate;
 use super::progress::reporter;
 use super::run_report;
 use anyhow::Context;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::fitness_csv::FitnessRow;
-use berry_evolve::run::{start, Progress, RunOptions};
+use berry_evolve::run::{start, JobHook, Progress, RunOptions};
 use clap::Args;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -53,6 +54,11 @@ pub struct RunArgs {
     /// silences it but not the document.
     #[arg(long)]
     pub json: bool,
+    /// Before the first generation, a run times a few of its own evaluations (under a
+    /// second; results do not depend on it) and prints its estimated wall time; above an hour
+    /// it warns on stderr (also with --quiet) and starts anyway. This flag skips both.
+    #[arg(long)]
+    pub no_estimate: bool,
 }
 
 /// How a resumed run executes; none of it changes the results.
@@ -71,7 +77,7 @@ pub struct ExecutionArgs {
 pub const MAX_JOBS: usize = 1024;
 
 /// `--jobs`: 1 to [`MAX_JOBS`].
-fn parse_jobs(text: &str) -> Result<usize, String> {
+pub(crate) fn parse_jobs(text: &str) -> Result<usize, String> {
     let jobs: usize = text
         .parse()
         .map_err(|_| format!("`{text}` is not a whole number of threads"))?;
@@ -150,7 +156,10 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
             args.experiment.display()
         )
     })?;
-    let dir = args.out.unwrap_or_else(|| experiment.default_run_dir());
+    let dir = args
+        .out
+        .clone()
+        .unwrap_or_else(|| experiment.default_run_dir());
     let stop = stop_flag(Some(Interrupting {
         dir: dir.clone(),
         start_over: format!(
@@ -161,7 +170,8 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         ),
     }))?;
     let line = announce(&experiment.name, &format!("seed {}", experiment.seed), &dir);
-    let mut progress = announcing(args.quiet, Some(line));
+    let estimated = announced(reporter(args.quiet), &experiment, &args);
+    let mut progress = announcing(estimated, args.quiet, Some(line));
     let result = start(
         experiment,
         &dir,
@@ -175,11 +185,48 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     run_report::finish(result, args.json, args.quiet)
 }
 
+/// `progress`, preceded by the estimate and the long-run warning unless --no-estimate.
+fn announced(
+    progress: Box<dyn Progress>,
+    experiment: &Experiment,
+    args: &RunArgs,
+) -> Box<dyn Progress> {
+    if args.no_estimate {
+        return progress;
+    }
+    Box::new(estimate::Announced {
+        inner: progress,
+        experiment: experiment.clone(),
+        jobs: args.jobs.unwrap_or(0),
+        quiet: args.quiet,
+    })
+}
+
+/// `run --seeds`: the batch's estimate (timed with the first seed) and warning, before the
+/// first seed starts.
+fn announce_batch(experiment: &Experiment, args: &RunArgs, seeds: usize) {
+    if args.no_estimate {
+        return;
+    }
+    let generations = 0..experiment.evolution.generations;
+    let target = berry_evolve::run::estimate::RUN_CALIBRATION_TARGET;
+    let Some(mut e) = estimate::estimate(experiment, args.jobs.unwrap_or(0), generations, target)
+    else {
+        return;
+    };
+    if !args.quiet {
+        errln!("{} per seed", estimate::run_line(&e));
+    }
+    e.total_seconds *= seeds as f64;
+    if let Some(w) = estimate::long_run_warning(&e, &format!("this batch of {seeds} seeds")) {
+        errln!("{w}");
+    }
+}
+
 /// The progress reporter for this terminal and flags, which first prints `line` (unless
 /// quiet) when the run reports for the first time: a run refused before it starts prints only
 /// its error.
-fn announcing(quiet: bool, line: Option<String>) -> Box<dyn Progress> {
-    let inner = reporter(quiet);
+fn announcing(inner: Box<dyn Progress>, quiet: bool, line: Option<String>) -> Box<dyn Progress> {
     match line {
         Some(line) if !quiet => Box::new(Announcing {
             line: Some(line),
@@ -220,6 +267,9 @@ impl Progress for Announcing {
     fn note(&mut self, message: &str) {
         self.say();
         self.inner.note(message);
+    }
+    fn within_generation(&mut self, jobs_per_generation: u64) -> Option<JobHook> {
+        self.inner.within_generation(jobs_per_generation)
     }
 }
 
@@ -298,6 +348,15 @@ fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
         Some(announce(&experiment.name, &what, &base.join("seed-<s>")))
     };
     let stop = stop_flag(None)?;
+    if let Some(&first) = seeds.first() {
+        let mut overrides = experiment.with_overrides().seed(first);
+        if let Some(g) = args.generations {
+            overrides = overrides.generations(g);
+        }
+        if let Ok(e) = overrides.build() {
+            announce_batch(&e, args, seeds.len());
+        }
+    }
     let mut report = run_report::SeedsReport::new(args.json);
     for &seed in seeds {
         let mut overrides = experiment.with_overrides().seed(seed);
@@ -315,7 +374,7 @@ fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
             jobs: args.jobs.unwrap_or(0),
             stop: Some(&stop),
         };
-        let mut progress = announcing(args.quiet, line.take());
+        let mut progress = announcing(reporter(args.quiet), args.quiet, line.take());
         let continued = !args.force && dir.join(berry_evolve::run::EXPERIMENT_FILE).exists();
         let result = if continued {
             berry_evolve::run::resume(&dir, args.generations, false, options, progress.as_mut())

@@ -194,6 +194,42 @@ pub fn evaluate_population(
     population: &[Genome],
     generation: Generation,
 ) -> Result<Vec<Evaluation>, EvaluationError> {
+    evaluate_population_watched(experiment, topology, population, generation, None)
+}
+
+/// Told of each evaluation job as it finishes, from whichever worker thread ran it and in
+/// any order (e.g. a progress bar within a generation). It only counts: results are still
+/// collected in index order, so it cannot change them.
+pub type JobDone<'a> = Option<&'a (dyn Fn() + Sync)>;
+
+/// How many jobs [`evaluate_population`] splits `individuals` individuals into (what a
+/// [`JobDone`] is called that many times for): per group, one per lockstep chunk of trials
+/// with a stateless brain, one per trial otherwise.
+pub fn evaluation_jobs(experiment: &Experiment, topology: &Topology, individuals: usize) -> u64 {
+    let groups = (individuals as u64) / experiment.evaluation.group_size.max(1);
+    let trials = experiment.evaluation.trials;
+    let per_group = if lockstep::stateless(topology) {
+        lockstep::chunks(trials).len() as u64
+    } else {
+        trials
+    };
+    groups.saturating_mul(per_group)
+}
+
+/// [`evaluate_population`], calling `on_job` (when given) after each job. With `None` the
+/// only cost is one untaken branch per job (a job lives whole trials, not ticks).
+pub fn evaluate_population_watched(
+    experiment: &Experiment,
+    topology: &Topology,
+    population: &[Genome],
+    generation: Generation,
+    on_job: JobDone<'_>,
+) -> Result<Vec<Evaluation>, EvaluationError> {
+    let done = || {
+        if let Some(f) = on_job {
+            f();
+        }
+    };
     let k = experiment.evaluation.group_size as usize;
     let trials = experiment.evaluation.trials;
     let groups = population.len() / k;
@@ -210,7 +246,7 @@ pub fn evaluate_population(
             .par_iter()
             .with_max_len(JOBS_APART)
             .map(|(g, chunk)| {
-                lockstep::run_trials_in(
+                let lives = lockstep::run_trials_in(
                     experiment,
                     topology,
                     &population[g * k..(g + 1) * k],
@@ -218,7 +254,9 @@ pub fn evaluate_population(
                     *g as u64,
                     chunk.clone(),
                     shared,
-                )
+                );
+                done();
+                lives
             })
             .collect::<Result<_, _>>()?;
         per_job.into_iter().flatten().collect()
@@ -230,7 +268,7 @@ pub fn evaluate_population(
             .with_max_len(JOBS_APART)
             .map(|&(g, t)| {
                 let genomes = &population[g * k..(g + 1) * k];
-                match shared {
+                let lives = match shared {
                     Some(worlds) => {
                         let world = worlds[t as usize].clone();
                         run_trial_in(experiment, topology, genomes, g as u64, world)
@@ -243,7 +281,9 @@ pub fn evaluate_population(
                         g as u64,
                         TrialIndex(t),
                     ),
-                }
+                };
+                done();
+                lives
             })
             .collect::<Result<_, _>>()?
     };

@@ -5,7 +5,7 @@
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
-use crate::evo::evaluate::{evaluate_population, Evaluation};
+use crate::evo::evaluate::{evaluate_population_watched, Evaluation, JobDone};
 use crate::evo::init::initial_population;
 use crate::evo::life::EvaluationError;
 use crate::evo::lineage::{Birth, Lineage};
@@ -233,6 +233,41 @@ pub fn next_generation_of(
     }
 }
 
+/// The first `n` genomes of generation 0 (at most the generation's size), drawn as
+/// [`first_generation`] draws them but without the rest: what a timing calibration lives
+/// with, so that it meets the brains a run starts from at the cost of a few.
+pub fn first_genomes(experiment: &Experiment, topology: &Topology, n: usize) -> Vec<Genome> {
+    let n = n.min(experiment.evolution.evaluated_per_generation());
+    let mut genomes = match experiment.evolution.pgpe_settings() {
+        // The GA draws individual after individual from one stream, so a smaller population
+        // is the first individuals of the full one.
+        None => {
+            let mut spec = experiment.evolution.clone();
+            spec.population = n;
+            let mut rng = stream(
+                experiment.seed(),
+                Purpose::Initialisation,
+                Generation(0),
+                IndividualId(0),
+                TrialIndex(0),
+            );
+            initial_population(&spec, topology.parameter_count(), &mut rng)
+        }
+        // The whole generation (PGPE's ends with its centre).
+        Some(_) if n == experiment.evolution.evaluated_per_generation() => {
+            first_generation(experiment, topology).genomes
+        }
+        // PGPE's samples come in mirrored pairs from one noise stream, then the centre: the
+        // pairs of a smaller sample are the first pairs of the full one.
+        Some(spec) => {
+            let state = PgpeState::initial(&spec, topology.parameter_count());
+            pgpe::sample(experiment.seed(), Generation(0), &state, n + 1)
+        }
+    };
+    genomes.truncate(n);
+    genomes
+}
+
 /// Generation 0: drawn from the seed's initialisation stream.
 pub fn first_population(experiment: &Experiment, topology: &Topology) -> Vec<Genome> {
     let mut rng = stream(
@@ -283,8 +318,24 @@ pub fn evaluate(
     generation: u64,
     population: Vec<Genome>,
 ) -> Result<EvaluatedGeneration, EvaluationError> {
-    let evaluations =
-        evaluate_population(experiment, topology, &population, Generation(generation))?;
+    evaluate_watched(experiment, topology, generation, population, None)
+}
+
+/// [`evaluate`], telling `on_job` of each evaluation job as it finishes (see [`JobDone`]).
+pub fn evaluate_watched(
+    experiment: &Experiment,
+    topology: &Topology,
+    generation: u64,
+    population: Vec<Genome>,
+    on_job: JobDone<'_>,
+) -> Result<EvaluatedGeneration, EvaluationError> {
+    let evaluations = evaluate_population_watched(
+        experiment,
+        topology,
+        &population,
+        Generation(generation),
+        on_job,
+    )?;
     Ok(EvaluatedGeneration {
         generation,
         individuals: population

@@ -4,14 +4,16 @@
 //! resuming from a checkpoint so that a stopped run finishes with the same bytes as one never
 //! stopped.
 
+pub mod estimate;
 pub mod lock;
 
 mod champions;
 
 use crate::brain::spec::Topology;
+use crate::evo::evaluate::evaluation_jobs;
 use crate::evo::life::EvaluationError;
 use crate::evo::state::{
-    evaluate, first_generation, improved_champion_for, next_generation_of, Champion,
+    evaluate_watched, first_generation, improved_champion_for, next_generation_of, Champion,
     EvaluatedGeneration, GenerationSummary, SearchState, Unevaluated,
 };
 use crate::evo::validation::{self, ValidatedChampion};
@@ -257,7 +259,17 @@ pub trait Progress {
     fn end(&mut self);
     /// Something the user should know that is not an error (default: ignored).
     fn note(&mut self, _message: &str) {}
+    /// Asked once, before [`Progress::begin`], with the number of evaluation jobs in each
+    /// generation: a reporter that shows progress within a generation returns what to call
+    /// as each job finishes (from the worker threads, in any order). Default: nothing, and
+    /// nothing is counted.
+    fn within_generation(&mut self, _jobs_per_generation: u64) -> Option<JobHook> {
+        None
+    }
 }
+
+/// What [`Progress::within_generation`] returns: called once per finished evaluation job.
+pub type JobHook = std::sync::Arc<dyn Fn() + Send + Sync>;
 
 /// A [`Progress`] that reports nothing.
 pub struct Silent;
@@ -1187,16 +1199,22 @@ fn drive(
         })?;
     let total = state.experiment.evolution.generations;
     let every = state.experiment.output.checkpoint_every;
+    let on_job = progress.within_generation(evaluation_jobs(
+        &state.experiment,
+        &state.topology,
+        state.experiment.evolution.evaluated_per_generation(),
+    ));
     progress.begin(state.next_generation, total);
     let mut generation = state.next_generation;
     loop {
         let evaluated = pool
             .install(|| {
-                evaluate(
+                evaluate_watched(
                     &state.experiment,
                     &state.topology,
                     generation,
                     population.genomes,
+                    on_job.as_deref().map(|f| f as &(dyn Fn() + Sync)),
                 )
             })?
             .with_lineage(population.lineage);

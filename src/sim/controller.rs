@@ -76,6 +76,21 @@ impl SensorGroup {
         SensorGroup::Bias,
     ];
 
+    /// The group in plain words, for people (`inspect`): "smell sensors", "eye (retina)".
+    pub fn label(self) -> &'static str {
+        match self {
+            SensorGroup::Smell => "smell sensors (8 receptors left, 8 right)",
+            SensorGroup::Whiskers => "whiskers",
+            SensorGroup::Food => "food detectors",
+            SensorGroup::Shock => "shock sensor",
+            SensorGroup::Metabolism => "metabolism",
+            SensorGroup::Landmarks => "landmark bearings (sin, cos each)",
+            SensorGroup::Areas => "areas",
+            SensorGroup::Eye => "eye (retina, R G B per pixel)",
+            SensorGroup::Bias => "bias (constant 1)",
+        }
+    }
+
     /// Names of the group's inputs, in order; `sizes` gives the widths that depend on the
     /// world and the creature. Landmarks and areas count from 1 in file order
     /// (`landmark_1_sin`, `landmark_1_cos`, `area_1`); eye pixels are `eye_<c>_<row>_<column>`

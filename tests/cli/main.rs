@@ -23,3 +23,4 @@ mod replicates;
 mod reproducibility_and_errors;
 mod run_folder;
 mod unwritable_outputs;
+mod workload_estimate;

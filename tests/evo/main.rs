@@ -8,6 +8,7 @@ mod experiment_files;
 mod experiment_limits;
 mod fitness_terms_and_measures;
 mod genetic_algorithm;
+mod jobs_counted_within_a_generation;
 mod lockstep_vs_single_trials;
 mod overflowing_brains;
 mod pgpe;
