@@ -4,6 +4,7 @@
 pub mod bench;
 pub mod compare;
 pub mod completions;
+pub mod config;
 pub mod console;
 pub mod export;
 pub mod inspect;
@@ -16,6 +17,7 @@ pub mod run;
 pub mod simulate;
 pub mod summary;
 
+use berry_evolve::input::closest;
 use clap::{Parser, Subcommand};
 
 /// berry-evolve: evolve neural-network creatures in the BERRY III world, reproducibly.
@@ -60,6 +62,10 @@ pub enum Command {
     Completions(completions::CompletionsArgs),
     /// Print the man page (`berry-evolve man > berry-evolve.1; man -l berry-evolve.1`).
     Man,
+    /// Describe the experiment file: `--schema` (JSON Schema for editors), `--reference`
+    /// (every key: type, unit, default, range, report section) or `--defaults` (a complete
+    /// commented file of defaults).
+    Config(config::ConfigArgs),
 }
 
 /// Runs the parsed command line.
@@ -80,6 +86,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             completions::completions(args, <Cli as clap::CommandFactory>::command())
         }
         (Some(Command::Man), _) => completions::man(<Cli as clap::CommandFactory>::command()),
+        (Some(Command::Config(args)), _) => config::run(args),
         (None, None) => {
             use clap::CommandFactory;
             Cli::command().print_help()?;
@@ -103,8 +110,8 @@ pub fn mistyped_subcommand(first: &str) -> Option<String> {
     if names.contains(&first) {
         return None;
     }
-    let (distance, best) = names.iter().map(|n| (edit_distance(first, n), *n)).min()?;
-    (distance <= 2.max(best.len() / 3)).then(|| {
+    let names: Vec<String> = names.iter().map(|n| n.to_string()).collect();
+    closest(first, &names).map(|best| {
         format!(
             "`{first}` is not a subcommand; did you mean `{best}`? (`berry-evolve FILE.toml` \
              runs an experiment file; `berry-evolve --help` lists the subcommands)"
@@ -112,35 +119,9 @@ pub fn mistyped_subcommand(first: &str) -> Option<String> {
     })
 }
 
-/// Levenshtein distance between two short words (insertions, deletions, substitutions).
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut diagonal = row[0];
-        row[0] = i + 1;
-        for (j, &cb) in b.iter().enumerate() {
-            let above = row[j + 1];
-            row[j + 1] = (above + 1)
-                .min(row[j] + 1)
-                .min(diagonal + usize::from(ca != cb));
-            diagonal = above;
-        }
-    }
-    row[b.len()]
-}
-
 #[cfg(test)]
 mod tests {
-    use super::{edit_distance, mistyped_subcommand};
-
-    #[test]
-    fn edit_distance_of_hand_checked_pairs() {
-        assert_eq!(edit_distance("inpsect", "inspect"), 2);
-        assert_eq!(edit_distance("resme", "resume"), 1);
-        assert_eq!(edit_distance("", "plot"), 4);
-        assert_eq!(edit_distance("bench", "bench"), 0);
-    }
+    use super::mistyped_subcommand;
 
     #[test]
     fn a_mistyped_subcommand_gets_a_suggestion_and_a_file_does_not() {
