@@ -7,6 +7,7 @@ mod cli_common;
 
 mod atomic_outputs;
 mod completions_and_man;
+mod config_reference;
 mod console_output;
 mod dead_end_messages;
 mod gadget_experiments;

@@ -616,7 +616,15 @@ fn join(prefix: &str, name: &str) -> String {
 
 /// A doc comment on one line: its lines joined, rustdoc links as plain code.
 fn one_line(text: &str) -> String {
-    let joined = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    let mut joined = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    // A rustdoc link with a target, [`TurnAway`](crate::sim::gadgets::TurnAway): the target
+    // means nothing on a page.
+    while let Some(at) = joined.find("`](") {
+        let Some(end) = joined[at..].find(')') else {
+            break;
+        };
+        joined.replace_range(at + 1..at + end + 1, "]");
+    }
     // `[`Measure`]` is a rustdoc link; on a page it reads as code.
     joined.replace("[`", "`").replace("`]", "`")
 }
