@@ -205,6 +205,14 @@ pub enum ExperimentError {
     },
 }
 
+/// The JSON Schema `schemars` derives from [`ExperimentConfig`] (draft-07, which taplo and
+/// Even Better TOML read), as [`reference::schema`] starts from.
+pub fn derived_schema() -> serde_json::Value {
+    let generator = schemars::generate::SchemaSettings::draft07().into_generator();
+    let schema = generator.into_root_schema_for::<ExperimentConfig>();
+    serde_json::to_value(schema).expect("a schema is plain JSON")
+}
+
 /// "`evolution.population` in x.toml line 12: expected ..., found ...", then toml's picture.
 fn parse_message(path: &Path, error: &plain::PlainError) -> String {
     let mut text = String::new();
@@ -257,7 +265,7 @@ impl Experiment {
         // A list where a table belongs is named first: serde would read it by position (and
         // then either accept it silently or complain about one of its elements).
         let parsed = toml::from_str::<ExperimentConfig>(text);
-        if let Some((key, span)) = reference::list_for_table(text) {
+        if let Some((key, span)) = reference::tree::list_for_table(text, &derived_schema()) {
             return Err(ExperimentError::Parse {
                 path: origin.to_path_buf(),
                 error: plain::list_for_table_error(key, span, text),

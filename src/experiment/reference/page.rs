@@ -22,8 +22,8 @@ pub fn reference_markdown() -> String {
     ));
     out.push_str(
         "- **Editors**: `docs/experiment.schema.json` is the file's JSON Schema (`berry-evolve \
-         config --schema`); with taplo or Even Better TOML, put `#:schema ./docs/experiment.schema.json` \
-         on the first line of an experiment file (path relative to it).\n\
+         config --schema`); with taplo or Even Better TOML, put `#:schema ../docs/experiment.schema.json` \
+         on the first line of a file in experiments/ (the path is relative to the file).\n\
          - **A complete file of defaults**, commented: `berry-evolve config --defaults`.\n\
          - **Units**: lengths in LU, time in ticks, motor speeds in rotations per tick (RPT); \
          angles in the file are in **degrees** (the simulator converts them to radians). \
