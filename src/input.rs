@@ -136,9 +136,59 @@ pub fn cut(text: &str, max: usize) -> String {
     format!("{head}… ({} more characters)", count - max)
 }
 
+/// Levenshtein distance between two short words (insertions, deletions, substitutions).
+pub fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let above = row[j + 1];
+            row[j + 1] = (above + 1)
+                .min(row[j] + 1)
+                .min(diagonal + usize::from(ca != cb));
+            diagonal = above;
+        }
+    }
+    row[b.len()]
+}
+
+/// The word of `known` nearest to a misspelt `word`, when it is near enough to be meant
+/// (at most 2 edits, or a third of its length for long words): keys, enum words,
+/// subcommands, `new`'s templates.
+pub fn closest<'a>(word: &str, known: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+    let (distance, best) = known
+        .into_iter()
+        .map(|k| (edit_distance(word, k), k))
+        .min()?;
+    (distance <= 2.max(best.chars().count() / 3)).then_some(best)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn edit_distance_of_hand_checked_pairs() {
+        assert_eq!(edit_distance("inpsect", "inspect"), 2);
+        assert_eq!(edit_distance("resme", "resume"), 1);
+        assert_eq!(edit_distance("", "plot"), 4);
+        assert_eq!(edit_distance("bench", "bench"), 0);
+    }
+
+    #[test]
+    fn closest_word_only_when_near() {
+        let known = vec!["population".to_string(), "generations".to_string()];
+        assert_eq!(
+            closest("populaton", known.iter().map(String::as_str)),
+            Some("population")
+        );
+        assert_eq!(closest("zzz", known.iter().map(String::as_str)), None);
+        let names = ["foraging", "t-maze", "eye-arena"];
+        assert_eq!(closest("foragin", names), Some("foraging"));
+        assert_eq!(closest("t-mzae", names), Some("t-maze"));
+    }
 
     #[test]
     fn long_values_are_cut_with_a_count() {

@@ -40,10 +40,11 @@
 //! f32 for `precision = "f32"` MLPs): in f64 each term is a multiply then an add, in f32 one
 //! fused multiply-add ([`Real::add_product`]); IEEE 754 specifies the result of each exactly.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// The activation function of hidden units (`brain.activation`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Activation {
     /// Hyperbolic tangent, output in [-1, 1] (the default); the fast [`tanh`].

@@ -24,6 +24,7 @@
 
 use super::activation::Activation;
 use crate::validate::{count_within, finite, positive, InvalidValue, Valid};
+use schemars::JsonSchema;
 use serde::{de::Error as _, Deserialize, Deserializer, Serialize};
 
 /// Largest number of units in one hidden layer, and of neurons in a CTRNN.
@@ -54,7 +55,7 @@ pub const DEFAULT_TAU: [f64; 2] = [1.0, 10.0];
 pub const DEFAULT_GAIN: [f64; 2] = [1.0, 5.0];
 
 /// Which kind of network a brain is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum BrainKind {
     /// Feed-forward multilayer perceptron (the default).
@@ -78,7 +79,7 @@ impl BrainKind {
 }
 
 /// The float type an MLP computes in (`brain.precision`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Precision {
     /// Double precision throughout (the default).
@@ -107,7 +108,7 @@ impl Precision {
 /// Every field but `kind` is optional; a missing field takes the default of the chosen kind
 /// (listed on each field). A field that does not apply to the chosen kind is an error.
 /// The default table is an MLP with one hidden layer of 16 tanh units.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct BrainSpec {
     /// The network kind: `"mlp"`, `"recurrent"` or `"ctrnn"` (default: `"mlp"`).

@@ -4,6 +4,7 @@
 pub mod bench;
 pub mod compare;
 pub mod completions;
+pub mod config;
 pub mod console;
 pub mod estimate;
 pub mod export;
@@ -19,9 +20,9 @@ pub mod resume;
 pub mod run;
 pub mod run_report;
 pub mod simulate;
-pub mod suggest;
 pub mod summary;
 
+use berry_evolve::input::closest;
 use clap::{Parser, Subcommand};
 
 /// berry-evolve: evolve neural-network creatures in the BERRY III world, reproducibly.
@@ -71,6 +72,10 @@ pub enum Command {
     Completions(completions::CompletionsArgs),
     /// Print the man page (`berry-evolve man > berry-evolve.1; man -l berry-evolve.1`).
     Man,
+    /// Describe the experiment file: `--schema` (JSON Schema for editors), `--reference`
+    /// (every key: type, unit, default, range, report section) or `--defaults` (a complete
+    /// commented file of defaults).
+    Config(config::ConfigArgs),
 }
 
 /// Runs the parsed command line.
@@ -93,6 +98,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             completions::completions(args, <Cli as clap::CommandFactory>::command())
         }
         (Some(Command::Man), _) => completions::man(<Cli as clap::CommandFactory>::command()),
+        (Some(Command::Config(args)), _) => config::run(args),
         (None, None) => {
             use clap::CommandFactory;
             Cli::command().print_help()?;
@@ -116,7 +122,7 @@ pub fn mistyped_subcommand(first: &str) -> Option<String> {
     if names.contains(&first) {
         return None;
     }
-    suggest::closest(first, names).map(|best| {
+    closest(first, names.iter().copied()).map(|best| {
         format!(
             "`{first}` is not a subcommand; did you mean `{best}`? (`berry-evolve FILE.toml` \
              runs an experiment file; `berry-evolve --help` lists the subcommands)"

@@ -101,7 +101,7 @@ fn unknown_template(asked: &str) -> anyhow::Error {
         _ => None,
     };
     let suggestion = prefix
-        .or_else(|| super::suggest::closest(asked, names()))
+        .or_else(|| berry_evolve::input::closest(asked, names()))
         .map_or(String::new(), |best| format!("did you mean `{best}`? "));
     anyhow::anyhow!(
         "there is no built-in experiment `{asked}`; {suggestion}`{} new --list` names them all",

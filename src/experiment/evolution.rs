@@ -34,6 +34,7 @@
 //! that kind uses, defaults included.
 
 use crate::validate::{count_within, non_negative, within, InvalidValue, Valid};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// The largest population accepted: two generations of genomes are held in memory at once,
@@ -49,7 +50,7 @@ pub const MAX_GENERATIONS: u64 = 1_000_000_000;
 pub const MAX_MAGNITUDE: f64 = 1.0e6;
 
 /// `[evolution]`: the search algorithm (the generational genetic algorithm by default).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct EvolutionSpec {
     /// `algorithm`: `"ga"` (the generational genetic algorithm, default) or `"pgpe"`
@@ -83,7 +84,7 @@ pub struct EvolutionSpec {
 }
 
 /// The search algorithms `[evolution] algorithm` chooses from.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Algorithm {
     /// The generational genetic algorithm (elitism, selection, crossover, mutation).
@@ -222,7 +223,7 @@ impl EvolutionSpec {
 /// stdev_learning_rate = 0.1
 /// stdev_max_change = 0.2         # relative change of a standard deviation per generation
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct PgpeSpec {
     /// `center_learning_rate`: ClipUp's step size α, the length (L2, parameter units) of the
@@ -311,7 +312,7 @@ fn probability(key: &str, value: f64) -> Valid {
 
 /// `[evolution.selection]`: how each parent of an offspring is chosen from the evaluated
 /// generation. Higher fitness is better; equal fitness is broken in favour of the lower index.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(try_from = "RawSelection", into = "RawSelection")]
 pub enum SelectionSpec {
     /// `kind = "tournament"`: the best of `tournament_size` distinct individuals drawn
@@ -378,7 +379,7 @@ impl SelectionSpec {
 }
 
 /// The kinds of selection, as spelt in TOML.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 enum SelectionKind {
     #[default]
@@ -388,14 +389,19 @@ enum SelectionKind {
 }
 
 /// `[evolution.selection]` as written: every key optional, checked against `kind`.
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 struct RawSelection {
+    /// `"tournament"`, `"truncation"` or `"rank"` (default: `"tournament"`).
     kind: SelectionKind,
+    /// Tournament only: individuals per tournament, drawn without replacement (default: 3).
     #[serde(skip_serializing_if = "Option::is_none")]
     tournament_size: Option<usize>,
+    /// Truncation only: the share of the population that may become a parent (default: 0.2).
     #[serde(skip_serializing_if = "Option::is_none")]
     truncation_fraction: Option<f64>,
+    /// Rank only: Baker's pressure s, expected picks of the best individual per n picks
+    /// (default: 1.7; 1 = uniform, 2 = the worst is never picked).
     #[serde(skip_serializing_if = "Option::is_none")]
     rank_pressure: Option<f64>,
 }
@@ -487,7 +493,7 @@ impl From<SelectionSpec> for RawSelection {
 /// `[evolution.crossover]`: how the two parents of an offspring are recombined. With
 /// probability `probability` an offspring is their recombination, otherwise a copy of the
 /// first parent; mutation follows either way.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(try_from = "RawCrossover", into = "RawCrossover")]
 pub enum CrossoverSpec {
     /// `kind = "none"`: offspring are mutated copies of one selected parent (no second parent
@@ -545,7 +551,7 @@ impl CrossoverSpec {
 }
 
 /// The kinds of crossover, as spelt in TOML.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 enum CrossoverKind {
     None,
@@ -556,10 +562,13 @@ enum CrossoverKind {
 }
 
 /// `[evolution.crossover]` as written.
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 struct RawCrossover {
+    /// `"none"`, `"uniform"`, `"one_point"` or `"arithmetic"` (default: `"uniform"`).
     kind: CrossoverKind,
+    /// Chance that an offspring is recombined rather than a copy of its first parent
+    /// (default: 0.5; not with `kind = "none"`).
     #[serde(skip_serializing_if = "Option::is_none")]
     probability: Option<f64>,
 }
@@ -607,7 +616,7 @@ impl From<CrossoverSpec> for RawCrossover {
 
 /// `[evolution.mutation]`: per-gene Gaussian mutation, with an optional self-adaptive step
 /// size that each genome carries and that evolves with it.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(try_from = "RawMutation", into = "RawMutation")]
 pub struct MutationSpec {
     /// `probability`: chance that each gene of an offspring is mutated (default: 0.1; 0 to 1).
@@ -695,14 +704,23 @@ impl MutationSpec {
 }
 
 /// `[evolution.mutation]` as written.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 struct RawMutation {
+    /// Chance that each gene of an offspring is mutated (default: 0.1).
     probability: f64,
+    /// Standard deviation of the Gaussian added to a mutated gene, in parameter units; with
+    /// self-adaptation, the initial step size (default: 0.1).
     sigma: f64,
+    /// Each genome carries its own step size σ, mutated log-normally before its genes,
+    /// σ' = σ · exp(τ · N(0, 1)) (default: false).
     self_adaptive: bool,
+    /// Self-adaptive only: learning rate τ of the step size (default: absent = 1/√n for n
+    /// genes).
     #[serde(skip_serializing_if = "Option::is_none")]
     tau: Option<f64>,
+    /// Self-adaptive only: the smallest step size, so that it cannot collapse to 0
+    /// (default: 10^-6).
     #[serde(skip_serializing_if = "Option::is_none")]
     min_sigma: Option<f64>,
 }

@@ -12,6 +12,8 @@
 
 pub mod diff;
 pub mod evolution;
+pub mod plain;
+pub mod reference;
 pub mod tables;
 pub mod templates;
 
@@ -31,6 +33,7 @@ use crate::sim::controller::ObservationLayout;
 use crate::sim::scripted::DemoSpec;
 use crate::sim::spec::{CreatureSpec, WorldSpec};
 use crate::validate::{InvalidValue, Valid};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use std::path::{Path, PathBuf};
@@ -46,7 +49,7 @@ pub const MAX_GENERATION_PARAMETERS: u64 = 250_000_000;
 
 /// A whole experiment, exactly as its TOML file says (after defaults), not yet validated.
 /// Unknown keys anywhere are errors, so a misspelt option can never be silently ignored.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ExperimentConfig {
     /// Name of the experiment; names the run folder `results/<name>/seed-<seed>/`.
@@ -184,13 +187,14 @@ pub enum ExperimentError {
         error: std::io::Error,
     },
     /// The file is not valid TOML or does not have the experiment's shape (unknown key,
-    /// wrong type, missing field). The message carries the line, column and key.
-    #[error("{path}: {message}")]
+    /// wrong type, missing key), in plain words ([`plain`]): the key, the line, what is
+    /// wrong, and toml's picture of the offending text.
+    #[error("{}", parse_message(.path, .error))]
     Parse {
         /// The file.
         path: PathBuf,
-        /// toml's message, which names the line, column and key.
-        message: String,
+        /// The key, the line and the plain message.
+        error: plain::PlainError,
     },
     /// A value is well-formed but not acceptable.
     #[error("{path}: {error}")]
@@ -200,6 +204,32 @@ pub enum ExperimentError {
         /// The key and the reason.
         error: InvalidValue,
     },
+}
+
+/// The JSON Schema `schemars` derives from [`ExperimentConfig`] (draft-07, which taplo and
+/// Even Better TOML read), as [`reference::schema`] starts from.
+pub fn derived_schema() -> serde_json::Value {
+    let generator = schemars::generate::SchemaSettings::draft07().into_generator();
+    let schema = generator.into_root_schema_for::<ExperimentConfig>();
+    serde_json::to_value(schema).expect("a schema is plain JSON")
+}
+
+/// "`evolution.population` in x.toml line 12: expected ..., found ...", then toml's picture.
+fn parse_message(path: &Path, error: &plain::PlainError) -> String {
+    let mut text = String::new();
+    if let Some(key) = &error.key {
+        text.push_str(&format!("`{}` in ", crate::input::cut(key, 200)));
+    }
+    text.push_str(&path.display().to_string());
+    if let Some(line) = error.line {
+        text.push_str(&format!(" line {line}"));
+    }
+    text.push_str(&format!(": {}", crate::input::cut(&error.message, 2000)));
+    if !error.excerpt.is_empty() {
+        text.push('\n');
+        text.push_str(&error.excerpt);
+    }
+    text
 }
 
 impl Experiment {
@@ -233,19 +263,19 @@ impl Experiment {
                 ),
             });
         }
-        let config: ExperimentConfig =
-            toml::from_str(text).map_err(|e| ExperimentError::Parse {
+        // A list where a table belongs is named first: serde would read it by position (and
+        // then either accept it silently or complain about one of its elements).
+        let parsed = toml::from_str::<ExperimentConfig>(text);
+        if let Some((key, span)) = reference::tree::list_for_table(text, &derived_schema()) {
+            return Err(ExperimentError::Parse {
                 path: origin.to_path_buf(),
-                // toml quotes the offending line and key: cut each line so that a huge value
-                // (a 1 MB name) is not echoed back whole.
-                message: e
-                    .to_string()
-                    .trim_end()
-                    .lines()
-                    .map(|line| crate::input::cut(line, 300))
-                    .collect::<Vec<_>>()
-                    .join("\n"),
-            })?;
+                error: plain::list_for_table_error(key, span, text),
+            });
+        }
+        let config = parsed.map_err(|e| ExperimentError::Parse {
+            path: origin.to_path_buf(),
+            error: plain::plain_error(&e, text),
+        })?;
         Experiment::try_from(config).map_err(|error| ExperimentError::Invalid {
             path: origin.to_path_buf(),
             error,

@@ -6,6 +6,7 @@ use crate::sim::spec::WorldSpec;
 use crate::validate::{
     all_finite, count_within, finite, non_negative, positive, InvalidValue, Valid,
 };
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// Most trials per individual: beyond this a generation would take days.
@@ -17,7 +18,7 @@ pub const MAX_TICKS: u64 = 10_000_000;
 pub const MAX_CREATURE_TICKS_PER_GENERATION: u64 = 200_000_000_000;
 
 /// How the trials of an individual are combined into one fitness.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Aggregate {
     /// The mean over trials.
@@ -27,7 +28,7 @@ pub enum Aggregate {
 }
 
 /// `[evaluation]`: how an individual's fitness is measured.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct EvaluationSpec {
     /// Trial worlds per individual (default: 3).
@@ -112,7 +113,7 @@ impl EvaluationSpec {
 }
 
 /// How a life's metabolic history becomes a score.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum FitnessMode {
     /// `weights · m` at the end of life.
@@ -122,7 +123,7 @@ pub enum FitnessMode {
 }
 
 /// How the weighted metabolic components `wᵢ·mᵢ` become the metabolic gain of `[fitness]`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Balance {
     /// `Σᵢ wᵢ·mᵢ` (default).
@@ -134,7 +135,7 @@ pub enum Balance {
 }
 
 /// When the distance to `[fitness] goal` is taken.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum GoalAt {
     /// Where the creature is at the end of its life (default).
@@ -171,7 +172,7 @@ fn is_default<T: Default + PartialEq>(x: &T) -> bool {
 /// but `gain` is off by default, so an experiment without the new keys scores as before.
 /// Ticks are counted as evo's `LifeScore` (`evo::fitness`) records them: a tick counts when
 /// the creature is alive (and its brain's output finite) at its end.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct FitnessSpec {
     /// Weight of each metabolic component fA, fB, fC, fD (default: [1, 1, 1, 1]). Negative
@@ -365,7 +366,9 @@ pub fn area_index(world: &WorldSpec, key: &str, name: &str) -> Result<usize, Inv
 /// A behaviour measure: a number per trial, next to fitness, that says whether the behaviour
 /// an experiment is about happened (`[behaviour] measures`). Each is averaged over an
 /// individual's trials.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize, JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum Measure {
     /// Ticks the creature was alive at the end of (and its brain's output finite).
@@ -449,7 +452,7 @@ impl Measure {
 
 /// `[behaviour]`: which behaviour measures an experiment reports (in `fitness.csv`,
 /// `compare`, `replay` and `summary`). Measures never change fitness or evolution.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct BehaviourSpec {
     /// The measures, by name, e.g. `["ticks_alive", "distinct_food"]` (default: none). See
@@ -515,7 +518,7 @@ impl BehaviourSpec {
 /// `trials` fixed validation worlds, the same every time and never trained on (their own seed
 /// stream, distinct from the training worlds and from `compare`'s held-out worlds); `best.json`
 /// is then the best on validation so far.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct ValidationSpec {
     /// Validate every this many generations, and always after the last (default: 0 = off).
@@ -569,7 +572,7 @@ impl ValidationSpec {
 
 /// `[output]`: how often a run saves itself. Not part of the config hash: it changes where
 /// results go, never what they are.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct OutputSpec {
     /// Write a checkpoint every this many generations, and always at the end (default: 10).

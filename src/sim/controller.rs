@@ -2,6 +2,7 @@
 //! observation laid out by [`ObservationLayout`]) and what the controller gives back
 //! ([`MotorCommand`]). The simulator knows nothing else about brains.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
 use std::sync::OnceLock;
@@ -158,7 +159,7 @@ pub struct GroupSizes {
 }
 
 /// Which sensor groups a creature's controller receives (`[creature.inputs]`).
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct InputsSpec {
     /// Both smell sensors, 16 inputs (default: on).

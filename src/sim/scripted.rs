@@ -3,13 +3,14 @@
 
 use crate::sim::controller::{Controller, MotorCommand, ObservationLayout, SensorGroup};
 use crate::validate::{count_within, finite, InvalidValue, Valid};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// Most creatures a demo may run.
 pub const MAX_DEMO_CREATURES: u64 = 1_000;
 
 /// The `[demo]` table: how the `simulate` command fills a world without evolved brains.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct DemoSpec {
     /// Number of creatures, each driven by its own copy of `controller` (default: 1).
@@ -42,7 +43,7 @@ impl DemoSpec {
 }
 
 /// A scripted controller, chosen with `kind`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum ScriptedSpec {
     /// Fixed motor signals every tick.

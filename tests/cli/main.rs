@@ -8,6 +8,7 @@ mod cli_common;
 mod anywhere;
 mod atomic_outputs;
 mod completions_and_man;
+mod config_reference;
 mod console_output;
 mod dead_end_messages;
 mod gadget_experiments;

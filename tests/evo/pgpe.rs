@@ -230,12 +230,12 @@ fn pgpe_table_is_validated() {
     bad(
         "stdev_init = 0.5",
         "stdev_init = 0.5\nlearning_rate = 1.0",
-        "unknown field",
+        "unknown key `learning_rate`",
     );
     bad(
         "algorithm = \"pgpe\"",
         "algorithm = \"cma\"",
-        "unknown variant",
+        "\"cma\" is not one of \"ga\", \"pgpe\"",
     );
     // The GA's tiny experiment writes no `algorithm` key (its bytes and hash are 0.3.5's).
     let ga = Experiment::load(&fixture("tiny.toml")).unwrap();

@@ -6,6 +6,7 @@ use super::values::{Point, Region, DEFAULT_WALL_COLOUR, DEFAULT_WALL_HEIGHT};
 use crate::validate::{
     all_finite, count_within, finite, non_negative, positive, InvalidValue, Valid,
 };
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// Most wanderers, predators, air predators, doors or teleporters of one kind in a world.
@@ -16,7 +17,7 @@ pub const MAX_TICKS: u64 = 1_000_000_000;
 /// A locked door (`[[world.doors]]`, §4.5.2): a wall segment that opens for `open_ticks` ticks
 /// when an evolving creature's body touches its trigger circle. Closed, it is a wall (blocks,
 /// felt, seen, occludes smell when opaque); open, it is nothing.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DoorSpec {
     /// First end point `[x, y]` of the door segment in LU (required; inside the arena).
@@ -72,7 +73,7 @@ pub struct DoorSpec {
 /// A teleporter (`[[world.teleporters]]`, §4.5.1): body contact with the entry circle moves an
 /// evolving creature to the exit at the end of its move, unless the body would touch a wall
 /// or another body there.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct TeleporterSpec {
     /// Centre `[x, y]` of the entry circle in LU (required; inside the arena).
@@ -103,7 +104,7 @@ pub struct TeleporterSpec {
 /// Irrelevant creatures (`[world.wanderers]`, §4.8): bodies like the creatures' driven by
 /// random motor signals held for a random number of ticks, turning away from whatever a
 /// whisker touches (see [`TurnAway`](crate::sim::gadgets::TurnAway)). They block movement, smell, are felt and seen.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct WanderersSpec {
     /// How many (default: 0).
@@ -156,7 +157,7 @@ impl Default for WanderersSpec {
 }
 
 /// How a ground predator moves (§4.7).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Strategy {
     /// Like a wanderer (default).
@@ -170,7 +171,7 @@ pub enum Strategy {
 }
 
 /// What a predator does to a creature it attacks (§4.7).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Effect {
     /// The creature dies (default).
@@ -181,7 +182,7 @@ pub enum Effect {
 }
 
 /// A ground predator (`[[world.predators]]`, §4.7): a creature body with a fixed strategy.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct PredatorSpec {
     /// `"wander"`, `"chase"` or `"patrol"` (default: `"wander"`).
@@ -242,7 +243,7 @@ impl Default for PredatorSpec {
 /// point of the opposite side at constant speed, ignoring walls, and attacks creatures whose
 /// centre is within `strike_radius` of its ground position and outside safe areas. When it
 /// leaves the arena a new one enters.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct AirPredatorSpec {
     /// Ground speed in LU per tick (default: 2).

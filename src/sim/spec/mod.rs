@@ -14,6 +14,7 @@ use crate::validate::{
     all_finite, all_non_negative, count_within, finite, non_negative, positive, within,
     InvalidValue, Valid,
 };
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -49,7 +50,7 @@ pub const MAX_RETINA_PIXELS: u64 = 65_536;
 
 /// The `[world]` table: the arena, its walls, the kinds of objects, where objects go and where
 /// creatures start. The default is the report's empty 300 x 300 LU arena bounded by four walls.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct WorldSpec {
     /// Arena size `[width, height]` in LU; the arena is `[0, width] x [0, height]`
@@ -106,7 +107,7 @@ pub struct WorldSpec {
 /// A distal landmark (`[[world.landmarks]]`, §4.5.3): a point with no body, not felt, not
 /// seen, not blocking; its bearing is sensed, and it may smell (§4.2 "all objects ... except
 /// for walls, smell").
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LandmarkSpec {
     /// Position `[x, y]` in LU (required; may lie outside the arena: distal landmarks are
@@ -132,7 +133,7 @@ pub struct LandmarkSpec {
 }
 
 /// What an area is for (§4.6).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum AreaKind {
     /// A region with no effect of its own (default): sensed, and may smell.
@@ -145,7 +146,7 @@ pub enum AreaKind {
 
 /// An area (`[[world.areas]]`, §4.6): an axis-aligned rectangle, optionally smelling at its
 /// centre. Areas neither block, nor are felt, nor are seen.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct AreaSpec {
     /// A name that `[fitness]` and `[behaviour]` refer to the area by (default: none).
@@ -197,7 +198,7 @@ impl Default for WorldSpec {
 
 /// One wall (`[[world.walls]]`, §4.1): a segment that blocks movement and is felt by whiskers;
 /// an opaque wall also stops smells.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct WallSpec {
     /// First end point `[x, y]` in LU (required; inside the arena).
@@ -236,7 +237,7 @@ fn default_wall_height() -> f64 {
 /// Read through a flat raw table (every key optional) rather than serde's internally tagged enums: those buffer the
 /// table before choosing the variant, and the `toml` crate then loses the key of a bad value
 /// inside it ("invalid length 2" without saying which array).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(tag = "class", rename_all = "snake_case", try_from = "RawKind")]
 pub enum KindSpec {
     /// Food (§4.3): substance a creature can eat.
@@ -246,7 +247,7 @@ pub enum KindSpec {
 }
 
 /// The class of a kind.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 enum Class {
     Food,
@@ -255,32 +256,53 @@ enum Class {
 
 /// Every key a kind table may hold, as read from the file; see [`FoodKind`] and
 /// [`AversiveKind`] for their meaning and defaults.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 struct RawKind {
+    /// `"food"` (§4.3) or `"aversive"` (§4.4) (required).
     class: Class,
+    /// Radius in LU; 0 is a point (default: 0).
     #[serde(default)]
     radius: f64,
+    /// Food only: substance amounts ⟨A, B, C, D⟩ a new object holds (default: `[1, 0, 0, 0]`).
     #[serde(default, deserialize_with = "exact::option_array")]
     substance: Option<[f64; 4]>,
+    /// Food only: most substance the object can hold, at least `substance` (default: absent =
+    /// equal to `substance`).
     #[serde(default, deserialize_with = "exact::option_array")]
     capacity: Option<[f64; 4]>,
+    /// Food only: bite b, substance moved to the creature per eating tick, per type; it gets
+    /// min(bite, what is left) (default: `[1, 1, 1, 1]`).
     #[serde(default, deserialize_with = "exact::option_array")]
     bite: Option<[f64; 4]>,
+    /// Food only: regeneration r, substance added per tick, per type, up to `capacity`
+    /// (default: zeros).
     #[serde(default, deserialize_with = "exact::option_array")]
     regen: Option<[f64; 4]>,
+    /// Food only: eating removes the substance from the object; when false it feeds without
+    /// end (default: true).
     #[serde(default)]
     depletes: Option<bool>,
+    /// Food only: the smell intensity scales with total amount / total capacity (default:
+    /// false).
     #[serde(default)]
     smell_follows_amount: Option<bool>,
+    /// Odour o = ⟨o1..o8⟩, usually in [0, 1] (default: zeros, no smell).
     #[serde(default, deserialize_with = "exact::option_array")]
     odour: Option<[f64; 8]>,
+    /// Smell intensity i at the centre (eq. 25; default: 0).
     #[serde(default)]
     intensity: f64,
+    /// Smell range θ of eq. 26 in LU: the smell is zero at distance ≥ θ (default: absent =
+    /// unlimited).
     #[serde(default)]
     range: Option<f64>,
+    /// Colour `[r, g, b]`, each in [0, 1], as the eye sees the object (default: absent =
+    /// green `[0, 1, 0]` for food, red `[1, 0, 0]` for aversive objects).
     #[serde(default, deserialize_with = "exact::option_array")]
     colour: Option<[f64; 3]>,
+    /// Height in LU of the cylinder the eye sees (default: absent = 5). Objects of radius 0
+    /// are never seen.
     #[serde(default)]
     height: Option<f64>,
 }
@@ -348,7 +370,7 @@ impl KindSpec {
 }
 
 /// A food kind (§4.3, §5.2–5.3). Substance vectors are ⟨A, B, C, D⟩.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, JsonSchema)]
 pub struct FoodKind {
     /// Radius in LU; 0 is a point (default: 0, "typically the radius is 0").
     pub radius: f64,
@@ -428,7 +450,7 @@ impl FoodKind {
 }
 
 /// An aversive kind (§4.4): a circle or point that shocks creatures touching it, and smells.
-#[derive(Debug, Clone, PartialEq, Serialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Default, JsonSchema)]
 pub struct AversiveKind {
     /// Radius in LU; 0 is a point (default: 0).
     pub radius: f64,
@@ -448,7 +470,7 @@ pub struct AversiveKind {
 }
 
 /// An object at a fixed position (`[[world.objects]]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectSpec {
     /// Name of its kind in `[world.kinds]` (required).
@@ -460,7 +482,7 @@ pub struct ObjectSpec {
 
 /// A random placement rule (`[[world.place]]`): `count` objects of `kind`, uniform in
 /// `region`, at least `min_spacing` from every object placed before, never touching a wall.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PlaceSpec {
     /// Name of the kind in `[world.kinds]` (required).
@@ -485,7 +507,7 @@ pub struct PlaceSpec {
 }
 
 /// Where creatures start (`[world.start]`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct StartSpec {
     /// `[x0, y0, x1, y1]` in LU where body centres may start (default: absent = the whole
@@ -510,7 +532,7 @@ pub struct StartSpec {
 }
 
 /// How a creature eats (SPEC-NOTES: the report does not say).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Eating {
     /// Every tick of body contact with a food object transfers a bite (default).
@@ -522,7 +544,7 @@ pub enum Eating {
 
 /// The `[creature]` table: the body tuple ⟨d, φ, s, a, w, o⟩ of §5.1, motors, eating,
 /// metabolism and which sensors the controller receives. Defaults are the report's (Figure 2).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct CreatureSpec {
     /// Body diameter d in LU (default: 6).
@@ -598,7 +620,7 @@ pub struct CreatureSpec {
 /// the horizontal (0 for a 1-row retina). A surface of height H at distance d along a pixel's
 /// ray covers the elevations e with −eye_height ≤ d·tan e ≤ H − eye_height, so a 1-row
 /// retina sees exactly the surfaces at least `eye_height` tall.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct EyeSpec {
     /// Horizontal field of view in degrees, in (0, 360] (default: 90).
@@ -684,7 +706,7 @@ impl EyeSpec {
 /// Noise on one sensor group (eq. 27): each input s becomes ŝ = N + (1 + M)·s, clipped to
 /// the group's range, with N = |normal(0, n_sigma)| clipped to [0, n] and M =
 /// normal(0, m_sigma) clipped to [−m, m].
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, Default, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct NoiseChannel {
     /// Largest additive noise N (default: 0).
@@ -711,7 +733,7 @@ impl NoiseChannel {
 /// noise and costs no random draws, so noise-free runs are unchanged. Ranges the noisy value
 /// is clipped to: [0, 1] for smell, whiskers, food, shock, areas and eye; [0, ∞) for
 /// metabolism; [−1, 1] for landmarks. The bias is never noisy.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct NoiseSpec {
     /// Noise on the 16 smell receptors (default: none).
