@@ -20,11 +20,24 @@ fn main() {
         errln!("error: {message}");
         std::process::exit(2);
     }
+    // Under mpirun (a build with the `mpi` feature): ranks other than 0 serve rank 0's
+    // evaluation jobs until it is done and exit here; rank 0 runs the command.
+    #[cfg(feature = "mpi")]
+    let ranks = mpi_role();
+    #[cfg(feature = "mpi")]
+    let ranks = ranks.as_ref();
+    #[cfg(not(feature = "mpi"))]
+    let ranks = None;
     let cli = cli::Cli::parse();
-    let result = cli::dispatch(cli).and_then(|()| match cli::console::stdout_error() {
+    let result = cli::dispatch(cli, ranks).and_then(|()| match cli::console::stdout_error() {
         Some(e) => Err(anyhow::anyhow!("cannot write to standard output: {e}")),
         None => Ok(()),
     });
+    #[cfg(feature = "mpi")]
+    if let Some(ranks) = ranks {
+        // Whatever the command did (finished, failed, was stopped): release the workers.
+        ranks.stop_workers();
+    }
     if let Err(error) = result {
         // A reader that closed the pipe (`berry-evolve inspect x.toml | head`) is not an error.
         if error.chain().any(|c| {
@@ -47,6 +60,28 @@ fn main() {
             errln!("  caused by: {cause}");
         }
         std::process::exit(1);
+    }
+}
+
+/// Joins the MPI job when started by mpirun: a worker rank serves and exits; rank 0 gets the
+/// other ranks (`None` when not started by mpirun). A job whose ranks cannot all start is
+/// stopped here with a message naming the rank.
+#[cfg(feature = "mpi")]
+fn mpi_role() -> Option<berry_evolve::evo::ranks::Ranks> {
+    use berry_evolve::evo::ranks::{self, Role};
+    if !ranks::launched_by_mpi() {
+        return None;
+    }
+    match ranks::join() {
+        Ok(Role::Coordinator(ranks)) => Some(ranks),
+        Ok(Role::Worker(worker)) => {
+            ranks::worker::serve(worker);
+            std::process::exit(0);
+        }
+        Err(error) => {
+            errln!("error: {error}");
+            std::process::exit(1);
+        }
     }
 }
 

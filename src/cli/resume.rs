@@ -1,5 +1,7 @@
 //! `berry-evolve resume`: continue a run from its newest good checkpoint (or a given one).
 
+use super::cluster::{evaluator, Ranks};
+use super::console::errln;
 use super::progress::reporter;
 use super::run::Interrupting;
 use super::run::{report, stop_flag, ExecutionArgs};
@@ -31,7 +33,7 @@ pub struct ResumeArgs {
 }
 
 /// Runs the subcommand.
-pub fn run(args: ResumeArgs) -> anyhow::Result<()> {
+pub fn run(args: ResumeArgs, ranks: Option<&Ranks>) -> anyhow::Result<()> {
     let at = resume_target(&args.target)
         .ok()
         .map(|(dir, _)| Interrupting {
@@ -44,6 +46,8 @@ pub fn run(args: ResumeArgs) -> anyhow::Result<()> {
         });
     let stop = stop_flag(at)?;
     let mut progress = reporter(args.execution.quiet);
+    let jobs = args.execution.jobs.unwrap_or(0);
+    let remote = evaluator(ranks, jobs, &stop)?;
     let summary = resume_with(
         &args.target,
         ResumeRequest {
@@ -53,13 +57,17 @@ pub fn run(args: ResumeArgs) -> anyhow::Result<()> {
             shorten: args.shorten,
         },
         RunOptions {
-            jobs: args.execution.jobs.unwrap_or(0),
+            jobs,
             stop: Some(&stop),
+            evaluator: remote.as_deref(),
         },
         progress.as_mut(),
     )?;
     if !args.execution.quiet {
         report(&summary);
+        if let Some(note) = remote.as_deref().and_then(|e| e.report()) {
+            errln!("{note}");
+        }
     }
     Ok(())
 }

@@ -2,6 +2,7 @@
 
 use crate::cli::console::{errln, outln};
 
+use super::cluster::{evaluator, Ranks};
 use super::progress::reporter;
 use anyhow::Context;
 use berry_evolve::experiment::Experiment;
@@ -122,10 +123,10 @@ pub fn stop_flag(at: Option<Interrupting>) -> anyhow::Result<Arc<AtomicBool>> {
 }
 
 /// Runs the subcommand.
-pub fn run(args: RunArgs) -> anyhow::Result<()> {
+pub fn run(args: RunArgs, ranks: Option<&Ranks>) -> anyhow::Result<()> {
     if let Some(spec) = &args.seeds {
         let seeds = parse_seeds(spec)?;
-        return run_seeds(&args, &seeds);
+        return run_seeds(&args, &seeds, ranks);
     }
     let mut overrides = Experiment::load(&args.experiment)?.with_overrides();
     if let Some(seed) = args.seed {
@@ -150,18 +151,24 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         ),
     }))?;
     let mut progress = reporter(args.quiet);
+    let jobs = args.jobs.unwrap_or(0);
+    let remote = evaluator(ranks, jobs, &stop)?;
     let summary = start(
         experiment,
         &dir,
         args.force,
         RunOptions {
-            jobs: args.jobs.unwrap_or(0),
+            jobs,
             stop: Some(&stop),
+            evaluator: remote.as_deref(),
         },
         progress.as_mut(),
     )?;
     if !args.quiet {
         report(&summary);
+        if let Some(note) = remote.as_deref().and_then(|e| e.report()) {
+            errln!("{note}");
+        }
     }
     Ok(())
 }
@@ -221,13 +228,15 @@ pub fn parse_seeds(spec: &str) -> anyhow::Result<Vec<u64>> {
 }
 
 /// `run --seeds`: each seed in turn in `<out>/seed-<s>/`, one line per seed on stdout.
-fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
+fn run_seeds(args: &RunArgs, seeds: &[u64], ranks: Option<&Ranks>) -> anyhow::Result<()> {
     let experiment = Experiment::load(&args.experiment)?;
     let base = match &args.out {
         Some(out) => out.clone(),
         None => PathBuf::from("results").join(&experiment.name),
     };
     let stop = stop_flag(None)?;
+    let jobs = args.jobs.unwrap_or(0);
+    let remote = evaluator(ranks, jobs, &stop)?;
     for &seed in seeds {
         let mut overrides = experiment.with_overrides().seed(seed);
         if let Some(g) = args.generations {
@@ -241,8 +250,9 @@ fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
         })?;
         let dir = base.join(format!("seed-{seed}"));
         let options = RunOptions {
-            jobs: args.jobs.unwrap_or(0),
+            jobs,
             stop: Some(&stop),
+            evaluator: remote.as_deref(),
         };
         let mut progress = reporter(args.quiet);
         let continued = !args.force && dir.join(berry_evolve::run::EXPERIMENT_FILE).exists();

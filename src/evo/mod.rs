@@ -10,6 +10,8 @@ pub mod init;
 pub mod life;
 pub mod lockstep;
 pub mod pgpe;
+#[cfg(feature = "mpi")]
+pub mod ranks;
 pub mod select;
 pub mod state;
 pub mod stats;

@@ -5,7 +5,7 @@
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
-use crate::evo::evaluate::{evaluate_population, Evaluation};
+use crate::evo::evaluate::{evaluate_population_on, Evaluation, Evaluator, ThisProcess};
 use crate::evo::init::initial_population;
 use crate::evo::life::EvaluationError;
 use crate::evo::pgpe::{self, PgpeState};
@@ -227,8 +227,24 @@ pub fn evaluate(
     generation: u64,
     population: Vec<Genome>,
 ) -> Result<EvaluatedGeneration, EvaluationError> {
-    let evaluations =
-        evaluate_population(experiment, topology, &population, Generation(generation))?;
+    evaluate_on(&ThisProcess, experiment, topology, generation, population)
+}
+
+/// [`evaluate`] with the evaluation jobs run by `evaluator` (e.g. MPI ranks): the same bits.
+pub fn evaluate_on(
+    evaluator: &dyn Evaluator,
+    experiment: &Experiment,
+    topology: &Topology,
+    generation: u64,
+    population: Vec<Genome>,
+) -> Result<EvaluatedGeneration, EvaluationError> {
+    let evaluations = evaluate_population_on(
+        evaluator,
+        experiment,
+        topology,
+        &population,
+        Generation(generation),
+    )?;
     Ok(EvaluatedGeneration {
         generation,
         individuals: population

@@ -6,9 +6,10 @@
 pub mod lock;
 
 use crate::brain::spec::Topology;
+use crate::evo::evaluate::Evaluator;
 use crate::evo::life::EvaluationError;
 use crate::evo::state::{
-    evaluate, first_generation, improved_champion_for, next_generation_of, Champion,
+    evaluate, evaluate_on, first_generation, improved_champion_for, next_generation_of, Champion,
     EvaluatedGeneration, GenerationSummary, SearchState,
 };
 use crate::evo::validation::{self, ValidatedChampion};
@@ -222,6 +223,16 @@ pub enum RunError {
         /// The write that failed.
         source: Box<RunError>,
     },
+    /// Another MPI rank could not evaluate its share (or stopped answering); the run stopped.
+    #[error("the run in {dir} stopped: an MPI rank failed. {advice}")]
+    RankFailed {
+        /// The run folder.
+        dir: PathBuf,
+        /// What the user can do, naming the last good checkpoint if there is one.
+        advice: String,
+        /// What the rank did.
+        source: EvaluationError,
+    },
     /// Stopped by the user (Ctrl-C / SIGTERM) after writing a checkpoint.
     #[error("interrupted after generation {generation}; the checkpoint {checkpoint} holds it. Continue with: berry-evolve resume {dir}")]
     Interrupted {
@@ -264,6 +275,9 @@ pub struct RunOptions<'a> {
     pub jobs: usize,
     /// Set to true (e.g. by a signal handler) to stop after the current generation.
     pub stop: Option<&'a AtomicBool>,
+    /// Where each generation's evaluation jobs run, when not on this process's `jobs`
+    /// threads (e.g. MPI ranks, `crate::evo::ranks`); `None`: here.
+    pub evaluator: Option<&'a dyn Evaluator>,
 }
 
 /// What a finished run reports.
@@ -1084,12 +1098,38 @@ impl Loop {
     }
 }
 
+/// The newest checkpoint of `dir` that loads.
+fn newest_good_checkpoint(dir: &Path) -> Option<PathBuf> {
+    checkpoint::load_latest_good::<CheckpointPayload>(&dir.join(CHECKPOINT_DIR), None)
+        .ok()
+        .map(|loaded| loaded.path)
+}
+
+/// Wraps a failed evaluation of the generation loop: a failed rank with what the user can do
+/// about it (the other errors are the experiment's and say so themselves).
+fn evaluation_failed(dir: &Path, source: EvaluationError) -> RunError {
+    if !matches!(source, EvaluationError::Rank { .. }) {
+        return source.into();
+    }
+    let advice = match newest_good_checkpoint(dir) {
+        Some(path) => format!(
+            "The last good checkpoint, {}, is kept; continue with: berry-evolve resume {} \
+             (under mpirun with any number of ranks, or without: the results are the same)",
+            path.display(),
+            dir.display()
+        ),
+        None => "No checkpoint was written yet; start the run again with --force".to_string(),
+    };
+    RunError::RankFailed {
+        dir: dir.to_path_buf(),
+        advice,
+        source,
+    }
+}
+
 /// Wraps a failed write of the generation loop with what the user can do about it.
 fn output_failed(dir: &Path, source: RunError) -> RunError {
-    let newest = checkpoint::load_latest_good::<CheckpointPayload>(&dir.join(CHECKPOINT_DIR), None)
-        .ok()
-        .map(|loaded| loaded.path);
-    let advice = match newest {
+    let advice = match newest_good_checkpoint(dir) {
         Some(path) => format!(
             "The last good checkpoint, {}, is kept. Fix the cause below (disk space, permissions, \
              the folder) and continue with: berry-evolve resume {}",
@@ -1126,8 +1166,18 @@ fn drive(
     progress.begin(state.next_generation, total);
     let mut generation = state.next_generation;
     loop {
-        let evaluated =
-            pool.install(|| evaluate(&state.experiment, &state.topology, generation, population))?;
+        let evaluated = match options.evaluator {
+            Some(evaluator) => evaluate_on(
+                evaluator,
+                &state.experiment,
+                &state.topology,
+                generation,
+                population,
+            )
+            .map_err(|e| evaluation_failed(&state.dir, e))?,
+            None => pool
+                .install(|| evaluate(&state.experiment, &state.topology, generation, population))?,
+        };
         let summary = evaluated.summary();
         let improved = improved_champion_for(
             &state.experiment,
