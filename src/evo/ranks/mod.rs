@@ -184,6 +184,7 @@ impl Ranks {
             stop,
             pool,
             done: Mutex::new(vec![0; self.size()]),
+            traffic: std::cell::Cell::new(Traffic::default()),
         })
     }
 
@@ -194,22 +195,26 @@ impl Ranks {
         }
     }
 
-    /// Sends the experiment to every worker unless they hold it already.
-    fn share_experiment(&self, experiment: &Experiment, jobs: usize) {
+    /// Sends the experiment to every worker unless they hold it already; returns the bytes
+    /// sent.
+    fn share_experiment(&self, experiment: &Experiment, jobs: usize) -> Traffic {
         let hash = experiment.config_hash();
         let current = Some((jobs, hash.clone()));
         if *self.sent.borrow() == current {
-            return;
+            return Traffic::default();
         }
         let message = Writer::new()
             .u64(jobs as u64)
             .text(&hash)
             .text(&experiment.to_toml())
             .finish();
+        let mut traffic = Traffic::default();
         for r in 1..self.size() {
             send(&self.world, r, tag::EXPERIMENT, &message);
+            traffic.add(message.len());
         }
         *self.sent.borrow_mut() = current;
+        traffic
     }
 }
 
@@ -222,6 +227,27 @@ pub struct RanksRun<'a> {
     pool: rayon::ThreadPool,
     /// Jobs each rank has evaluated in this run.
     done: Mutex<Vec<u64>>,
+    /// Messages and bytes to and from rank 0 in this run.
+    traffic: std::cell::Cell<Traffic>,
+}
+
+/// Messages and bytes exchanged (rank 0's sends and receives: every message has rank 0 at
+/// one end), and the generations they served.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Traffic {
+    /// Generations evaluated.
+    pub generations: u64,
+    /// Messages sent or received by rank 0.
+    pub messages: u64,
+    /// Their payload bytes.
+    pub bytes: u64,
+}
+
+impl Traffic {
+    fn add(&mut self, bytes: usize) {
+        self.messages += 1;
+        self.bytes += bytes as u64;
+    }
 }
 
 /// Hands out chunks of job numbers `0..total` in order (guided self-scheduling).
@@ -267,9 +293,14 @@ impl Evaluator for RanksRun<'_> {
     fn report(&self) -> Option<String> {
         let done = self.jobs_per_rank();
         let list: Vec<String> = done.iter().map(u64::to_string).collect();
+        let t = self.traffic();
+        let per = |x: u64| x as f64 / t.generations.max(1) as f64;
         Some(format!(
-            "evaluated on {} MPI ranks; jobs per rank (rank 0 first): {}",
+            "evaluated on {} MPI ranks ({} generations; per generation {:.1} messages, {:.0} bytes); jobs per rank (rank 0 first): {}",
             done.len(),
+            t.generations,
+            per(t.messages),
+            per(t.bytes),
             list.join(", ")
         ))
     }
@@ -279,14 +310,27 @@ impl Evaluator for RanksRun<'_> {
         let world = &ranks.world;
         let size = ranks.size();
         let generation = jobs.generation().0;
+        let mut start = self.traffic.get();
+        start.generations += 1;
+        let traffic = std::cell::Cell::new(start);
+        let count = |bytes: usize| {
+            let mut t = traffic.get();
+            t.add(bytes);
+            traffic.set(t);
+        };
         if size > 1 {
-            ranks.share_experiment(jobs.experiment(), self.jobs);
+            let shared = ranks.share_experiment(jobs.experiment(), self.jobs);
+            let mut t = traffic.get();
+            t.messages += shared.messages;
+            t.bytes += shared.bytes;
+            traffic.set(t);
             let message = Writer::new()
                 .u64(generation)
                 .genomes(jobs.population())
                 .finish();
             for r in 1..size {
                 send(world, r, tag::GENERATION, &message);
+                count(message.len());
             }
         }
         let chunks = Mutex::new(Chunks {
@@ -333,6 +377,7 @@ impl Evaluator for RanksRun<'_> {
                         .u64(range.end as u64)
                         .finish();
                     send(world, r, tag::JOBS, &message);
+                    count(message.len());
                     owed[r] = Some(range);
                 }
             };
@@ -379,6 +424,7 @@ impl Evaluator for RanksRun<'_> {
                     });
                     break;
                 };
+                count(bytes.len());
                 let Some(range) = owed.get(from).cloned().flatten() else {
                     failure.get_or_insert(EvaluationError::Rank {
                         rank: from,
@@ -417,6 +463,7 @@ impl Evaluator for RanksRun<'_> {
             };
             (local, failure)
         });
+        self.traffic.set(traffic.get());
         local?;
         if let Some(e) = remote {
             return Err(e);
@@ -431,6 +478,11 @@ impl Evaluator for RanksRun<'_> {
 }
 
 impl RanksRun<'_> {
+    /// Messages and bytes exchanged in this run.
+    pub fn traffic(&self) -> Traffic {
+        self.traffic.get()
+    }
+
     /// Jobs each rank has evaluated in this run, rank 0 first.
     pub fn jobs_per_rank(&self) -> Vec<u64> {
         self.done.lock().expect("done").clone()
