@@ -35,7 +35,9 @@ pub struct RunArgs {
     pub generations: Option<u64>,
     // Not `#[command(flatten)] ExecutionArgs`: clap leaves the top-level `Option<RunArgs>`
     // (the bare `berry-evolve FILE` form) as None when it holds a nested flatten.
-    /// Worker threads, 1 to 1024 (default: one per core). Results do not depend on it.
+    /// Worker threads, 1 to 1024 (default: one per core). Results do not depend on it. Under
+    /// `mpirun -np N` (a build with the `mpi` feature): threads per rank, and the generation's
+    /// evaluation is split across the N ranks, with the same results (docs/scale-out.md).
     #[arg(long, value_parser = parse_jobs)]
     pub jobs: Option<usize>,
     /// Print nothing but errors.
@@ -50,7 +52,8 @@ pub struct RunArgs {
 /// How a resumed run executes; none of it changes the results.
 #[derive(Debug, Args)]
 pub struct ExecutionArgs {
-    /// Worker threads, 1 to 1024 (default: one per core). Results do not depend on it.
+    /// Worker threads, 1 to 1024 (default: one per core). Results do not depend on it. Under
+    /// `mpirun -np N` (a build with the `mpi` feature): threads per rank, any N.
     #[arg(long, value_parser = parse_jobs)]
     pub jobs: Option<usize>,
     /// Print nothing but errors.

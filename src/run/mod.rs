@@ -231,7 +231,7 @@ pub enum RunError {
         /// What the user can do, naming the last good checkpoint if there is one.
         advice: String,
         /// What the rank did.
-        source: EvaluationError,
+        source: Box<EvaluationError>,
     },
     /// Stopped by the user (Ctrl-C / SIGTERM) after writing a checkpoint.
     #[error("interrupted after generation {generation}; the checkpoint {checkpoint} holds it. Continue with: berry-evolve resume {dir}")]
@@ -1123,7 +1123,7 @@ fn evaluation_failed(dir: &Path, source: EvaluationError) -> RunError {
     RunError::RankFailed {
         dir: dir.to_path_buf(),
         advice,
-        source,
+        source: Box::new(source),
     }
 }
 
