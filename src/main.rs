@@ -20,23 +20,26 @@ fn main() {
         errln!("error: {message}");
         std::process::exit(2);
     }
+    let cli = cli::Cli::parse();
     // Under mpirun (a build with the `mpi` feature): ranks other than 0 serve rank 0's
-    // evaluation jobs until it is done and exit here; rank 0 runs the command.
+    // evaluation jobs until it is done and exit here; rank 0 runs the command. (Every rank
+    // parses the command line first, so a mistyped one stops them all alike.)
     #[cfg(feature = "mpi")]
     let ranks = mpi_role();
     #[cfg(feature = "mpi")]
-    let ranks = ranks.as_ref();
+    let joined = ranks.as_ref();
     #[cfg(not(feature = "mpi"))]
-    let ranks = None;
-    let cli = cli::Cli::parse();
-    let result = cli::dispatch(cli, ranks).and_then(|()| match cli::console::stdout_error() {
+    let joined = None;
+    let result = cli::dispatch(cli, joined).and_then(|()| match cli::console::stdout_error() {
         Some(e) => Err(anyhow::anyhow!("cannot write to standard output: {e}")),
         None => Ok(()),
     });
     #[cfg(feature = "mpi")]
     if let Some(ranks) = ranks {
-        // Whatever the command did (finished, failed, was stopped): release the workers.
+        // Whatever the command did (finished, failed, was stopped): release the workers,
+        // then finalise MPI, before any exit below.
         ranks.stop_workers();
+        drop(ranks);
     }
     if let Err(error) = result {
         // A reader that closed the pipe (`berry-evolve inspect x.toml | head`) is not an error.

@@ -19,7 +19,7 @@
 //! a world cannot be built) answers with its error and rank 0 stops the run naming the rank.
 //! A rank that dies makes `mpirun` end every rank; rank 0 then stops at its last good
 //! checkpoint (the files are written atomically) and, if it was told to stop (the SIGTERM
-//! mpirun sends) while a rank still owed it jobs, says which rank. The waits poll with short
+//! mpirun sends) while a rank still owed it jobs, says which rank (see [`stop_grace`]). The waits poll with short
 //! sleeps instead of MPI's busy-waiting receive, so an idle rank leaves its cores to others.
 
 mod wire;
@@ -67,8 +67,19 @@ pub const PROGRAM: &str = concat!("berry-evolve ", env!("CARGO_PKG_VERSION"));
 const HELLO_TIMEOUT: Duration = Duration::from_secs(120);
 
 /// How long rank 0, told to stop, still waits for jobs a worker owes it before it stops
-/// the run naming that rank (mpirun kills every rank 1 s after its SIGTERM by default).
-const STOP_GRACE: Duration = Duration::from_millis(400);
+/// the run naming that rank. mpirun's SIGTERM to the ranks (after a rank died, or after its
+/// own SIGINT/SIGTERM) is followed by SIGKILL `odls_base_sigkill_timeout` seconds later
+/// (default 1; `mpirun --mca odls_base_sigkill_timeout 120` passes it to the ranks as
+/// `OMPI_MCA_odls_base_sigkill_timeout`): rank 0 waits for all but half a second of it, so
+/// that a slow but living rank can still finish the generation and a dead one is named.
+fn stop_grace() -> Duration {
+    let timeout = std::env::var("OMPI_MCA_odls_base_sigkill_timeout")
+        .ok()
+        .and_then(|t| t.trim().parse::<f64>().ok())
+        .filter(|t| t.is_finite() && *t > 0.0)
+        .unwrap_or(1.0);
+    Duration::from_secs_f64((timeout - 0.5).max(0.3))
+}
 
 /// Why the ranks could not start.
 #[derive(Debug, Error)]
@@ -171,7 +182,7 @@ impl Ranks {
     }
 
     /// The evaluator for one run: `jobs` threads per rank (0: one per core of each rank's
-    /// machine); `stop` is the run's stop flag (see [`STOP_GRACE`]).
+    /// machine); `stop` is the run's stop flag (see [`stop_grace`]).
     pub fn for_run<'a>(
         &'a self,
         jobs: usize,
@@ -388,10 +399,10 @@ impl Evaluator for RanksRun<'_> {
             let mut stop_seen: Option<Instant> = None;
             while owed.iter().any(Option::is_some) {
                 let grace = match (stop_seen, self.stop_requested()) {
-                    (Some(t), _) => Some(t + STOP_GRACE),
+                    (Some(t), _) => Some(t + stop_grace()),
                     (None, true) => {
                         stop_seen = Some(Instant::now());
-                        stop_seen.map(|t| t + STOP_GRACE)
+                        stop_seen.map(|t| t + stop_grace())
                     }
                     (None, false) => None,
                 };
