@@ -34,36 +34,45 @@ fn main() {
         Some(e) => Err(anyhow::anyhow!("cannot write to standard output: {e}")),
         None => Ok(()),
     });
+    let code = exit_code(result);
     #[cfg(feature = "mpi")]
     if let Some(ranks) = ranks {
-        // Whatever the command did (finished, failed, was stopped): release the workers,
-        // then finalise MPI, before any exit below.
+        // Whatever the command did (finished, failed, was stopped), after its message:
+        // release the workers, then finalise MPI.
         ranks.stop_workers();
         drop(ranks);
     }
-    if let Err(error) = result {
-        // A reader that closed the pipe (`berry-evolve inspect x.toml | head`) is not an error.
-        if error.chain().any(|c| {
-            c.downcast_ref::<std::io::Error>()
-                .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe)
-        }) {
-            std::process::exit(0);
-        }
-        // A deliberate Ctrl-C (or SIGTERM) that stopped the run after a checkpoint is not an
-        // error: say what happened and how to go on, and exit 130 as shells expect.
-        let interrupted = error
-            .downcast_ref::<berry_evolve::run::RunError>()
-            .is_some_and(|e| matches!(e, berry_evolve::run::RunError::Interrupted { .. }));
-        if interrupted {
-            errln!("stopped: {error}");
-            std::process::exit(130);
-        }
-        errln!("error: {error}");
-        for cause in error.chain().skip(1) {
-            errln!("  caused by: {cause}");
-        }
-        std::process::exit(1);
+    if code != 0 {
+        std::process::exit(code);
     }
+}
+
+/// Prints a failed command's error as a cause chain and returns the exit code.
+fn exit_code(result: anyhow::Result<()>) -> i32 {
+    let Err(error) = result else {
+        return 0;
+    };
+    // A reader that closed the pipe (`berry-evolve inspect x.toml | head`) is not an error.
+    if error.chain().any(|c| {
+        c.downcast_ref::<std::io::Error>()
+            .is_some_and(|e| e.kind() == std::io::ErrorKind::BrokenPipe)
+    }) {
+        return 0;
+    }
+    // A deliberate Ctrl-C (or SIGTERM) that stopped the run after a checkpoint is not an
+    // error: say what happened and how to go on, and exit 130 as shells expect.
+    let interrupted = error
+        .downcast_ref::<berry_evolve::run::RunError>()
+        .is_some_and(|e| matches!(e, berry_evolve::run::RunError::Interrupted { .. }));
+    if interrupted {
+        errln!("stopped: {error}");
+        return 130;
+    }
+    errln!("error: {error}");
+    for cause in error.chain().skip(1) {
+        errln!("  caused by: {cause}");
+    }
+    1
 }
 
 /// Joins the MPI job when started by mpirun: a worker rank serves and exits; rank 0 gets the

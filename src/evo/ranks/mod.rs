@@ -363,6 +363,23 @@ impl Evaluator for RanksRun<'_> {
         let close = || chunks.lock().expect("chunks").closed = true;
         let local_threads = self.threads_of(0);
         let pool = &self.pool;
+        let mut owed: Vec<Option<Range<usize>>> = vec![None; size];
+        let hand_out = |r: usize, owed: &mut Vec<Option<Range<usize>>>| {
+            if let Some(range) = take(self.threads_of(r)) {
+                let message = Writer::new()
+                    .u64(range.start as u64)
+                    .u64(range.end as u64)
+                    .finish();
+                send(world, r, tag::JOBS, &message);
+                count(message.len());
+                owed[r] = Some(range);
+            }
+        };
+        // The workers' first chunks before rank 0 starts on its own, which could otherwise
+        // take every job of a quick generation before the others hear of it.
+        for r in 1..size {
+            hand_out(r, &mut owed);
+        }
         let (local, remote) = std::thread::scope(|s| {
             // Rank 0's own share, on its own threads, while this thread talks to the others
             // (only this thread calls MPI).
@@ -380,21 +397,6 @@ impl Evaluator for RanksRun<'_> {
                     Ok(())
                 })
             });
-            let mut owed: Vec<Option<Range<usize>>> = vec![None; size];
-            let hand_out = |r: usize, owed: &mut Vec<Option<Range<usize>>>| {
-                if let Some(range) = take(self.threads_of(r)) {
-                    let message = Writer::new()
-                        .u64(range.start as u64)
-                        .u64(range.end as u64)
-                        .finish();
-                    send(world, r, tag::JOBS, &message);
-                    count(message.len());
-                    owed[r] = Some(range);
-                }
-            };
-            for r in 1..size {
-                hand_out(r, &mut owed);
-            }
             let mut failure: Option<EvaluationError> = None;
             let mut stop_seen: Option<Instant> = None;
             while owed.iter().any(Option::is_some) {
