@@ -2,6 +2,7 @@
 //! calling the library. Only this layer turns typed errors into messages.
 
 pub mod bench;
+pub mod cluster;
 pub mod compare;
 pub mod completions;
 pub mod config;
@@ -78,11 +79,12 @@ pub enum Command {
     Config(config::ConfigArgs),
 }
 
-/// Runs the parsed command line.
-pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
+/// Runs the parsed command line; `ranks`: the other MPI ranks, when started by `mpirun` (see
+/// [`cluster`]), which `run` and `resume` evaluate on.
+pub fn dispatch(cli: Cli, ranks: Option<&cluster::Ranks>) -> anyhow::Result<()> {
     match (cli.command, cli.run) {
-        (Some(Command::Run(args)), _) | (None, Some(args)) => run::run(args),
-        (Some(Command::Resume(args)), _) => resume::run(args),
+        (Some(Command::Run(args)), _) | (None, Some(args)) => run::run(args, ranks),
+        (Some(Command::Resume(args)), _) => resume::run(args, ranks),
         (Some(Command::ExportCsv(args)), _) => export::run(args),
         (Some(Command::Extract(args)), _) => extract::run(args),
         (Some(Command::Replay(args)), _) => replay::run(args),

@@ -1,5 +1,7 @@
 //! `berry-evolve resume`: continue a run from its newest good checkpoint (or a given one).
 
+use super::cluster::{evaluator, Ranks};
+use super::console::errln;
 use super::progress::reporter;
 use super::run::Interrupting;
 use super::run::{stop_flag, ExecutionArgs};
@@ -36,7 +38,7 @@ pub struct ResumeArgs {
 }
 
 /// Runs the subcommand.
-pub fn run(args: ResumeArgs) -> anyhow::Result<()> {
+pub fn run(args: ResumeArgs, ranks: Option<&Ranks>) -> anyhow::Result<()> {
     let at = resume_target(&args.target)
         .ok()
         .map(|(dir, _)| Interrupting {
@@ -50,6 +52,8 @@ pub fn run(args: ResumeArgs) -> anyhow::Result<()> {
         });
     let stop = stop_flag(at)?;
     let mut progress = reporter(args.execution.quiet);
+    let jobs = args.execution.jobs.unwrap_or(0);
+    let remote = evaluator(ranks, jobs, &stop)?;
     let result = resume_with(
         &args.target,
         ResumeRequest {
@@ -59,10 +63,17 @@ pub fn run(args: ResumeArgs) -> anyhow::Result<()> {
             shorten: args.shorten,
         },
         RunOptions {
-            jobs: args.execution.jobs.unwrap_or(0),
+            jobs,
             stop: Some(&stop),
+            evaluator: remote.as_deref(),
         },
         progress.as_mut(),
     );
-    run_report::finish(result, args.json, args.execution.quiet)
+    let outcome = run_report::finish(result, args.json, args.execution.quiet);
+    if !args.execution.quiet {
+        if let Some(note) = remote.as_deref().and_then(|e| e.report()) {
+            errln!("{note}");
+        }
+    }
+    outcome
 }

@@ -2,6 +2,7 @@
 
 use crate::cli::console::errln;
 
+use super::cluster::{evaluator, Ranks};
 use super::estimate;
 use super::progress::reporter;
 use super::run_report;
@@ -37,7 +38,9 @@ pub struct RunArgs {
     pub generations: Option<u64>,
     // Not `#[command(flatten)] ExecutionArgs`: clap leaves the top-level `Option<RunArgs>`
     // (the bare `berry-evolve FILE` form) as None when it holds a nested flatten.
-    /// Worker threads, 1 to 1024 (default: one per core). Results do not depend on it.
+    /// Worker threads, 1 to 1024 (default: one per core). Results do not depend on it. Under
+    /// `mpirun -np N` (a build with the `mpi` feature): threads per rank, and the generation's
+    /// evaluation is split across the N ranks, with the same results (docs/scale-out.md).
     #[arg(long, value_parser = parse_jobs)]
     pub jobs: Option<usize>,
     /// Print nothing but errors.
@@ -64,7 +67,8 @@ pub struct RunArgs {
 /// How a resumed run executes; none of it changes the results.
 #[derive(Debug, Args)]
 pub struct ExecutionArgs {
-    /// Worker threads, 1 to 1024 (default: one per core). Results do not depend on it.
+    /// Worker threads, 1 to 1024 (default: one per core). Results do not depend on it. Under
+    /// `mpirun -np N` (a build with the `mpi` feature): threads per rank, any N.
     #[arg(long, value_parser = parse_jobs)]
     pub jobs: Option<usize>,
     /// Print nothing but errors.
@@ -138,10 +142,10 @@ pub fn stop_flag(at: Option<Interrupting>) -> anyhow::Result<Arc<AtomicBool>> {
 }
 
 /// Runs the subcommand.
-pub fn run(args: RunArgs) -> anyhow::Result<()> {
+pub fn run(args: RunArgs, ranks: Option<&Ranks>) -> anyhow::Result<()> {
     if let Some(spec) = &args.seeds {
         let seeds = parse_seeds(spec)?;
-        return run_seeds(&args, &seeds);
+        return run_seeds(&args, &seeds, ranks);
     }
     let mut overrides = Experiment::load(&args.experiment)?.with_overrides();
     if let Some(seed) = args.seed {
@@ -172,17 +176,26 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     let line = announce(&experiment.name, &format!("seed {}", experiment.seed), &dir);
     let estimated = announced(reporter(args.quiet), &experiment, &args);
     let mut progress = announcing(estimated, args.quiet, Some(line));
+    let jobs = args.jobs.unwrap_or(0);
+    let remote = evaluator(ranks, jobs, &stop)?;
     let result = start(
         experiment,
         &dir,
         args.force,
         RunOptions {
-            jobs: args.jobs.unwrap_or(0),
+            jobs,
             stop: Some(&stop),
+            evaluator: remote.as_deref(),
         },
         progress.as_mut(),
     );
-    run_report::finish(result, args.json, args.quiet)
+    let outcome = run_report::finish(result, args.json, args.quiet);
+    if !args.quiet {
+        if let Some(note) = remote.as_deref().and_then(|e| e.report()) {
+            errln!("{note}");
+        }
+    }
+    outcome
 }
 
 /// `progress`, preceded by the estimate and the long-run warning unless --no-estimate.
@@ -325,7 +338,7 @@ pub fn parse_seeds(spec: &str) -> anyhow::Result<Vec<u64>> {
 }
 
 /// `run --seeds`: each seed in turn in `<out>/seed-<s>/`, one line per seed on stdout.
-fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
+fn run_seeds(args: &RunArgs, seeds: &[u64], ranks: Option<&Ranks>) -> anyhow::Result<()> {
     let experiment = Experiment::load(&args.experiment)?;
     let base = match &args.out {
         Some(out) => out.clone(),
@@ -358,6 +371,8 @@ fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
         }
     }
     let mut report = run_report::SeedsReport::new(args.json);
+    let jobs = args.jobs.unwrap_or(0);
+    let remote = evaluator(ranks, jobs, &stop)?;
     for &seed in seeds {
         let mut overrides = experiment.with_overrides().seed(seed);
         if let Some(g) = args.generations {
@@ -371,8 +386,9 @@ fn run_seeds(args: &RunArgs, seeds: &[u64]) -> anyhow::Result<()> {
         })?;
         let dir = base.join(format!("seed-{seed}"));
         let options = RunOptions {
-            jobs: args.jobs.unwrap_or(0),
+            jobs,
             stop: Some(&stop),
+            evaluator: remote.as_deref(),
         };
         let mut progress = announcing(reporter(args.quiet), args.quiet, line.take());
         let continued = !args.force && dir.join(berry_evolve::run::EXPERIMENT_FILE).exists();

@@ -8,8 +8,9 @@
 //! (with stateless brains, several trials of a group at once in lockstep, see
 //! [`crate::evo::lockstep`]), collects them in index order and reduces them serially, so the
 //! result is the same bits for any number of threads, and the same as evaluating one group at
-//! a time with [`evaluate_group`] (which a later distributed runner can call on another
-//! machine).
+//! a time with [`evaluate_group`]. The generation's jobs ([`PopulationJobs`]) can run on
+//! this process's threads ([`ThisProcess`]) or on other processes ([`Evaluator`]; the `mpi`
+//! feature's ranks), with the same bits.
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
@@ -182,19 +183,243 @@ pub fn evaluate_group(
         .collect())
 }
 
-/// Evaluates a whole population in parallel on the current rayon pool. With a stateless
-/// brain (an MLP), each job is one group and a chunk of up to
-/// [`lockstep::CHUNK_TRIALS`] of its trials run in lockstep ([`lockstep::run_trials`]: one
-/// brain per genome, batched over the chunk's worlds); otherwise each (group, trial) pair is
-/// one job ([`run_trial`]). Either way, results are collected in index order and aggregated
-/// serially, so they are the same bits on any number of threads and on either path.
+/// One evaluation job of a generation: a group's chunk of trials lived in lockstep
+/// (stateless brains), or one (group, trial) pair.
+#[derive(Debug, Clone, PartialEq)]
+enum Job {
+    /// Group `group`'s trials `trials`, in lockstep ([`lockstep::run_trials_in`]).
+    Chunk {
+        group: usize,
+        trials: std::ops::Range<u64>,
+    },
+    /// Group `group`'s trial `trial` alone ([`run_trial`]).
+    Trial { group: usize, trial: u64 },
+}
+
+/// What one job returns: per trial of the job, in trial order, one outcome per genome of its
+/// group.
+pub type JobLives = Vec<Vec<TrialOutcome>>;
+
+/// The evaluation jobs of one generation, numbered `0..len()`. Any job can run anywhere
+/// ([`PopulationJobs::run`] is a pure function of the job's number, the experiment, the
+/// population and the generation); [`PopulationJobs::reduce`] combines their results in job
+/// order, so where and in which order they ran changes no bit. This is the seam between the
+/// generation and where its work runs: this process's threads ([`ThisProcess`]) or, with the
+/// `mpi` feature, other processes (`crate::evo::ranks`).
+pub struct PopulationJobs<'a> {
+    experiment: &'a Experiment,
+    topology: &'a Topology,
+    population: &'a [Genome],
+    generation: Generation,
+    shared: Option<Vec<World>>,
+    jobs: Vec<Job>,
+    on_job: JobDone<'a>,
+}
+
+impl<'a> PopulationJobs<'a> {
+    /// The jobs of evaluating `population` as generation `generation`: with a stateless brain
+    /// (an MLP) one per group and chunk of up to [`lockstep::CHUNK_TRIALS`] trials, otherwise
+    /// one per (group, trial) pair; group-major. Builds the shared trial worlds once (see
+    /// [`shared_worlds`]).
+    pub fn new(
+        experiment: &'a Experiment,
+        topology: &'a Topology,
+        population: &'a [Genome],
+        generation: Generation,
+    ) -> Result<Self, EvaluationError> {
+        let k = experiment.evaluation.group_size as usize;
+        let trials = experiment.evaluation.trials;
+        let groups = population.len() / k;
+        let shared = shared_worlds(experiment, k, generation)?;
+        let jobs = if lockstep::stateless(topology) {
+            let chunks = lockstep::chunks(trials);
+            (0..groups)
+                .flat_map(|group| {
+                    chunks.iter().map(move |c| Job::Chunk {
+                        group,
+                        trials: c.clone(),
+                    })
+                })
+                .collect()
+        } else {
+            (0..groups)
+                .flat_map(|group| (0..trials).map(move |trial| Job::Trial { group, trial }))
+                .collect()
+        };
+        Ok(PopulationJobs {
+            experiment,
+            topology,
+            population,
+            generation,
+            shared,
+            jobs,
+            on_job: None,
+        })
+    }
+
+    /// The same jobs, calling `on_job` as each finishes (see [`JobDone`]).
+    pub fn watched(self, on_job: JobDone<'a>) -> Self {
+        PopulationJobs { on_job, ..self }
+    }
+
+    /// Tells the [`JobDone`] hook (if any) that `count` jobs finished, e.g. jobs another
+    /// process ran.
+    pub fn jobs_done(&self, count: usize) {
+        if let Some(f) = self.on_job {
+            (0..count).for_each(|_| f());
+        }
+    }
+
+    /// The number of jobs.
+    pub fn len(&self) -> usize {
+        self.jobs.len()
+    }
+
+    /// True when there is no job (an empty population).
+    pub fn is_empty(&self) -> bool {
+        self.jobs.is_empty()
+    }
+
+    /// The experiment evaluated.
+    pub fn experiment(&self) -> &'a Experiment {
+        self.experiment
+    }
+
+    /// The population evaluated.
+    pub fn population(&self) -> &'a [Genome] {
+        self.population
+    }
+
+    /// The generation evaluated.
+    pub fn generation(&self) -> Generation {
+        self.generation
+    }
+
+    /// The shape of job `index`'s result: (trials, genomes per trial).
+    pub fn shape(&self, index: usize) -> (usize, usize) {
+        let k = self.experiment.evaluation.group_size as usize;
+        match &self.jobs[index] {
+            Job::Chunk { trials, .. } => ((trials.end - trials.start) as usize, k),
+            Job::Trial { .. } => (1, k),
+        }
+    }
+
+    /// Runs job `index` on the calling thread.
+    pub fn run(&self, index: usize) -> Result<JobLives, EvaluationError> {
+        let k = self.experiment.evaluation.group_size as usize;
+        let shared = self.shared.as_deref();
+        match &self.jobs[index] {
+            Job::Chunk { group, trials } => lockstep::run_trials_in(
+                self.experiment,
+                self.topology,
+                &self.population[group * k..(group + 1) * k],
+                self.generation,
+                *group as u64,
+                trials.clone(),
+                shared,
+            ),
+            Job::Trial { group, trial } => {
+                let genomes = &self.population[group * k..(group + 1) * k];
+                let lives = match shared {
+                    Some(worlds) => {
+                        let world = worlds[*trial as usize].clone();
+                        run_trial_in(
+                            self.experiment,
+                            self.topology,
+                            genomes,
+                            *group as u64,
+                            world,
+                        )
+                    }
+                    None => run_trial(
+                        self.experiment,
+                        self.topology,
+                        genomes,
+                        self.generation,
+                        *group as u64,
+                        TrialIndex(*trial),
+                    ),
+                }?;
+                Ok(vec![lives])
+            }
+        }
+    }
+
+    /// Runs jobs `range` in parallel on the current rayon pool, one job per leaf of its split
+    /// (see [`JOBS_APART`]); results in job order.
+    pub fn run_range(
+        &self,
+        range: std::ops::Range<usize>,
+    ) -> Result<Vec<JobLives>, EvaluationError> {
+        range
+            .into_par_iter()
+            .with_max_len(JOBS_APART)
+            .map(|index| {
+                let lives = self.run(index);
+                self.jobs_done(1);
+                lives
+            })
+            .collect()
+    }
+
+    /// The population's evaluations from every job's result (`per_job[j]` is job j's), reduced
+    /// serially in index order.
+    pub fn reduce(&self, per_job: Vec<JobLives>) -> Vec<Evaluation> {
+        let k = self.experiment.evaluation.group_size as usize;
+        let trials = self.experiment.evaluation.trials as usize;
+        // outcomes[g * trials + t][i] is individual g*k + i's life in trial t.
+        let outcomes: Vec<Vec<TrialOutcome>> = per_job.into_iter().flatten().collect();
+        let mut evaluations = Vec::with_capacity(self.population.len());
+        let mut trial_list = Vec::with_capacity(trials);
+        for group_trials in outcomes.chunks(trials) {
+            for i in 0..k {
+                trial_list.clear();
+                trial_list.extend(group_trials.iter().map(|outcome| outcome[i]));
+                evaluations.push(aggregate(self.experiment, &trial_list));
+            }
+        }
+        evaluations
+    }
+}
+
+/// Where a generation's jobs run. Every implementation returns each job's
+/// [`PopulationJobs::run`] result, in job order; none may change a bit.
+pub trait Evaluator {
+    /// Runs all of `jobs` and returns their results in job order.
+    fn run_jobs(&self, jobs: &PopulationJobs<'_>) -> Result<Vec<JobLives>, EvaluationError>;
+
+    /// What it did so far, for the user (e.g. jobs per rank); `None`: nothing to say.
+    fn report(&self) -> Option<String> {
+        None
+    }
+}
+
+/// Runs every job on this process's current rayon pool.
+pub struct ThisProcess;
+
+impl Evaluator for ThisProcess {
+    fn run_jobs(&self, jobs: &PopulationJobs<'_>) -> Result<Vec<JobLives>, EvaluationError> {
+        jobs.run_range(0..jobs.len())
+    }
+}
+
+/// Evaluates a whole population in parallel on the current rayon pool (see
+/// [`PopulationJobs`]): results are collected in index order and aggregated serially, so
+/// they are the same bits on any number of threads and on either trial path.
 pub fn evaluate_population(
     experiment: &Experiment,
     topology: &Topology,
     population: &[Genome],
     generation: Generation,
 ) -> Result<Vec<Evaluation>, EvaluationError> {
-    evaluate_population_watched(experiment, topology, population, generation, None)
+    evaluate_population_on(
+        &ThisProcess,
+        experiment,
+        topology,
+        population,
+        generation,
+        None,
+    )
 }
 
 /// Told of each evaluation job as it finishes, from whichever worker thread ran it and in
@@ -204,7 +429,7 @@ pub type JobDone<'a> = Option<&'a (dyn Fn() + Sync)>;
 
 /// How many jobs [`evaluate_population`] splits `individuals` individuals into (what a
 /// [`JobDone`] is called that many times for): per group, one per lockstep chunk of trials
-/// with a stateless brain, one per trial otherwise.
+/// with a stateless brain, one per trial otherwise (the jobs of [`PopulationJobs`]).
 pub fn evaluation_jobs(experiment: &Experiment, topology: &Topology, individuals: usize) -> u64 {
     let groups = (individuals as u64) / experiment.evaluation.group_size.max(1);
     let trials = experiment.evaluation.trials;
@@ -225,79 +450,29 @@ pub fn evaluate_population_watched(
     generation: Generation,
     on_job: JobDone<'_>,
 ) -> Result<Vec<Evaluation>, EvaluationError> {
-    let done = || {
-        if let Some(f) = on_job {
-            f();
-        }
-    };
-    let k = experiment.evaluation.group_size as usize;
-    let trials = experiment.evaluation.trials;
-    let groups = population.len() / k;
-    let shared = shared_worlds(experiment, k, generation)?;
-    let shared = shared.as_deref();
-    // outcomes[g * trials + t][i] is individual g*k + i's life in trial t.
-    let outcomes: Vec<Vec<TrialOutcome>> = if lockstep::stateless(topology) {
-        let chunks = lockstep::chunks(trials);
-        let jobs: Vec<(usize, std::ops::Range<u64>)> = (0..groups)
-            .flat_map(|g| chunks.iter().map(move |c| (g, c.clone())))
-            .collect();
-        // One job per leaf of rayon's split (see JOBS_APART).
-        let per_job: Vec<Vec<Vec<TrialOutcome>>> = jobs
-            .par_iter()
-            .with_max_len(JOBS_APART)
-            .map(|(g, chunk)| {
-                let lives = lockstep::run_trials_in(
-                    experiment,
-                    topology,
-                    &population[g * k..(g + 1) * k],
-                    generation,
-                    *g as u64,
-                    chunk.clone(),
-                    shared,
-                );
-                done();
-                lives
-            })
-            .collect::<Result<_, _>>()?;
-        per_job.into_iter().flatten().collect()
-    } else {
-        let jobs: Vec<(usize, u64)> = (0..groups)
-            .flat_map(|g| (0..trials).map(move |t| (g, t)))
-            .collect();
-        jobs.par_iter()
-            .with_max_len(JOBS_APART)
-            .map(|&(g, t)| {
-                let genomes = &population[g * k..(g + 1) * k];
-                let lives = match shared {
-                    Some(worlds) => {
-                        let world = worlds[t as usize].clone();
-                        run_trial_in(experiment, topology, genomes, g as u64, world)
-                    }
-                    None => run_trial(
-                        experiment,
-                        topology,
-                        genomes,
-                        generation,
-                        g as u64,
-                        TrialIndex(t),
-                    ),
-                };
-                done();
-                lives
-            })
-            .collect::<Result<_, _>>()?
-    };
-    // Serial reduction in index order.
-    let mut evaluations = Vec::with_capacity(population.len());
-    let mut trial_list = Vec::with_capacity(trials as usize);
-    for group_trials in outcomes.chunks(trials as usize) {
-        for i in 0..k {
-            trial_list.clear();
-            trial_list.extend(group_trials.iter().map(|outcome| outcome[i]));
-            evaluations.push(aggregate(experiment, &trial_list));
-        }
-    }
-    Ok(evaluations)
+    evaluate_population_on(
+        &ThisProcess,
+        experiment,
+        topology,
+        population,
+        generation,
+        on_job,
+    )
+}
+
+/// [`evaluate_population_watched`] with the jobs run by `evaluator`: the same bits wherever
+/// they run.
+pub fn evaluate_population_on(
+    evaluator: &dyn Evaluator,
+    experiment: &Experiment,
+    topology: &Topology,
+    population: &[Genome],
+    generation: Generation,
+    on_job: JobDone<'_>,
+) -> Result<Vec<Evaluation>, EvaluationError> {
+    let jobs = PopulationJobs::new(experiment, topology, population, generation)?.watched(on_job);
+    let lives = evaluator.run_jobs(&jobs)?;
+    Ok(jobs.reduce(lives))
 }
 
 /// Builds `trials` worlds for one creature each from `rng_of(t)`, in trial order (e.g. the

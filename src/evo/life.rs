@@ -38,6 +38,14 @@ pub enum EvaluationError {
         /// The placement failure.
         error: crate::sim::PlacementError,
     },
+    /// Another process (an MPI rank) could not evaluate its share, or could not take part.
+    #[error("rank {rank} {what}")]
+    Rank {
+        /// The rank, from 1 (rank 0 is the process that owns the run folder).
+        rank: usize,
+        /// What went wrong, as a clause: "could not evaluate ...: ...".
+        what: String,
+    },
 }
 
 /// One individual's life in one trial world.

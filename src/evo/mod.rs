@@ -11,6 +11,8 @@ pub mod life;
 pub mod lineage;
 pub mod lockstep;
 pub mod pgpe;
+#[cfg(feature = "mpi")]
+pub mod ranks;
 pub mod select;
 pub mod state;
 pub mod stats;

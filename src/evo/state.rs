@@ -5,7 +5,7 @@
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
-use crate::evo::evaluate::{evaluate_population_watched, Evaluation, JobDone};
+use crate::evo::evaluate::{evaluate_population_on, Evaluation, Evaluator, JobDone, ThisProcess};
 use crate::evo::init::initial_population;
 use crate::evo::life::EvaluationError;
 use crate::evo::lineage::{Birth, Lineage};
@@ -318,7 +318,14 @@ pub fn evaluate(
     generation: u64,
     population: Vec<Genome>,
 ) -> Result<EvaluatedGeneration, EvaluationError> {
-    evaluate_watched(experiment, topology, generation, population, None)
+    evaluate_on(
+        &ThisProcess,
+        experiment,
+        topology,
+        generation,
+        population,
+        None,
+    )
 }
 
 /// [`evaluate`], telling `on_job` of each evaluation job as it finishes (see [`JobDone`]).
@@ -329,7 +336,28 @@ pub fn evaluate_watched(
     population: Vec<Genome>,
     on_job: JobDone<'_>,
 ) -> Result<EvaluatedGeneration, EvaluationError> {
-    let evaluations = evaluate_population_watched(
+    evaluate_on(
+        &ThisProcess,
+        experiment,
+        topology,
+        generation,
+        population,
+        on_job,
+    )
+}
+
+/// [`evaluate_watched`] with the evaluation jobs run by `evaluator` (e.g. MPI ranks): the
+/// same bits.
+pub fn evaluate_on(
+    evaluator: &dyn Evaluator,
+    experiment: &Experiment,
+    topology: &Topology,
+    generation: u64,
+    population: Vec<Genome>,
+    on_job: JobDone<'_>,
+) -> Result<EvaluatedGeneration, EvaluationError> {
+    let evaluations = evaluate_population_on(
+        evaluator,
         experiment,
         topology,
         &population,

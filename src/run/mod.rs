@@ -10,11 +10,11 @@ pub mod lock;
 mod champions;
 
 use crate::brain::spec::Topology;
-use crate::evo::evaluate::evaluation_jobs;
+use crate::evo::evaluate::{evaluation_jobs, Evaluator};
 use crate::evo::life::EvaluationError;
 use crate::evo::state::{
-    evaluate_watched, first_generation, improved_champion_for, next_generation_of, Champion,
-    EvaluatedGeneration, GenerationSummary, SearchState, Unevaluated,
+    evaluate_on, evaluate_watched, first_generation, improved_champion_for, next_generation_of,
+    Champion, EvaluatedGeneration, GenerationSummary, SearchState, Unevaluated,
 };
 use crate::evo::validation::{self, ValidatedChampion};
 use crate::experiment::diff::changed_keys;
@@ -233,6 +233,16 @@ pub enum RunError {
         /// The write that failed.
         source: Box<RunError>,
     },
+    /// Another MPI rank could not evaluate its share (or stopped answering); the run stopped.
+    #[error("the run in {dir} stopped: an MPI rank failed. {advice}")]
+    RankFailed {
+        /// The run folder.
+        dir: PathBuf,
+        /// What the user can do, naming the last good checkpoint if there is one.
+        advice: String,
+        /// What the rank did.
+        source: Box<EvaluationError>,
+    },
     /// Stopped by the user (Ctrl-C / SIGTERM) after writing a checkpoint.
     #[error("interrupted after generation {generation}; the checkpoint {checkpoint} holds it. Continue with: {program} resume {dir}", program = crate::invocation::program())]
     Interrupted {
@@ -287,6 +297,9 @@ pub struct RunOptions<'a> {
     pub jobs: usize,
     /// Set to true (e.g. by a signal handler) to stop after the current generation.
     pub stop: Option<&'a AtomicBool>,
+    /// Where each generation's evaluation jobs run, when not on this process's `jobs`
+    /// threads (e.g. MPI ranks, `crate::evo::ranks`); `None`: here.
+    pub evaluator: Option<&'a dyn Evaluator>,
 }
 
 /// What a finished run reports.
@@ -1159,12 +1172,39 @@ impl Loop {
     }
 }
 
+/// The newest checkpoint of `dir` that loads.
+fn newest_good_checkpoint(dir: &Path) -> Option<PathBuf> {
+    checkpoint::load_latest_good::<CheckpointPayload>(&dir.join(CHECKPOINT_DIR), None)
+        .ok()
+        .map(|loaded| loaded.path)
+}
+
+/// Wraps a failed evaluation of the generation loop: a failed rank with what the user can do
+/// about it (the other errors are the experiment's and say so themselves).
+fn evaluation_failed(dir: &Path, source: EvaluationError) -> RunError {
+    if !matches!(source, EvaluationError::Rank { .. }) {
+        return source.into();
+    }
+    let advice = match newest_good_checkpoint(dir) {
+        Some(path) => format!(
+            "The last good checkpoint, {}, is kept; continue with: {} resume {} \
+             (under mpirun with any number of ranks, or without: the results are the same)",
+            path.display(),
+            crate::invocation::program(),
+            dir.display()
+        ),
+        None => "No checkpoint was written yet; start the run again with --force".to_string(),
+    };
+    RunError::RankFailed {
+        dir: dir.to_path_buf(),
+        advice,
+        source: Box::new(source),
+    }
+}
+
 /// Wraps a failed write of the generation loop with what the user can do about it.
 fn output_failed(dir: &Path, source: RunError) -> RunError {
-    let newest = checkpoint::load_latest_good::<CheckpointPayload>(&dir.join(CHECKPOINT_DIR), None)
-        .ok()
-        .map(|loaded| loaded.path);
-    let advice = match newest {
+    let advice = match newest_good_checkpoint(dir) {
         Some(path) => format!(
             "The last good checkpoint, {}, is kept. Fix the cause below (disk space, permissions, \
              the folder) and continue with: {} resume {}",
@@ -1207,17 +1247,28 @@ fn drive(
     progress.begin(state.next_generation, total);
     let mut generation = state.next_generation;
     loop {
-        let evaluated = pool
-            .install(|| {
+        let on_job = on_job.as_deref().map(|f| f as &(dyn Fn() + Sync));
+        let evaluated = match options.evaluator {
+            Some(evaluator) => evaluate_on(
+                evaluator,
+                &state.experiment,
+                &state.topology,
+                generation,
+                population.genomes,
+                on_job,
+            )
+            .map_err(|e| evaluation_failed(&state.dir, e))?,
+            None => pool.install(|| {
                 evaluate_watched(
                     &state.experiment,
                     &state.topology,
                     generation,
                     population.genomes,
-                    on_job.as_deref().map(|f| f as &(dyn Fn() + Sync)),
+                    on_job,
                 )
-            })?
-            .with_lineage(population.lineage);
+            })?,
+        }
+        .with_lineage(population.lineage);
         let summary = evaluated.summary();
         let improved = improved_champion_for(
             &state.experiment,

@@ -495,6 +495,7 @@ fn fitness_csv_carries_measure_columns() {
         berry_evolve::run::RunOptions {
             jobs: 1,
             stop: None,
+            evaluator: None,
         },
         &mut berry_evolve::run::Silent,
     )

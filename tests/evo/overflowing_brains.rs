@@ -119,6 +119,7 @@ fn a_run_whose_population_overflows_continues_with_a_clean_fitness_csv() {
         RunOptions {
             jobs: 1,
             stop: None,
+            evaluator: None,
         },
         &mut Silent,
     )
@@ -146,6 +147,7 @@ fn a_run_whose_population_overflows_continues_with_a_clean_fitness_csv() {
         RunOptions {
             jobs: 2,
             stop: None,
+            evaluator: None,
         },
         &mut Silent,
     )

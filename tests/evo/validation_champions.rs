@@ -122,7 +122,11 @@ fn run_dir(name: &str) -> PathBuf {
 }
 
 fn options(jobs: usize) -> RunOptions<'static> {
-    RunOptions { jobs, stop: None }
+    RunOptions {
+        jobs,
+        stop: None,
+        evaluator: None,
+    }
 }
 
 fn last_payload(dir: &Path) -> CheckpointPayload {
@@ -185,6 +189,7 @@ fn validation_keeps_the_thread_count_and_resume_guarantees() {
         RunOptions {
             jobs: 2,
             stop: Some(&stop),
+            evaluator: None,
         },
         &mut Silent,
     );

@@ -211,6 +211,7 @@ fn real_checkpoint() -> Vec<u8> {
         RunOptions {
             jobs: 1,
             stop: None,
+            evaluator: None,
         },
         &mut Silent,
     )
@@ -363,6 +364,7 @@ fn real_run(tmp: &Path) -> (Vec<u8>, Vec<u8>) {
         RunOptions {
             jobs: 1,
             stop: None,
+            evaluator: None,
         },
         &mut Silent,
     )
@@ -404,6 +406,7 @@ fn resume_never_panics_on_re_signed_edited_checkpoints() {
             let options = RunOptions {
                 jobs: 1,
                 stop: None,
+                evaluator: None,
             };
             run::resume(&dir, Some(3), false, options, &mut Silent).map(|_| ())
         });
@@ -458,6 +461,7 @@ fn resume_refuses_a_checkpoint_whose_genomes_do_not_fit_its_experiment() {
         let options = RunOptions {
             jobs: 1,
             stop: None,
+            evaluator: None,
         };
         let message = run::resume(&dir, Some(3), false, options, &mut Silent)
             .expect_err("edited checkpoint accepted")
