@@ -179,7 +179,7 @@ mod tests {
 
     #[test]
     fn closest_word_only_when_near() {
-        let known = vec!["population".to_string(), "generations".to_string()];
+        let known = ["population".to_string(), "generations".to_string()];
         assert_eq!(
             closest("populaton", known.iter().map(String::as_str)),
             Some("population")
