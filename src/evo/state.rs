@@ -244,14 +244,11 @@ pub fn first_genomes(experiment: &Experiment, topology: &Topology, n: usize) -> 
         None => {
             let mut spec = experiment.evolution.clone();
             spec.population = n;
-            let mut rng = stream(
-                experiment.seed(),
-                Purpose::Initialisation,
-                Generation(0),
-                IndividualId(0),
-                TrialIndex(0),
-            );
-            initial_population(&spec, topology.parameter_count(), &mut rng)
+            initial_population(
+                &spec,
+                topology.parameter_count(),
+                &mut initialisation(experiment),
+            )
         }
         // The whole generation (PGPE's ends with its centre).
         Some(_) if n == experiment.evolution.evaluated_per_generation() => {
@@ -268,16 +265,24 @@ pub fn first_genomes(experiment: &Experiment, topology: &Topology, n: usize) -> 
     genomes
 }
 
-/// Generation 0: drawn from the seed's initialisation stream.
-pub fn first_population(experiment: &Experiment, topology: &Topology) -> Vec<Genome> {
-    let mut rng = stream(
+/// The seed's initialisation stream, which generation 0 is drawn from.
+fn initialisation(experiment: &Experiment) -> crate::seed::Rng {
+    stream(
         experiment.seed(),
         Purpose::Initialisation,
         Generation(0),
         IndividualId(0),
         TrialIndex(0),
-    );
-    initial_population(&experiment.evolution, topology.parameter_count(), &mut rng)
+    )
+}
+
+/// Generation 0: drawn from the seed's initialisation stream.
+pub fn first_population(experiment: &Experiment, topology: &Topology) -> Vec<Genome> {
+    initial_population(
+        &experiment.evolution,
+        topology.parameter_count(),
+        &mut initialisation(experiment),
+    )
 }
 
 /// Generation g + 1 from evaluated generation g, drawn from the variation stream of g.

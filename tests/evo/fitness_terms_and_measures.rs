@@ -109,14 +109,7 @@ fn at(x: f64, y: f64) -> Step {
 /// Lives `path` in the experiment's world as evaluation does (stopping when the creature
 /// dies) and returns its score and measures.
 fn live(e: &Experiment, path: &[Step]) -> (f64, [f64; MEASURE_COUNT], World) {
-    let rng = stream(
-        Seed(1),
-        Purpose::Demo,
-        Generation(0),
-        IndividualId(0),
-        TrialIndex(0),
-    );
-    let mut world = World::new(&e.world, &e.creature, 1, rng).unwrap();
+    let mut world = demo_world(e);
     let plan = LifePlan::new(e, &world);
     plan.prepare(&mut world);
     let mut score = LifeScore::start(&plan, &world, 0);
@@ -143,6 +136,18 @@ fn live(e: &Experiment, path: &[Step]) -> (f64, [f64; MEASURE_COUNT], World) {
     }
     let (s, m) = score.finish_in(&plan, &world, 0);
     (s, m, world)
+}
+
+/// The experiment's world with one creature, from the demo stream of seed 1.
+fn demo_world(e: &Experiment) -> World {
+    let rng = stream(
+        Seed(1),
+        Purpose::Demo,
+        Generation(0),
+        IndividualId(0),
+        TrialIndex(0),
+    );
+    World::new(&e.world, &e.creature, 1, rng).unwrap()
 }
 
 fn measure(values: &[f64; MEASURE_COUNT], m: Measure) -> f64 {
@@ -530,19 +535,7 @@ weights = [0.0, 0.0, 0.0, 0.0]
 forward_bonus = 0.5
 "#,
     );
-    let rng = stream(
-        Seed(1),
-        Purpose::Demo,
-        Generation(0),
-        IndividualId(0),
-        TrialIndex(0),
-    );
-    let x0 = World::new(&e.world, &e.creature, 1, rng)
-        .unwrap()
-        .creatures()[0]
-        .pose
-        .position
-        .x;
+    let x0 = demo_world(&e).creatures()[0].pose.position.x;
     // Facing +x all along: 50 − x0 and 10 forward, 5 back (nothing), 30 sideways (nothing),
     // 15 forward.
     let path = [
@@ -580,14 +573,7 @@ forward_bonus = 1.0
 "#,
     );
     for (signal, forward) in [(0.1, true), (-0.1, false)] {
-        let rng = stream(
-            Seed(1),
-            Purpose::Demo,
-            Generation(0),
-            IndividualId(0),
-            TrialIndex(0),
-        );
-        let mut world = World::new(&e.world, &e.creature, 1, rng).unwrap();
+        let mut world = demo_world(&e);
         let plan = LifePlan::new(&e, &world);
         let mut score = LifeScore::start(&plan, &world, 0);
         let start = world.creatures()[0].pose.position;
