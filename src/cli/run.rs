@@ -367,6 +367,12 @@ fn run_seeds(args: &RunArgs, seeds: &[u64], ranks: Option<&Ranks>) -> anyhow::Re
             overrides = overrides.generations(g);
         }
         if let Ok(e) = overrides.build() {
+            // What runs and where comes before the batch's estimate.
+            if !args.no_estimate && !args.quiet {
+                if let Some(line) = line.take() {
+                    errln!("{line}");
+                }
+            }
             announce_batch(&e, args, seeds.len());
         }
     }
