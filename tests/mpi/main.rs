@@ -272,27 +272,34 @@ fn foraging_reference(t: &Path) -> (PathBuf, PathBuf) {
     (experiment, reference)
 }
 
-#[test]
-fn a_killed_rank_stops_the_run_and_resume_on_one_rank_gives_the_plain_bytes() {
-    let tmp = tempfile::tempdir().unwrap();
-    let (experiment, reference) = foraging_reference(tmp.path());
-    let dir = tmp.path().join("killed-rank");
-    let mut child = mpirun(3)
+/// `ranks` ranks running the foraging experiment for 30 generations into `dir`, once its
+/// third checkpoint is there (stderr piped, for the test to read).
+fn started_foraging_run(ranks: usize, experiment: &Path, dir: &Path) -> std::process::Child {
+    let mut child = mpirun(ranks)
         .args([
             "run",
-            path(&experiment),
+            path(experiment),
             "--generations",
             "30",
             "--jobs",
             "1",
             "--out",
-            path(&dir),
+            path(dir),
         ])
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
     wait_for(&dir.join("checkpoints/gen-000003.json"), &mut child);
+    child
+}
+
+#[test]
+fn a_killed_rank_stops_the_run_and_resume_on_one_rank_gives_the_plain_bytes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (experiment, reference) = foraging_reference(tmp.path());
+    let dir = tmp.path().join("killed-rank");
+    let child = started_foraging_run(3, &experiment, &dir);
     signal(rank_pid(2, path(&dir)), "-KILL");
     let out = child.wait_with_output().unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
@@ -323,22 +330,7 @@ fn sigint_to_mpirun_stops_after_the_generation_and_three_ranks_resume() {
     let tmp = tempfile::tempdir().unwrap();
     let (experiment, reference) = foraging_reference(tmp.path());
     let dir = tmp.path().join("interrupted");
-    let mut child = mpirun(2)
-        .args([
-            "run",
-            path(&experiment),
-            "--generations",
-            "30",
-            "--jobs",
-            "1",
-            "--out",
-            path(&dir),
-        ])
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    wait_for(&dir.join("checkpoints/gen-000003.json"), &mut child);
+    let child = started_foraging_run(2, &experiment, &dir);
     // mpirun passes it on to every rank as SIGTERM (after 1 s): rank 0 finishes the
     // generation, writes its checkpoint and releases the workers.
     signal(child.id(), "-INT");
