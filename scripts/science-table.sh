@@ -17,7 +17,8 @@
 # run on one core while the other core runs another; a run alone with --jobs 2 is faster.
 #
 # The experiment lists (one per helper, tab-separated: experiment, ablation, baseline,
-# behaviour command, optional measures to show) are data files, so that each helper edits
+# behaviour command, optional measures to show) are data files; a behaviour command of
+# `compare` takes the measures the experiment file's [behaviour] names from compare's JSON, so that each helper edits
 # only its own lines:
 LISTS=(scripts/science-table.tsv scripts/science-table-design2.tsv)
 set -euo pipefail
@@ -80,18 +81,25 @@ def compare(experiment, genomes, random):
                          capture_output=True, text=True, check=True).stdout
     report = json.loads(out)
     fit = {g["path"]: nan_if_none(g["fitness"]) for g in report["genomes"]}
+    # The experiment's own [behaviour] measures, each averaged over the genome's trials.
+    measures = {g["path"]: {k: nan_if_none(v) for k, v in g["measures"].items()}
+                for g in report["genomes"]}
     rnd = None
     if report["random"]:
         stats = report["random"]["fitness"]
         rnd = (stats["median"], stats["best"])
-    return fit, rnd
+    return fit, rnd, measures
 
 
 def nan_if_none(x):
     return float("nan") if x is None else x
 
 
-def behaviour(command, genomes):
+def behaviour(command, genomes, measures):
+    """Behaviour measures per genome: from compare's JSON when the command is `compare`,
+    else from the command's "GENOME name value ..." lines."""
+    if command == "compare":
+        return {g: measures[g] for g in genomes}
     out = subprocess.run(command.split() + genomes, capture_output=True, text=True,
                          check=True).stdout
     res = {}
@@ -138,8 +146,8 @@ for line in os.environ["ROWS"].splitlines():
     walls = [float(open(os.path.join(os.path.dirname(c), "wall.txt")).read())
              for c in champs if os.path.exists(os.path.join(os.path.dirname(c), "wall.txt"))]
     have_base = os.path.exists(base)
-    fit, rnd = compare(exp, champs + ([base] if have_base else []), 64)
-    beh = behaviour(cmd, champs + ([base] if have_base else []))
+    fit, rnd, meas = compare(exp, champs + ([base] if have_base else []), 64)
+    beh = behaviour(cmd, champs + ([base] if have_base else []), meas)
     if keys is None:
         first = next(iter(beh.values()))
         keys = [k for k in first if k != "fitness"][:2]
@@ -153,9 +161,9 @@ for line in os.environ["ROWS"].splitlines():
     else:
         base_col = "none"
     if os.path.exists(abl):
-        afit, _ = compare(abl, champs, 0)
+        afit, _, ameas = compare(abl, champs, 0)
         amed = statistics.median(afit[c] for c in champs)
-        abeh = behaviour(cmd.replace(exp, abl), champs)
+        abeh = behaviour(cmd.replace(exp, abl), champs, ameas)
         acol = (f"{amed:.2f} ({amed - statistics.median(held):+.2f}); "
                 + ", ".join(f"{k} {statistics.median([abeh[c][k] for c in champs]):.2f}"
                             for k in keys))

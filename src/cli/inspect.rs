@@ -5,6 +5,7 @@
 use crate::cli::estimate::{self, count};
 use anyhow::Context;
 use berry_evolve::brain::summary::BrainSummary;
+use berry_evolve::experiment::tables::{Balance, FitnessMode, FitnessSpec, GoalAt};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::run::estimate::{Estimate, Workload};
 use clap::Args;
@@ -45,6 +46,12 @@ struct Report<'a> {
     inputs: usize,
     outputs: Vec<String>,
     brain: BrainJson,
+    /// `[fitness]` in plain words, as the text's `fitness:` line.
+    fitness: String,
+    /// `[behaviour] measures`, by name.
+    behaviour_measures: Vec<&'static str>,
+    /// How `best.json` is chosen, as the text's `champion:` line.
+    champion: String,
     workload: Workload,
     /// `null` with `--no-estimate`, or when the calibration could not run.
     estimate: Option<EstimateJson>,
@@ -147,6 +154,16 @@ fn text(
     }
     writeln!(out, "outputs: {}", experiment.output_names().join(", "))?;
     writeln!(out, "brain: {}", experiment.topology().summary())?;
+    writeln!(out, "fitness: {}", fitness_words(&experiment.fitness))?;
+    writeln!(
+        out,
+        "behaviour measures: {}",
+        match measure_names(experiment).as_slice() {
+            [] => "none ([behaviour] measures)".to_string(),
+            names => names.join(", "),
+        }
+    )?;
+    writeln!(out, "champion: {}", champion_words(experiment))?;
     writeln!(
         out,
         "evolution: {}, {} generations of {} individuals",
@@ -217,6 +234,9 @@ fn report<'a>(
             description: summary.to_string(),
             summary,
         },
+        fitness: fitness_words(&experiment.fitness),
+        behaviour_measures: measure_names(experiment),
+        champion: champion_words(experiment),
         workload,
         estimate: estimate.map(|e| EstimateJson {
             total_seconds: e.total_seconds,
@@ -225,5 +245,94 @@ fn report<'a>(
             creature_ticks_per_second: e.calibration.rate(),
             calibration: e.calibration,
         }),
+    }
+}
+
+/// `[fitness]` in plain words: the metabolic gain, then every term that is not zero, e.g.
+/// `A + B of the metabolism summed over every tick of life, + 0.005 × LU driven forward`.
+fn fitness_words(f: &FitnessSpec) -> String {
+    let parts: Vec<String> = f
+        .weights
+        .iter()
+        .zip(["A", "B", "C", "D"])
+        .filter(|(w, _)| **w != 0.0)
+        .map(|(w, name)| match *w {
+            1.0 => name.to_string(),
+            _ => format!("{w} × {name}"),
+        })
+        .collect();
+    let components = match (parts.is_empty(), f.balance) {
+        (true, _) => "0".to_string(),
+        (false, Balance::Sum) => parts.join(" + "),
+        (false, Balance::Min) => format!("the smallest of {}", parts.join(", ")),
+    };
+    let mut words = format!(
+        "{components} of the metabolism {}",
+        match f.mode {
+            FitnessMode::Final => "at the end of life",
+            FitnessMode::Integrated => "summed over every tick of life",
+        }
+    );
+    if f.imbalance_penalty != 0.0 {
+        write!(words, ", − {} × (largest − smallest)", f.imbalance_penalty).ok();
+    }
+    let goal = match (&f.goal, f.goal_point) {
+        (Some(area), _) => format!("area `{area}`"),
+        (None, Some([x, y])) => format!("[{x}, {y}]"),
+        (None, None) => String::new(),
+    };
+    let goal_when = match f.goal_at {
+        GoalAt::End => "at the end",
+        GoalAt::Closest => "at its closest",
+    };
+    for (weight, term) in [
+        (f.alive_bonus, "tick alive".to_string()),
+        (
+            f.area_bonus,
+            format!("tick in area `{}`", f.area.as_deref().unwrap_or("?")),
+        ),
+        (f.goal_bonus, format!("nearness to {goal} {goal_when}")),
+        (
+            f.distinct_food_bonus,
+            "distinct food object eaten".to_string(),
+        ),
+        (f.forward_bonus, "LU driven forward".to_string()),
+    ] {
+        if weight != 0.0 {
+            write!(words, ", + {weight} × {term}").ok();
+        }
+    }
+    if f.shock_penalty != 0.0 {
+        write!(words, ", − {} × shocked tick", f.shock_penalty).ok();
+    }
+    if f.death_penalty != 0.0 {
+        write!(words, ", − {} if killed", f.death_penalty).ok();
+    }
+    words
+}
+
+/// The behaviour measures' names.
+fn measure_names(experiment: &Experiment) -> Vec<&'static str> {
+    experiment
+        .behaviour
+        .measures
+        .iter()
+        .map(|m| m.name())
+        .collect()
+}
+
+/// How `best.json` is chosen.
+fn champion_words(experiment: &Experiment) -> String {
+    let v = &experiment.validation;
+    if v.enabled() {
+        format!(
+            "the best on {} validation worlds of each generation's top {}, every {} \
+             generations and after the last",
+            v.trials, v.top, v.every
+        )
+    } else {
+        "the best training evaluation of the run (no [validation]: the luckiest, not \
+         necessarily the best on new worlds)"
+            .to_string()
     }
 }

@@ -37,6 +37,10 @@ fn inspect_prints_the_brain_the_workload_and_an_estimate_in_plain_words() {
         "brain: MLP 24 → 2 (no hidden layer), tanh outputs, f64 sums, 50 parameters",
         "  smell sensors (8 receptors left, 8 right): inputs 0 to 15",
         "  shock sensor: input 22",
+        "fitness: A + B + C + D of the metabolism at the end of life, + 0.005 × LU driven forward",
+        "behaviour measures: distinct_food, food_types",
+        "champion: the best on 10 validation worlds of each generation's top 3, every 10 \
+         generations and after the last",
         "evolution: genetic algorithm, 200 generations of 64 individuals",
         "workload: 64 individuals × 5 trials × 800 ticks = 256,000 creature-ticks per generation",
         // [validation] every 10 generations, top 3, 10 worlds.
@@ -95,6 +99,14 @@ fn inspect_json_carries_the_numbers_of_the_text() {
     assert_eq!(json["brain"]["kind"], "mlp");
     assert_eq!(json["brain"]["hidden"], serde_json::json!([]));
     assert!(text.contains(json["brain"]["description"].as_str().unwrap()));
+    for key in ["fitness", "champion"] {
+        let line = json[key].as_str().unwrap_or_else(|| panic!("{key}"));
+        assert!(text.contains(&format!("{key}: {line}\n")), "{key}: {line}");
+    }
+    assert_eq!(
+        json["behaviour_measures"],
+        serde_json::json!(["distinct_food", "food_types"])
+    );
     assert_eq!(json["inputs"], 24);
     assert_eq!(json["observation"][0]["group"], "smell");
     assert_eq!(json["observation"][0]["end"], 16);
@@ -121,6 +133,48 @@ fn inspect_json_carries_the_numbers_of_the_text() {
     let skipped: serde_json::Value = serde_json::from_str(&skipped).unwrap();
     assert!(skipped["estimate"].is_null());
     assert_eq!(skipped["workload"], json["workload"]);
+}
+
+#[test]
+fn inspect_says_every_fitness_term_and_how_the_champion_is_chosen() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("terms.toml");
+    let tiny = String::from_utf8(read(&fixture("tiny.toml"))).unwrap();
+    std::fs::write(
+        &file,
+        format!(
+            "{tiny}\n[[world.areas]]\nname = \"nest\"\nregion = [0.0, 0.0, 20.0, 20.0]\n\
+             kind = \"safe\"\n\
+             [fitness]\nweights = [2.0, 0.0, 1.0, 0.0]\nbalance = \"min\"\nmode = \"integrated\"\n\
+             imbalance_penalty = 0.5\nalive_bonus = 0.25\narea = \"nest\"\narea_bonus = 1.5\n\
+             goal_point = [10.0, 10.0]\ngoal_bonus = 3.0\ngoal_at = \"closest\"\n\
+             distinct_food_bonus = 0.5\nforward_bonus = 0.01\nshock_penalty = 2.0\n\
+             death_penalty = 100.0\n[behaviour]\nmeasures = [\"ticks_alive\", \"time_in_area\"]\n\
+             area = \"nest\"\n"
+        ),
+    )
+    .unwrap();
+    let text = stdout_of(&["inspect", file.to_str().unwrap(), "--no-estimate"]);
+    for line in [
+        "fitness: the smallest of 2 × A, C of the metabolism summed over every tick of life, \
+         − 0.5 × (largest − smallest), + 0.25 × tick alive, + 1.5 × tick in area `nest`, \
+         + 3 × nearness to [10, 10] at its closest, + 0.5 × distinct food object eaten, \
+         + 0.01 × LU driven forward, − 2 × shocked tick, − 100 if killed",
+        "behaviour measures: ticks_alive, time_in_area",
+        "champion: the best training evaluation of the run (no [validation]: the luckiest, not \
+         necessarily the best on new worlds)",
+    ] {
+        assert!(text.lines().any(|l| l == line), "no line `{line}`:\n{text}");
+    }
+    let plain = stdout_of(&[
+        "inspect",
+        fixture("tiny.toml").to_str().unwrap(),
+        "--no-estimate",
+    ]);
+    assert!(
+        plain.contains("behaviour measures: none ([behaviour] measures)\n"),
+        "{plain}"
+    );
 }
 
 /// Starts `berry-evolve run tiny.toml --generations 1000000000 --out dir extra...` (estimated
