@@ -38,9 +38,11 @@ def trace(binary, experiment, genome, trials, seed=None):
     text = open(experiment).read()
     # A copy of the experiment with `trials` trials: trial k's world depends only on the
     # seed, the generation and k, so these are compare's held-out worlds.
-    text, n = re.subn(r"(?m)^trials\s*=\s*\d+", f"trials = {trials}", text)
+    # Only [evaluation]'s `trials` ([validation] has one too).
+    text, n = re.subn(r"(?ms)^(\[evaluation\][^\[]*?^)trials\s*=\s*\d+",
+                      lambda m: m.group(1) + f"trials = {trials}", text)
     if n != 1:
-        sys.exit(f"{experiment}: expected one `trials = N` line")
+        sys.exit(f"{experiment}: expected one `trials = N` line in [evaluation]")
     with tempfile.TemporaryDirectory() as tmp:
         exp = os.path.join(tmp, "experiment.toml")
         open(exp, "w").write(text)

@@ -95,11 +95,12 @@ def main():
                   extra=[("area_1", -0.4, -0.4), ("area_2", -0.4, -0.4)]),
           "forage by smell, drift towards shelters' smell, whisker turn-away, slow in a shelter")
     n = layout("experiments/locked-room.toml")
-    # Follow the beacons' odour (component 8: the trigger, then, once it is eaten and silent,
-    # the door's) and the food's smell (component 1) gently, whisker turn-away.
+    # Follow the door trigger's odour (component 8) to the doorstep, and the food's smell
+    # (component 1, which comes through the doorway once the door is open) more strongly, so
+    # that it wins over the trigger's; whisker turn-away.
     write("locked-room", n,
-          vehicle(n, towards=[(8, 3.0), (1, 3.0)], whisker=0.5, forward=0.8),
-          "follow the trigger's then the door's scent, then the food's smell, whisker turn-away")
+          vehicle(n, towards=[(8, 1.5), (1, 8.0)], whisker=1.0, forward=1.0),
+          "follow the trigger's scent, then (stronger) the food's smell, whisker turn-away")
     return 0
 
 
