@@ -1,0 +1,85 @@
+#!/usr/bin/env python3
+"""Writes genomes/balanced-diet-baseline.json: the hand-designed diet-aware forager for
+experiments/balanced-diet.toml.
+
+A Braitenberg vehicle as a single-layer network (mlp, hidden = []): each motor =
+tanh(w . inputs + b), scaled by max_rpt. Its input layout is read from
+`berry-evolve inspect EXPERIMENT`, so it fits the experiment's observation whatever groups
+are on.
+
+- Crossed smell wiring steers towards food, with its own gain per odour component: the
+  scarce types C and D (components 3 and 4) get a larger gain than the common A and B
+  (components 1 and 2), so the vehicle turns harder for what it will otherwise lack.
+- A touching whisker turns it away from that side.
+- Every food detector brakes both motors, so it stops and eats the object out.
+- A constant forward drive through the bias input keeps it exploring.
+- It does not read the metabolism inputs (if the experiment has them).
+
+Usage: python3 scripts/make-balanced-diet-baseline.py [EXPERIMENT] [--binary BIN]
+       [--common G] [--scarce G] [--whisker W] [--forward F] [--brake E]
+       > genomes/balanced-diet-baseline.json
+"""
+import argparse
+import json
+import re
+import subprocess
+import sys
+
+
+def layout(experiment, binary):
+    text = subprocess.run([binary, "inspect", experiment], check=True, capture_output=True,
+                          text=True).stdout
+    names = [m.group(2) for m in re.finditer(r"^\s*\[\s*(\d+)\]\s+(\S+)\s*$", text, re.M)]
+    outs = re.search(r"^outputs: (.*)$", text, re.M).group(1).split(", ")
+    return names, outs
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("experiment", nargs="?", default="experiments/balanced-diet.toml")
+    ap.add_argument("--binary", default="target/release/berry-evolve")
+    ap.add_argument("--common", type=float, default=1.5, help="smell gain, types A and B")
+    ap.add_argument("--scarce", type=float, default=4.0, help="smell gain, types C and D")
+    ap.add_argument("--whisker", type=float, default=1.5)
+    ap.add_argument("--forward", type=float, default=0.5)
+    ap.add_argument("--brake", type=float, default=0.5)
+    a = ap.parse_args()
+    inputs, outputs = layout(a.experiment, a.binary)
+    if outputs != ["motor_left", "motor_right"]:
+        sys.exit(f"expected outputs motor_left, motor_right, got {outputs}")
+    index = {n: i for i, n in enumerate(inputs)}
+    gain = {1: a.common, 2: a.common, 3: a.scarce, 4: a.scarce}
+
+    def motor_row(side):
+        other = "right" if side == "left" else "left"
+        row = [0.0] * len(inputs)
+        for k, g in gain.items():
+            row[index[f"smell_{other}_{k}"]] += g
+            row[index[f"smell_{side}_{k}"]] -= g
+        row[index["whisker_left"]] = a.whisker if side == "left" else -a.whisker
+        row[index["whisker_right"]] = -a.whisker if side == "left" else a.whisker
+        for f in "abcd":
+            row[index[f"food_{f}"]] = -a.brake
+        row[index["bias"]] = a.forward
+        return row
+
+    parameters = motor_row("left") + motor_row("right") + [0.0, 0.0]
+    genome = {
+        "format": 1,
+        "brain": {"kind": "mlp", "hidden": []},
+        "inputs": inputs,
+        "outputs": outputs,
+        "parameters": parameters,
+        "origin": {
+            "description": "hand-designed diet-aware forager for experiments/balanced-diet.toml "
+                           f"(scripts/make-balanced-diet-baseline.py): crossed smell steering, "
+                           f"gain {a.scarce:g} for the scarce types C and D and {a.common:g} "
+                           f"for A and B; whisker avoidance {a.whisker:g}, forward "
+                           f"{a.forward:g}, brake {a.brake:g} while eating"
+        },
+    }
+    json.dump(genome, sys.stdout, indent=2)
+    sys.stdout.write("\n")
+
+
+main()
