@@ -297,6 +297,10 @@ fn fitness_words(f: &FitnessSpec) -> String {
             "distinct food object eaten".to_string(),
         ),
         (f.forward_bonus, "LU driven forward".to_string()),
+        (
+            f.shelter_bonus,
+            "tick in a safe area with a predator near".to_string(),
+        ),
     ] {
         if weight != 0.0 {
             write!(words, ", + {weight} × {term}").ok();

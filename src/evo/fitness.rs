@@ -104,6 +104,9 @@ pub struct LifePlan {
     goal: Option<(Goal, f64, f64, GoalAt)>,
     distinct_food_bonus: f64,
     forward_bonus: f64,
+    shelter_bonus: f64,
+    /// Threatened and sheltered ticks are counted (for `shelter_bonus` or the measure).
+    counts_threats: bool,
     /// The measures the experiment reports, in its order.
     measures: Vec<Measure>,
     /// `[behaviour] area`.
@@ -135,6 +138,8 @@ impl LifePlan {
             goal: None,
             distinct_food_bonus: spec.distinct_food_bonus,
             forward_bonus: spec.forward_bonus,
+            shelter_bonus: spec.shelter_bonus,
+            counts_threats: false,
             measures: Vec::new(),
             behaviour_area: None,
             threat_radius: 0.0,
@@ -170,9 +175,12 @@ impl LifePlan {
         plan.measures = behaviour.measures.clone();
         plan.behaviour_area = area(&behaviour.area);
         plan.threat_radius = behaviour.threat_radius;
+        plan.counts_threats =
+            plan.shelter_bonus != 0.0 || plan.measures.contains(&Measure::ShelterWhileThreat);
         let closest = matches!(plan.goal, Some((_, _, _, GoalAt::Closest)));
         plan.watches_places = plan.area_bonus.is_some()
             || closest
+            || plan.counts_threats
             || plan.measures.iter().any(|m| {
                 matches!(
                     m,
@@ -370,25 +378,24 @@ impl LifeScore {
             self.area_reached |= inside;
             self.ticks_in_area += u64::from(inside);
         }
+        if plan.counts_threats {
+            let r = plan.threat_radius;
+            let ground = world.actors().iter().any(|a| {
+                matches!(a.role, Role::Predator { .. }) && circles_touch(p, 0.0, a.pose.position, r)
+            });
+            let air = world
+                .flyers()
+                .iter()
+                .any(|f| circles_touch(p, 0.0, f.position, r));
+            if ground || air {
+                self.threat_ticks += 1;
+                self.sheltered_threat_ticks += u64::from(world.in_safe_area(p));
+            }
+        }
         for &m in &plan.measures {
             match m {
                 Measure::DoorOpened => {
                     self.door_opened |= (0..world.door_count()).any(|k| world.door_open(k));
-                }
-                Measure::ShelterWhileThreat => {
-                    let r = plan.threat_radius;
-                    let ground = world.actors().iter().any(|a| {
-                        matches!(a.role, Role::Predator { .. })
-                            && circles_touch(p, 0.0, a.pose.position, r)
-                    });
-                    let air = world
-                        .flyers()
-                        .iter()
-                        .any(|f| circles_touch(p, 0.0, f.position, r));
-                    if ground || air {
-                        self.threat_ticks += 1;
-                        self.sheltered_threat_ticks += u64::from(world.in_safe_area(p));
-                    }
                 }
                 Measure::StrikesSurvived => {
                     let safe = world.in_safe_area(p);
@@ -475,6 +482,9 @@ impl LifeScore {
         }
         if plan.forward_bonus != 0.0 {
             score += plan.forward_bonus * self.forward_distance;
+        }
+        if plan.shelter_bonus != 0.0 {
+            score += plan.shelter_bonus * self.sheltered_threat_ticks as f64;
         }
         if plan.death_penalty != 0.0 && !c.alive {
             score -= plan.death_penalty;

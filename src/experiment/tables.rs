@@ -164,6 +164,7 @@ fn is_default<T: Default + PartialEq>(x: &T) -> bool {
 ///       + goal_bonus × max(0, 1 − d / goal_range)
 ///       + distinct_food_bonus × distinct_food
 ///       + forward_bonus × forward_distance
+///       + shelter_bonus × sheltered_threat_ticks
 ///       − shock_penalty × shocked_ticks
 ///       − death_penalty × (1 if dead at the end, else 0)
 /// ```
@@ -238,6 +239,13 @@ pub struct FitnessSpec {
     /// receptors point over circling backwards.
     #[serde(skip_serializing_if = "is_zero")]
     pub forward_bonus: f64,
+    /// Added per tick alive at whose end a threat is near (a ground or air predator's centre
+    /// within `[behaviour] threat_radius` LU of the creature's centre) and the creature's
+    /// centre is inside a safe area: `shelter_bonus × sheltered_threat_ticks` (default: 0).
+    /// Pays for taking shelter when a predator comes, not for sitting in a nest it never
+    /// nears (report §4.6, §4.7).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub shelter_bonus: f64,
 }
 
 impl Default for FitnessSpec {
@@ -259,6 +267,7 @@ impl Default for FitnessSpec {
             goal_at: GoalAt::End,
             distinct_food_bonus: 0.0,
             forward_bonus: 0.0,
+            shelter_bonus: 0.0,
         }
     }
 }
@@ -276,6 +285,7 @@ impl FitnessSpec {
         finite("fitness.goal_bonus", self.goal_bonus)?;
         finite("fitness.distinct_food_bonus", self.distinct_food_bonus)?;
         finite("fitness.forward_bonus", self.forward_bonus)?;
+        finite("fitness.shelter_bonus", self.shelter_bonus)?;
         if let Some(p) = self.goal_point {
             all_finite("fitness.goal_point", &p)?;
         }
@@ -325,6 +335,7 @@ impl FitnessSpec {
             && self.goal_bonus == 0.0
             && self.distinct_food_bonus == 0.0
             && self.forward_bonus == 0.0
+            && self.shelter_bonus == 0.0
     }
 }
 
@@ -463,7 +474,8 @@ pub struct BehaviourSpec {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub area: Option<String>,
     /// How close in LU a predator's centre must come to the creature's centre for
-    /// `shelter_while_threat` to count the tick as threatened (default: 40).
+    /// `shelter_while_threat` (and `[fitness] shelter_bonus`) to count the tick as threatened
+    /// (default: 40).
     pub threat_radius: f64,
 }
 

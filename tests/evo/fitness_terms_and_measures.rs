@@ -337,6 +337,42 @@ measures = ["shelter_while_threat", "strikes_survived", "shocked_ticks", "ticks_
 }
 
 #[test]
+fn shelter_bonus_pays_for_sheltered_threatened_ticks_only() {
+    // Without the measure: the bonus counts threats on its own.
+    let e = experiment(
+        AIR,
+        r#"
+[fitness]
+weights = [0.0, 0.0, 0.0, 0.0]
+shelter_bonus = 10.0
+"#,
+    );
+    let (score, m, _) = live(&e, &raid_path());
+    // Threat near at ticks 1, 3 and 5; sheltered at 1 and 5 (tick 2 sheltered but no threat;
+    // tick 3 threatened in the open): 2 × 10.
+    assert_eq!(score, 20.0);
+    assert_eq!(
+        measure(&m, Measure::ShelterWhileThreat),
+        0.0,
+        "not reported"
+    );
+    // The same life with a radius that no pass comes within: nothing.
+    let far = experiment(
+        AIR,
+        r#"
+[fitness]
+weights = [0.0, 0.0, 0.0, 0.0]
+shelter_bonus = 10.0
+
+[behaviour]
+threat_radius = 0.001
+"#,
+    );
+    // Tick 1's predator sits exactly on the creature: still within any radius.
+    assert_eq!(live(&far, &raid_path()).0, 10.0);
+}
+
+#[test]
 fn a_lethal_strike_ends_the_life_with_the_death_penalty() {
     let e = experiment(
         &AIR.replace("\"shock\"", "\"lethal\""),
@@ -422,6 +458,7 @@ goal_bonus = 1.0
 goal_at = "closest"
 distinct_food_bonus = 0.3
 forward_bonus = 0.02
+shelter_bonus = 0.05
 death_penalty = 1.0
 
 [behaviour]

@@ -381,6 +381,7 @@ pub fn keys() -> Vec<KeyMeta> {
         kd("FitnessSpec.goal_at", "", any(), EVAL, GoalAt::default()),
         kd("FitnessSpec.distinct_food_bonus", "", any(), EVAL, 0.0),
         kd("FitnessSpec.forward_bonus", "per LU", any(), EVAL, 0.0),
+        kd("FitnessSpec.shelter_bonus", "per tick", any().note("a threat is within [behaviour] threat_radius"), "§4.7", 0.0),
         // [behaviour], [validation], [output], [demo]
         k("BehaviourSpec.measures", "", any().note("each at most once; area measures need `area`"), RUN),
         k("BehaviourSpec.area", "", any().note("a name in [[world.areas]]"), "§4.6"),
