@@ -81,12 +81,14 @@ def main():
           vehicle(n, towards=[(1, 2.0)], whisker=0.3, forward=0.8),
           "forward drive, whisker turn-away, steer towards the goal's smell")
     n = layout("experiments/predator-arena.toml")
-    # Forage by smell (component 1), flee the predator's smell (component 7) harder than the
-    # food pulls, turn off walls, brake while eating.
+    # Forage by smell (component 1), a strong pull towards the nest's smell (component 8) so
+    # that it forages round the nest, a mild turn away from the predator's smell (component 7),
+    # turn off walls, brake while eating and slow right down inside the nest (area input).
     write("predator-arena", n,
-          vehicle(n, towards=[(1, 4.0)], away=[(7, 8.0)], whisker=1.5, forward=0.5,
-                  eat_brake=0.5),
-          "forage by smell, flee the predator's smell, whisker turn-away, brake while eating")
+          vehicle(n, towards=[(1, 3.0), (8, 8.0)], away=[(7, 2.0)], whisker=1.5, forward=1.0,
+                  eat_brake=0.5, extra=[("area_1", -1.0, -1.0)]),
+          "forage by smell round the nest's smell, turn from the predator's smell, whisker "
+          "turn-away, brake while eating, slow in the nest")
     n = layout("experiments/air-raid.toml")
     # Forage by smell (component 1); while an air predator's smell (component 7) is on, head for
     # a shelter's smell (component 8) and stop inside a shelter (area input).

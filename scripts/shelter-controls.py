@@ -1,0 +1,57 @@
+#!/usr/bin/env python3
+"""Cheap-control genomes for the shelter experiments (predator-arena, air-raid).
+
+Writes single-layer (mlp, hidden = []) controllers to OUTDIR, using the input layout of
+EXPERIMENT.toml and the steering convention of scripts/make-design2-baselines.py:
+  still.json     both motors 0
+  spin.json      left +max, right -max
+  straight.json  both motors +max (whisker turn-away off)
+  arc.json       left full, right half
+  to-shelter.json  follow the safe area's smell (component 8) and stop inside it (area input)
+                   and stay there: "go to the nest / a shelter and stay"
+Usage: python3 scripts/shelter-controls.py EXPERIMENT.toml OUTDIR
+"""
+import importlib.util
+import json
+import os
+import sys
+
+here = os.path.dirname(os.path.abspath(__file__))
+spec = importlib.util.spec_from_file_location("mdb", os.path.join(here, "make-design2-baselines.py"))
+mdb = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(mdb)
+
+
+def save(path, names, params, what):
+    g = {"format": 1, "brain": {"kind": "mlp", "hidden": []}, "inputs": names,
+         "outputs": ["motor_left", "motor_right"], "parameters": params,
+         "origin": {"description": f"cheap control (scripts/shelter-controls.py): {what}"}}
+    json.dump(g, open(path, "w"), indent=1)
+
+
+def bias_only(names, left, right):
+    n = len(names)
+    b = names.index("bias")
+    p = [0.0] * (2 * n + 2)
+    p[b] = left
+    p[n + b] = right
+    return p
+
+
+def main():
+    exp, out = sys.argv[1], sys.argv[2]
+    os.makedirs(out, exist_ok=True)
+    names = mdb.layout(exp)
+    save(f"{out}/still.json", names, bias_only(names, 0.0, 0.0), "stand still")
+    save(f"{out}/spin.json", names, bias_only(names, 5.0, -5.0), "spin on the spot")
+    save(f"{out}/straight.json", names, bias_only(names, 5.0, 5.0), "drive straight")
+    save(f"{out}/arc.json", names, bias_only(names, 5.0, 0.55), "drive in an arc")
+    areas = [n for n in names if n.startswith("area_")]
+    p = mdb.vehicle(names, towards=[(8, 60.0)], whisker=1.5, forward=0.5,
+                    extra=[(a, -0.5, -0.5) for a in areas])
+    save(f"{out}/to-shelter.json", names, p, "follow the safe area's smell, stop inside and stay")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
