@@ -7,7 +7,7 @@
 #
 #   bash scripts/make-pictures.sh            (needs rsvg-convert, ImageMagick, chromium:
 #                                             apt-get install -y librsvg2-bin imagemagick chromium)
-#   FORAGING_GENERATIONS=20 GADGET_GENERATIONS=15 GADGET=t-maze bash scripts/make-pictures.sh
+#   FORAGING_GENERATIONS=20 GADGET_GENERATIONS=15 GADGET=t-maze bash scripts/make-pictures.sh  (quick look)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 for tool in rsvg-convert convert chromium; do
@@ -20,10 +20,11 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 mkdir -p "$out"
 gadget=${GADGET:-t-maze}
-for pair in "foraging:${FORAGING_GENERATIONS:-200}" "$gadget:${GADGET_GENERATIONS:-100}"; do
+# Each at its file's own budget unless FORAGING_GENERATIONS / GADGET_GENERATIONS say otherwise.
+for pair in "foraging:${FORAGING_GENERATIONS:-}" "$gadget:${GADGET_GENERATIONS:-}"; do
   name=${pair%%:*}; gens=${pair##*:}
   run=$tmp/$name
-  "$bin" run "experiments/$name.toml" --generations "$gens" --out "$run" --force --quiet
+  "$bin" run "experiments/$name.toml" ${gens:+--generations "$gens"} --out "$run" --force --quiet
   "$bin" plot "$run" -o "$tmp/$name-fitness.svg"
   "$bin" render "$run/best.json" --experiment "$run/experiment.toml" --trial 0 -o "$tmp/$name-trajectory.svg"
   "$bin" replay "$run/best.json" --experiment "$run/experiment.toml" --trial 0 --html "$tmp/$name.html" >/dev/null
