@@ -20,18 +20,17 @@ Usage: python3 scripts/make-balanced-diet-baseline.py [EXPERIMENT] [--binary BIN
        > genomes/balanced-diet-baseline.json
 """
 import argparse
+import importlib.util
 import json
-import re
-import subprocess
+import os
 import sys
 
-
-def layout(experiment, binary):
-    text = subprocess.run([binary, "inspect", experiment], check=True, capture_output=True,
-                          text=True).stdout
-    names = [m.group(2) for m in re.finditer(r"^\s*\[\s*(\d+)\]\s+(\S+)\s*$", text, re.M)]
-    outs = re.search(r"^outputs: (.*)$", text, re.M).group(1).split(", ")
-    return names, outs
+# The input layout as `inspect` prints it, read by make-vehicle.py's `layout`.
+_spec = importlib.util.spec_from_file_location(
+    "make_vehicle", os.path.join(os.path.dirname(os.path.abspath(__file__)), "make-vehicle.py"))
+_vehicle = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(_vehicle)
+layout = _vehicle.layout
 
 
 def main():
