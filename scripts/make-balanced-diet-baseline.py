@@ -62,23 +62,13 @@ def main():
         row[index["bias"]] = a.forward
         return row
 
-    parameters = motor_row("left") + motor_row("right") + [0.0, 0.0]
-    genome = {
-        "format": 1,
-        "brain": {"kind": "mlp", "hidden": []},
-        "inputs": inputs,
-        "outputs": outputs,
-        "parameters": parameters,
-        "origin": {
-            "description": "hand-designed diet-aware forager for experiments/balanced-diet.toml "
-                           f"(scripts/make-balanced-diet-baseline.py): crossed smell steering, "
-                           f"gain {a.scarce:g} for the scarce types C and D and {a.common:g} "
-                           f"for A and B; whisker avoidance {a.whisker:g}, forward "
-                           f"{a.forward:g}, brake {a.brake:g} while eating"
-        },
-    }
-    json.dump(genome, sys.stdout, indent=2)
-    sys.stdout.write("\n")
+    _vehicle.write_vehicle(
+        inputs, outputs, [motor_row("left"), motor_row("right")],
+        "hand-designed diet-aware forager for experiments/balanced-diet.toml "
+        f"(scripts/make-balanced-diet-baseline.py): crossed smell steering, "
+        f"gain {a.scarce:g} for the scarce types C and D and {a.common:g} "
+        f"for A and B; whisker avoidance {a.whisker:g}, forward "
+        f"{a.forward:g}, brake {a.brake:g} while eating")
 
-
-main()
+if __name__ == "__main__":
+    main()

@@ -98,8 +98,13 @@ def main():
                 row[index[n]] += sign * (a.eye if toward else -a.eye)
         return row
 
-    rows = [motor_row("left"), motor_row("right")]
-    extra = [[0.0] * len(inputs) for _ in outputs[2:]]
+    write_vehicle(inputs, outputs, [motor_row("left"), motor_row("right")], a.description)
+
+
+def write_vehicle(inputs, outputs, rows, description):
+    """Prints the genome of a single-layer network (mlp, hidden = []) whose first outputs'
+    weight rows are `rows` (any further outputs and every bias 0)."""
+    extra = [[0.0] * len(inputs) for _ in outputs[len(rows):]]
     parameters = [w for r in rows + extra for w in r] + [0.0] * len(outputs)
     genome = {
         "format": 1,
@@ -107,7 +112,7 @@ def main():
         "inputs": inputs,
         "outputs": outputs,
         "parameters": parameters,
-        "origin": {"description": a.description},
+        "origin": {"description": description},
     }
     json.dump(genome, sys.stdout, indent=2)
     sys.stdout.write("\n")
