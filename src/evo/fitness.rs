@@ -187,7 +187,6 @@ impl LifePlan {
                     Measure::AreaReached
                         | Measure::TimeInArea
                         | Measure::DoorOpened
-                        | Measure::ShelterWhileThreat
                         | Measure::StrikesSurvived
                         | Measure::AversiveContacts
                 )
