@@ -385,7 +385,7 @@ impl LifeScore {
             let air = world
                 .flyers()
                 .iter()
-                .any(|f| circles_touch(p, 0.0, f.position, r));
+                .any(|f| f.in_flight() && circles_touch(p, 0.0, f.position, r));
             if ground || air {
                 self.threat_ticks += 1;
                 self.sheltered_threat_ticks += u64::from(world.in_safe_area(p));
@@ -399,7 +399,8 @@ impl LifeScore {
                 Measure::StrikesSurvived => {
                     let safe = world.in_safe_area(p);
                     for (pass, f) in self.passes.iter_mut().zip(world.flyers()) {
-                        let over = circles_touch(p, 0.0, f.position, f.strike_radius);
+                        let over =
+                            f.in_flight() && circles_touch(p, 0.0, f.position, f.strike_radius);
                         if over {
                             pass.sheltered = if pass.over {
                                 pass.sheltered && safe

@@ -233,6 +233,59 @@ fn air_predators_fly_across_and_reenter() {
 }
 
 #[test]
+fn a_paused_air_predator_is_away_for_its_pause_and_neither_strikes_nor_smells() {
+    // pause = [5, 5]: it waits 5 ticks before its first flight. Its strike radius covers the
+    // whole arena, so the creature lives exactly as long as it is away: after steps 1-4 it is
+    // alive and the raider silent, on step 5 the raider enters and strikes.
+    let text = "[[world.air_predators]]\nspeed = 50\nstrike_radius = 1000\npause = [5, 5]\n\
+                odour = [0, 0, 0, 0, 0, 0, 1, 0]\nintensity = 1\n";
+    let mut w = world(text, 1, 3);
+    put(&mut w, 0, 150.0, 150.0, 0.0);
+    let thing = w.flyers()[0].thing;
+    for step in 1..=4 {
+        assert!(!w.flyers()[0].in_flight());
+        w.step(&mut [Still]);
+        assert!(w.creatures()[0].alive, "struck while away, step {step}");
+        assert!(
+            w.things()[thing].smell.silent,
+            "smelled while away, step {step}"
+        );
+    }
+    w.step(&mut [Still]);
+    assert!(w.flyers()[0].in_flight());
+    assert!(!w.things()[thing].smell.silent);
+    assert!(!w.creatures()[0].alive);
+}
+
+#[test]
+fn a_paused_air_predator_waits_between_min_and_max_ticks_between_flights() {
+    // At 50 LU per tick a flight across 300 LU lasts at most 9 ticks; each wait is drawn from
+    // [20, 40], the first one included.
+    let text = "[[world.air_predators]]\nspeed = 50\npause = [20, 40]\n";
+    let mut w = world(text, 1, 3);
+    put(&mut w, 0, 5.0, 5.0, 0.0);
+    let mut waits = Vec::new();
+    let mut run = 0;
+    for _ in 0..2000 {
+        if w.flyers()[0].in_flight() {
+            if run > 0 {
+                waits.push(run);
+            }
+            run = 0;
+        } else {
+            run += 1;
+        }
+        w.step(&mut [Still]);
+    }
+    assert!(waits.len() >= 40, "{} flights", waits.len());
+    assert!(waits.iter().all(|w| (20..=40).contains(w)), "{waits:?}");
+    assert!(
+        waits.iter().any(|&w| w != waits[0]),
+        "the waits are drawn: {waits:?}"
+    );
+}
+
+#[test]
 fn the_shock_effect_sets_the_shock_sensor() {
     let text = AIR.replace(
         "strike_radius = 10",
@@ -488,6 +541,10 @@ fn bad_values_are_rejected_with_their_key() {
         "[[world.air_predators]]\nintensity = -1",
         "world.air_predators[0].intensity",
     );
+    rejects(
+        "[[world.air_predators]]\npause = [5, 2]",
+        "world.air_predators[0].pause[1]",
+    );
     for bad in [
         "[[world.doors]]\nfrom = [1, 1]\nto = [1, 9]\ntrigger = [5, 5]\nwidth = 3",
         "[world.wanderers]\nspeed = 1",
@@ -496,6 +553,7 @@ fn bad_values_are_rejected_with_their_key() {
         "[[world.teleporters]]\nentry = [5, 5, 5]\nexit = [5, 5]",
         "[[world.predators]]\nstrategy = \"patrol\"\nwaypoints = [[5, 5, 5]]",
         "[world.wanderers]\nhold_ticks = [1, 2, 3]",
+        "[[world.air_predators]]\npause = [1]",
     ] {
         let parsed: Result<sim_common::Setup, _> = toml::from_str(bad);
         assert!(parsed.is_err(), "{bad}");

@@ -270,6 +270,7 @@ pub fn keys() -> Vec<KeyMeta> {
         k("AirPredatorSpec.odour", "", odour(), "§4.2"),
         k("AirPredatorSpec.intensity", "", ge0(), "§7.2 (eq. 25)"),
         k("AirPredatorSpec.range", "LU", gt0(), "§7.2 (eq. 26)"),
+        kd("AirPredatorSpec.pause", "ticks", Range::between(0.0, MAX_HOLD_TICKS as f64).note("min ≤ max"), "§4.7", [0u64, 0]),
         // [creature]
         k("CreatureSpec.diameter", "LU", gt0(), "§5.1"),
         k("CreatureSpec.whisker_angle", "degrees", Range::between(0.0, 180.0), "§5.1, §7.3"),

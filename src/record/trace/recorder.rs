@@ -681,6 +681,9 @@ impl TraceRecorder {
             }
             for (k, f) in world.flyers().iter().enumerate() {
                 let p = f.position;
+                if !f.in_flight() {
+                    continue;
+                }
                 if (circles_touch(here, 0.0, p, f.strike_radius) && exposed(here))
                     || (circles_touch(before, 0.0, p, f.strike_radius) && exposed(before))
                 {

@@ -235,12 +235,17 @@ fn flyers(world: &WorldSpec, things: &mut Vec<Thing>, rng: &mut Rng) -> Vec<Flye
             speed: a.speed,
             strike_radius: a.strike_radius,
             effect: a.effect,
+            pause: a.pause,
+            away: 0,
+            entry: Vec2::new(0.0, 0.0),
         };
         f.enter(world.arena, rng);
+        let mut smell = Smell::new(&a.odour, a.intensity, a.range);
+        smell.silent |= !f.in_flight();
         things.push(Thing {
             position: f.position,
             radius: 0.0,
-            smell: Smell::new(&a.odour, a.intensity, a.range),
+            smell,
             felt: false,
             blocks: false,
             seen: false,

@@ -19,6 +19,12 @@ pub struct Flyer {
     pub strike_radius: f64,
     /// Its effect.
     pub effect: Effect,
+    /// Ticks away between flights, `[min, max]` (`[0, 0]`: none).
+    pub pause: [u64; 2],
+    /// Ticks still to wait before the next flight begins (0 = in flight).
+    pub away: u64,
+    /// Where the next flight begins, while away.
+    pub entry: Vec2,
 }
 
 impl Flyer {
@@ -37,10 +43,34 @@ impl Flyer {
         };
         self.position = from;
         self.velocity = (to - from).normalize_or(Vec2::X) * self.speed;
+        self.entry = from;
+        if self.pause[1] > 0 {
+            self.away = self.pause[0] + below(rng, self.pause[1] - self.pause[0] + 1);
+            if self.away > 0 {
+                // Waiting outside, beyond its strike radius from the entry point (drawn
+                // there, never striking: `in_flight` is false).
+                let back = self.velocity.normalize_or(Vec2::X) * (self.strike_radius + 1.0);
+                self.position = from - back;
+            }
+        }
     }
 
-    /// Flies one tick; enters anew when it left the arena.
+    /// Is it over the arena (not away between two flights)? Only then does it strike, smell
+    /// and count as a threat.
+    #[inline]
+    pub fn in_flight(&self) -> bool {
+        self.away == 0
+    }
+
+    /// Flies one tick; enters anew when it left the arena (after its pause, when it has one).
     pub fn fly(&mut self, arena: [f64; 2], rng: &mut Rng) {
+        if self.away > 0 {
+            self.away -= 1;
+            if self.away == 0 {
+                self.position = self.entry;
+            }
+            return;
+        }
         self.position += self.velocity;
         let p = self.position;
         if p.x < 0.0 || p.y < 0.0 || p.x > arena[0] || p.y > arena[1] {

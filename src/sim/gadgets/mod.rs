@@ -236,14 +236,23 @@ impl Gadgets {
     }
 
     /// Phase 2 (air predators): each flyer in file order flies one tick, entering anew when
-    /// it left the arena, and strikes every creature within its strike radius.
+    /// it left the arena (after its pause, if any), and strikes every creature within its
+    /// strike radius while in flight.
     #[inline]
     pub fn fly(&mut self, ctx: &mut Context<'_>) {
         for f in 0..self.flyers.len() {
             self.flyers[f].fly(ctx.arena, ctx.rng);
             let fl = self.flyers[f];
-            ctx.things[fl.thing].position = fl.position;
-            ctx.strike_all(fl.position, fl.strike_radius, 0.0, fl.effect);
+            let thing = &mut ctx.things[fl.thing];
+            thing.position = fl.position;
+            if fl.pause[1] > 0 {
+                // Away between flights it is not smelled.
+                thing.smell.silent =
+                    !fl.in_flight() || thing.smell.emission.iter().all(|&e| e == 0.0);
+            }
+            if fl.in_flight() {
+                ctx.strike_all(fl.position, fl.strike_radius, 0.0, fl.effect);
+            }
         }
     }
 
@@ -337,7 +346,7 @@ impl Gadgets {
         }
         for f in 0..self.flyers.len() {
             let fl = self.flyers[f];
-            if circles_touch(position, 0.0, fl.position, fl.strike_radius) {
+            if fl.in_flight() && circles_touch(position, 0.0, fl.position, fl.strike_radius) {
                 ctx.attack(i, fl.effect);
             }
         }

@@ -242,7 +242,7 @@ impl Default for PredatorSpec {
 /// a time. It enters at a random point of a random side, flies straight towards a random
 /// point of the opposite side at constant speed, ignoring walls, and attacks creatures whose
 /// centre is within `strike_radius` of its ground position and outside safe areas. When it
-/// leaves the arena a new one enters.
+/// leaves the arena a new one enters, at once or after a pause (`pause`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct AirPredatorSpec {
@@ -260,6 +260,21 @@ pub struct AirPredatorSpec {
     /// Smell range θ in LU (default: absent = unlimited).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub range: Option<f64>,
+    /// Ticks away between two flights, drawn uniformly from `[min, max]` for each flight,
+    /// the first one included (default: `[0, 0]` = the next enters as one leaves). While
+    /// away it neither strikes nor smells, so that raids come at times a creature cannot
+    /// know in advance and quiet spells lie between them.
+    #[serde(
+        skip_serializing_if = "no_pause",
+        deserialize_with = "exact_lists::pair"
+    )]
+    pub pause: [u64; 2],
+}
+
+/// Serde's `skip_serializing_if` for `pause = [0, 0]` (the default), so that files without
+/// it keep their configuration hash.
+fn no_pause(pause: &[u64; 2]) -> bool {
+    *pause == [0, 0]
 }
 
 impl Default for AirPredatorSpec {
@@ -271,6 +286,7 @@ impl Default for AirPredatorSpec {
             odour: [0.0; 8],
             intensity: 0.0,
             range: None,
+            pause: [0, 0],
         }
     }
 }
@@ -480,6 +496,15 @@ pub fn validate(
         positive(&format!("{key}.speed"), a.speed)?;
         non_negative(&format!("{key}.strike_radius"), a.strike_radius)?;
         smell(&key, &a.odour, a.intensity, a.range)?;
+        let pause = format!("{key}.pause");
+        count_within(&format!("{pause}[0]"), a.pause[0], 0, MAX_TICKS, "ticks")?;
+        count_within(
+            &format!("{pause}[1]"),
+            a.pause[1],
+            a.pause[0],
+            MAX_TICKS,
+            "ticks, at least min",
+        )?;
     }
     Ok(())
 }
