@@ -380,7 +380,9 @@ impl LifeScore {
         if plan.counts_threats {
             let r = plan.threat_radius;
             let ground = world.actors().iter().any(|a| {
-                matches!(a.role, Role::Predator { .. }) && circles_touch(p, 0.0, a.pose.position, r)
+                matches!(a.role, Role::Predator { .. })
+                    && a.awake()
+                    && circles_touch(p, 0.0, a.pose.position, r)
             });
             let air = world
                 .flyers()

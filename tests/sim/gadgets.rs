@@ -181,6 +181,76 @@ fn a_chase_predator_reaches_a_still_creature_and_kills_it() {
     assert!(d <= 36.0, "bodies touch at the kill: d² = {d}");
 }
 
+/// The tick (0-based) at which the chase predator of `text`, put at (50, 150) facing +y,
+/// kills a still creature at (150, 150), with the world `w` it ran in.
+fn kill_tick(text: &str) -> (Option<u64>, World) {
+    let mut w = world(text, 1, 1);
+    w.set_actor_pose(
+        0,
+        Pose {
+            position: Vec2::new(50.0, 150.0),
+            heading: Vec2::new(0.0, 1.0),
+        },
+    );
+    put(&mut w, 0, 150.0, 150.0, 0.0);
+    for t in 0..300 {
+        w.step(&mut [Still]);
+        if !w.creatures()[0].alive {
+            return (Some(t), w);
+        }
+    }
+    (None, w)
+}
+
+#[test]
+fn a_sleeping_predator_neither_moves_smells_nor_kills_until_it_wakes() {
+    let smelly = format!("{CHASE}odour = [0, 0, 0, 0, 0, 0, 1, 0]\nintensity = 1\n");
+    let (awake_kill, _) = kill_tick(&smelly);
+    let awake_kill = awake_kill.expect("the awake predator kills");
+    // Asleep for exactly 20 ticks: the same chase, 20 ticks later.
+    let sleepy = format!("{smelly}asleep = [20, 20]\n");
+    let (kill, _) = kill_tick(&sleepy);
+    assert_eq!(kill, Some(awake_kill + 20));
+    let mut w = world(&sleepy, 1, 1);
+    put(&mut w, 0, 150.0, 150.0, 0.0);
+    let start = w.actors()[0].pose;
+    let thing = w.actors()[0].thing;
+    for step in 1..=19 {
+        w.step(&mut [Still]);
+        let pose = w.actors()[0].pose;
+        assert_eq!(pose.position, start.position, "moved asleep, step {step}");
+        assert!(
+            pose.heading.distance(start.heading) < 1e-12,
+            "turned asleep, step {step}"
+        );
+        assert!(
+            w.things()[thing].smell.silent,
+            "smelled asleep, step {step}"
+        );
+    }
+    w.step(&mut [Still]);
+    assert!(w.actors()[0].awake());
+    assert!(!w.things()[thing].smell.silent);
+    // Lying against a creature it does not kill it while asleep.
+    let text = format!("{CHASE}asleep = [50, 50]\n");
+    let mut w = world(&text, 1, 1);
+    put(&mut w, 0, 54.0, 150.0, 0.0);
+    for _ in 0..49 {
+        w.step(&mut [Still]);
+    }
+    assert!(w.creatures()[0].alive);
+}
+
+#[test]
+fn a_predators_sleep_is_drawn_per_world_within_its_range() {
+    let text = format!("{CHASE}asleep = [10, 30]\n");
+    let sleeps: Vec<u64> = (1..=40)
+        .map(|seed| world(&text, 1, seed).actors()[0].asleep)
+        .collect();
+    assert!(sleeps.iter().all(|s| (10..=30).contains(s)), "{sleeps:?}");
+    assert!(sleeps.iter().any(|&s| s != sleeps[0]), "{sleeps:?}");
+}
+
 #[test]
 fn a_chase_predator_spares_a_creature_in_a_safe_area() {
     let text =
@@ -544,6 +614,10 @@ fn bad_values_are_rejected_with_their_key() {
     rejects(
         "[[world.air_predators]]\npause = [5, 2]",
         "world.air_predators[0].pause[1]",
+    );
+    rejects(
+        "[[world.predators]]\nasleep = [5, 2]",
+        "world.predators[0].asleep[1]",
     );
     for bad in [
         "[[world.doors]]\nfrom = [1, 1]\nto = [1, 9]\ntrigger = [5, 5]\nwidth = 3",

@@ -264,6 +264,7 @@ pub fn keys() -> Vec<KeyMeta> {
         k("PredatorSpec.range", "LU", gt0(), "§7.2 (eq. 26)"),
         k("PredatorSpec.colour", "", unit01(), "§7.4"),
         k("PredatorSpec.turn_degrees", "degrees", Range::gt(0.0).le(180.0), "§4.7 (SPEC-NOTES)"),
+        kd("PredatorSpec.asleep", "ticks", Range::between(0.0, MAX_HOLD_TICKS as f64).note("min ≤ max"), "§4.7", [0u64, 0]),
         k("AirPredatorSpec.speed", "LU per tick", gt0(), "§4.7"),
         k("AirPredatorSpec.strike_radius", "LU", ge0(), "§4.7"),
         k("AirPredatorSpec.effect", "", any(), "§4.7"),

@@ -671,8 +671,9 @@ impl TraceRecorder {
             for a in world.actors() {
                 if let Role::Predator { .. } = a.role {
                     let p = a.pose.position;
-                    if (circles_touch(here, r, p, r) && exposed(here))
-                        || (circles_touch(before, r, p, r) && exposed(before))
+                    if a.awake()
+                        && ((circles_touch(here, r, p, r) && exposed(here))
+                            || (circles_touch(before, r, p, r) && exposed(before)))
                     {
                         attackers.push(("predator", predator));
                     }

@@ -44,6 +44,16 @@ pub struct Actor {
     pub waypoint: usize,
     /// How it turns away from a touch while wandering.
     pub turn_away: TurnAway,
+    /// Ticks it still sleeps (a ground predator with `asleep`; 0 = awake).
+    pub asleep: u64,
+}
+
+impl Actor {
+    /// Is it awake? Asleep, a predator neither moves, smells, attacks nor counts as a threat.
+    #[inline]
+    pub fn awake(&self) -> bool {
+        self.asleep == 0
+    }
 }
 
 /// Which way a wanderer turns.

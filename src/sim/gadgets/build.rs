@@ -4,7 +4,7 @@
 
 use super::{Actor, Door, Flyer, Gadgets, Role, Teleporter, Thing, TurnAway};
 use crate::geometry::{circle_touches_segment, circles_touch, Segment, Vec2};
-use crate::seed::{uniform, Rng};
+use crate::seed::{below, uniform, Rng};
 use crate::sim::motion::Pose;
 use crate::sim::placement::PlacementError;
 use crate::sim::smell::Smell;
@@ -157,6 +157,7 @@ fn wanderers(
             hold_left: 0,
             waypoint: 0,
             turn_away: TurnAway::new(w.max_rpt, w.turn_degrees),
+            asleep: 0,
         });
         things.push(Thing {
             position: pose.position,
@@ -194,6 +195,12 @@ fn predators(
             what: format!("world.predators[{k}]"),
             attempts: ACTOR_ATTEMPTS,
         })?;
+        // No draw without a sleep, so that worlds without one keep their bytes.
+        let asleep = if p.asleep[1] > 0 {
+            p.asleep[0] + below(rng, p.asleep[1] - p.asleep[0] + 1)
+        } else {
+            0
+        };
         actors.push(Actor {
             thing: things.len(),
             role: Role::Predator {
@@ -208,11 +215,14 @@ fn predators(
             hold_left: 0,
             waypoint: 0,
             turn_away: TurnAway::new(p.max_rpt, p.turn_degrees),
+            asleep,
         });
+        let mut smell = Smell::new(&p.odour, p.intensity, p.range);
+        smell.silent |= asleep > 0;
         things.push(Thing {
             position: pose.position,
             radius: ground.radius,
-            smell: Smell::new(&p.odour, p.intensity, p.range),
+            smell,
             felt: true,
             blocks: false,
             seen: true,

@@ -195,6 +195,16 @@ impl Gadgets {
                 let (l, rr) = self.actors[a].wander(whiskers, ctx.rng);
                 (l, rr, None)
             }
+            Role::Predator { .. } if !actor.awake() => {
+                // Asleep where it lies; it wakes (and smells) after this tick's command.
+                let a = &mut self.actors[a];
+                a.asleep -= 1;
+                if a.awake() {
+                    let smell = &mut ctx.things[a.thing].smell;
+                    smell.silent = smell.emission.iter().all(|&e| e == 0.0);
+                }
+                (0.0, 0.0, None)
+            }
             Role::Predator {
                 predator,
                 strategy,
@@ -339,7 +349,9 @@ impl Gadgets {
         let r = ctx.radius;
         for a in 0..self.actors.len() {
             if let Role::Predator { effect, .. } = self.actors[a].role {
-                if circles_touch(position, r, self.actors[a].pose.position, r) {
+                if self.actors[a].awake()
+                    && circles_touch(position, r, self.actors[a].pose.position, r)
+                {
                     ctx.attack(i, effect);
                 }
             }

@@ -218,6 +218,15 @@ pub struct PredatorSpec {
     /// as `[world.wanderers] turn_degrees` (default: absent = 30).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub turn_degrees: Option<f64>,
+    /// Ticks it sleeps where it starts at the beginning of a trial, drawn uniformly from
+    /// `[min, max]` for each trial (default: `[0, 0]` = awake from the start). Asleep it
+    /// neither moves, smells nor attacks (its body is still felt and seen), so that a creature
+    /// cannot know when the hunt begins except by the predator's smell.
+    #[serde(
+        skip_serializing_if = "no_pause",
+        deserialize_with = "exact_lists::pair"
+    )]
+    pub asleep: [u64; 2],
 }
 
 impl Default for PredatorSpec {
@@ -234,6 +243,7 @@ impl Default for PredatorSpec {
             range: None,
             colour: [0.9, 0.1, 0.1],
             turn_degrees: None,
+            asleep: [0, 0],
         }
     }
 }
@@ -271,8 +281,8 @@ pub struct AirPredatorSpec {
     pub pause: [u64; 2],
 }
 
-/// Serde's `skip_serializing_if` for `pause = [0, 0]` (the default), so that files without
-/// it keep their configuration hash.
+/// Serde's `skip_serializing_if` for `pause` and `asleep` at `[0, 0]` (their default), so
+/// that files without them keep their configuration hash.
 fn no_pause(pause: &[u64; 2]) -> bool {
     *pause == [0, 0]
 }
@@ -370,6 +380,18 @@ fn turn(key: &str, degrees: Option<f64>) -> Valid {
         crate::validate::within(key, d, 0.0, 180.0)?;
     }
     Ok(())
+}
+
+/// A `[min, max]` of ticks that may be 0 (pauses, sleeps).
+fn ticks_range(key: &str, t: [u64; 2]) -> Valid {
+    count_within(&format!("{key}[0]"), t[0], 0, MAX_TICKS, "ticks")?;
+    count_within(
+        &format!("{key}[1]"),
+        t[1],
+        t[0],
+        MAX_TICKS,
+        "ticks, at least min",
+    )
 }
 
 fn hold(key: &str, h: [u64; 2]) -> Valid {
@@ -480,6 +502,7 @@ pub fn validate(
             inside(&format!("{key}.start"), s, arena)?;
         }
         hold(&format!("{key}.hold_ticks"), p.hold_ticks)?;
+        ticks_range(&format!("{key}.asleep"), p.asleep)?;
         turn(&format!("{key}.turn_degrees"), p.turn_degrees)?;
         smell(&key, &p.odour, p.intensity, p.range)?;
         colour(&format!("{key}.colour"), &p.colour)?;
@@ -496,15 +519,7 @@ pub fn validate(
         positive(&format!("{key}.speed"), a.speed)?;
         non_negative(&format!("{key}.strike_radius"), a.strike_radius)?;
         smell(&key, &a.odour, a.intensity, a.range)?;
-        let pause = format!("{key}.pause");
-        count_within(&format!("{pause}[0]"), a.pause[0], 0, MAX_TICKS, "ticks")?;
-        count_within(
-            &format!("{pause}[1]"),
-            a.pause[1],
-            a.pause[0],
-            MAX_TICKS,
-            "ticks, at least min",
-        )?;
+        ticks_range(&format!("{key}.pause"), a.pause)?;
     }
     Ok(())
 }
