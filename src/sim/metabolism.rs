@@ -1,6 +1,8 @@
 //! The metabolic state m = ⟨fA, fB, fC, fD⟩ (§5.3): what eating adds and what time and
 //! movement take away.
 
+use crate::seed::{uniform, Rng};
+
 /// The metabolic vector m = ⟨fA, fB, fC, fD⟩ (§5.3): the amount of each food type's substance
 /// a creature holds, indexed by food type (A = 0 … D = 3), never below 0. The name it carries
 /// across layers (a creature's state, a trial's outcome, an evaluation, checkpoints, genome
@@ -8,6 +10,20 @@
 /// numbers and the tick's arithmetic indexes it as it always has, so no file byte and no
 /// instruction changes.
 pub type Metabolism = [f64; 4];
+
+/// A creature's m at birth: `initial` plus, per component, a uniform draw from
+/// [0, `spread`) (components in order A … D; no draw at all when every spread is 0, so that
+/// worlds without one keep their bytes).
+pub fn at_birth(initial: Metabolism, spread: [f64; 4], rng: &mut Rng) -> Metabolism {
+    if spread.iter().all(|&s| s == 0.0) {
+        return initial;
+    }
+    let mut m = initial;
+    for t in 0..4 {
+        m[t] += uniform(rng, 0.0, spread[t]);
+    }
+    m
+}
 
 /// How m decays: per tick and per LU travelled, per food type.
 #[derive(Debug, Clone, Copy, PartialEq)]

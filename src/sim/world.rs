@@ -59,7 +59,7 @@ use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::{self, Actor, Context, Door, Flyer, Gadgets, Teleporter, Thing};
 use crate::sim::index::mover_cells::{LastCell, MoverCells, NearWalls};
 use crate::sim::index::{self, Scratch, StaticIndex};
-use crate::sim::metabolism::Decay;
+use crate::sim::metabolism::{self, Decay, Metabolism};
 use crate::sim::motion::{
     clamp_rpt, plan_clamped_move_inline, plan_move, Blockers, MotionParams, Pose,
 };
@@ -351,6 +351,16 @@ impl World {
             &mut rng,
         )?;
         push_smelling_landmarks(world, &mut things);
+        // After every other draw of the build, so that worlds without a spread keep theirs.
+        let births: Vec<Metabolism> = (0..creatures)
+            .map(|_| {
+                metabolism::at_birth(
+                    creature.initial_metabolism,
+                    creature.initial_metabolism_spread,
+                    &mut rng,
+                )
+            })
+            .collect();
         let rules = CreatureRules::new(
             world,
             creature,
@@ -374,8 +384,9 @@ impl World {
             brute_force: false,
             creatures: poses
                 .into_iter()
+                .zip(births)
                 .enumerate()
-                .map(|(i, p)| Creature::new(p, creature.initial_metabolism, creature.body_smell(i)))
+                .map(|(i, (p, m))| Creature::new(p, m, creature.body_smell(i)))
                 .collect(),
             body: Body {
                 radius,

@@ -285,3 +285,30 @@ fn dead_creatures_neither_act_nor_block() {
     // Five moves of π LU straight through where the dead body lies.
     assert_close(w.creatures()[1].pose.position.x, 110.0 - 5.0 * PI, "x");
 }
+
+#[test]
+fn a_metabolism_spread_draws_each_creatures_birth_state_after_the_world() {
+    let plain = apple("", "initial_metabolism = [0.5, 0, 0, 1]");
+    let spread = apple(
+        "",
+        "initial_metabolism = [0.5, 0, 0, 1]\ninitial_metabolism_spread = [1, 0, 0.25, 2]",
+    );
+    let mut seen = Vec::new();
+    for seed in 1..=20 {
+        let (p, s) = (world(&plain, 3, seed), world(&spread, 3, seed));
+        for (a, b) in p.creatures().iter().zip(s.creatures()) {
+            // The world's own draws come first: same poses and food with or without it.
+            assert_eq!(a.pose, b.pose);
+            assert_eq!(a.metabolism, [0.5, 0.0, 0.0, 1.0]);
+            let m = b.metabolism;
+            assert!((0.5..1.5).contains(&m[0]), "{m:?}");
+            assert_eq!(m[1], 0.0);
+            assert!((0.0..0.25).contains(&m[2]), "{m:?}");
+            assert!((1.0..3.0).contains(&m[3]), "{m:?}");
+            seen.push(m);
+        }
+        assert_eq!(p.food()[0].position, s.food()[0].position);
+    }
+    // Drawn for each creature and each world, not once.
+    assert!(seen.windows(2).all(|w| w[0] != w[1]));
+}

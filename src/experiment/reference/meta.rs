@@ -285,6 +285,7 @@ pub fn keys() -> Vec<KeyMeta> {
         k("CreatureSpec.eating", "", any(), "§5.2 (SPEC-NOTES)"),
         k("CreatureSpec.inhibit_smell_on_whisker", "", any(), "§7.3"),
         k("CreatureSpec.initial_metabolism", "", ge0(), "§5.3"),
+        kd("CreatureSpec.initial_metabolism_spread", "", ge0(), "§5.3", [0.0; 4]),
         k("CreatureSpec.decay_per_tick", "per tick", ge0(), "§5.3"),
         k("CreatureSpec.decay_per_lu", "per LU", ge0(), "§5.3"),
         k("CreatureSpec.inputs", "", any(), "§7"),

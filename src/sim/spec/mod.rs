@@ -586,6 +586,15 @@ pub struct CreatureSpec {
     /// Metabolic state m = ⟨fA, fB, fC, fD⟩ at birth (default: zeros).
     #[serde(deserialize_with = "exact::array")]
     pub initial_metabolism: [f64; 4],
+    /// Spread of m at birth: each component is `initial_metabolism` plus a uniform draw from
+    /// [0, spread) for every creature in every trial (default: zeros = no draw). With a
+    /// spread the substance a creature lacks most differs from trial to trial, so only its
+    /// metabolism inputs can tell it which food to seek.
+    #[serde(
+        skip_serializing_if = "exact::is_zero",
+        deserialize_with = "exact::array"
+    )]
+    pub initial_metabolism_spread: [f64; 4],
     /// Decrease of m per tick (default: zeros).
     #[serde(deserialize_with = "exact::array")]
     pub decay_per_tick: [f64; 4],
@@ -819,6 +828,7 @@ impl Default for CreatureSpec {
             eating: Eating::Contact,
             inhibit_smell_on_whisker: false,
             initial_metabolism: [0.0; 4],
+            initial_metabolism_spread: [0.0; 4],
             decay_per_tick: [0.0; 4],
             decay_per_lu: [0.0; 4],
             inputs: InputsSpec::default(),
@@ -852,6 +862,10 @@ impl CreatureSpec {
         }
         non_negative("creature.max_rpt", self.max_rpt)?;
         all_non_negative("creature.initial_metabolism", &self.initial_metabolism)?;
+        all_non_negative(
+            "creature.initial_metabolism_spread",
+            &self.initial_metabolism_spread,
+        )?;
         all_non_negative("creature.decay_per_tick", &self.decay_per_tick)?;
         all_non_negative("creature.decay_per_lu", &self.decay_per_lu)?;
         if let Some(colour) = self.colour {
