@@ -407,6 +407,12 @@ pub fn render_svg(trace: &TrialTrace, caption: &Caption) -> String {
                 );
             }
             match kind {
+                // A raider away between flights (`pause`) waits outside the arena: no disc.
+                ActorKind::AirPredator
+                    if end[0] < 0.0
+                        || end[1] < 0.0
+                        || end[0] > w.arena[0]
+                        || end[1] > w.arena[1] => {}
                 ActorKind::AirPredator => {
                     let sr = frame.len(w.air_predators[k].strike_radius);
                     let _ = write!(

@@ -365,3 +365,33 @@ fn render_and_replay_work_on_every_shipped_experiment() {
         assert!(page.contains("id=\"status\"") && page.contains("\"type\":\"world\""));
     }
 }
+
+/// A raider away between flights (`pause`) waits outside the arena: `render` draws no strike
+/// disc for it there, while one in flight gets one.
+#[test]
+fn render_draws_no_strike_disc_for_a_raider_away_between_flights() {
+    let tmp = tempfile::tempdir().unwrap();
+    let tiny = std::fs::read_to_string(root().join("tests/fixtures/tiny.toml")).unwrap();
+    let discs = |pause: &str| {
+        let file = tmp.path().join(format!("raid{}.toml", pause.len()));
+        std::fs::write(
+            &file,
+            format!("{tiny}\n[[world.air_predators]]\nspeed = 1\n{pause}\n"),
+        )
+        .unwrap();
+        let genome = tmp.path().join("g.json");
+        genome_for(&file, &genome);
+        let picture = tmp.path().join("raid.svg");
+        ok(a!["render", &genome, "--experiment", &file, "-o", &picture]);
+        let text = svg(&picture);
+        let doc = roxmltree::Document::parse(&text).unwrap();
+        let group = with_class(&doc, "air-predator");
+        assert_eq!(group.len(), 1);
+        group[0]
+            .descendants()
+            .filter(|n| n.has_tag_name("circle"))
+            .count()
+    };
+    assert_eq!(discs(""), 1);
+    assert_eq!(discs("pause = [1000000, 1000000]"), 0);
+}
