@@ -47,9 +47,9 @@ def main():
     save(f"{out}/straight.json", names, bias_only(names, 5.0, 5.0), "drive straight")
     save(f"{out}/arc.json", names, bias_only(names, 5.0, 0.55), "drive in an arc")
     areas = [n for n in names if n.startswith("area_")]
-    # air-raid's shelter smells at intensity 5 (predator-arena's nest at 0.5): a gain of 6
-    # there steers as 60 does here (60 made it spin on the spot).
-    gain = 6.0 if "air-raid" in os.path.basename(exp) else 60.0
+    # Both shelters smell strongly (air-raid's at intensity 5, predator-arena's nest at 10):
+    # a gain of 6 follows the gradient, 60 saturates the motors and spins on the spot.
+    gain = 6.0
     p = mdb.vehicle(names, towards=[(8, gain)], whisker=1.5, forward=0.5,
                     extra=[(a, -0.5, -0.5) for a in areas])
     save(f"{out}/to-shelter.json", names, p, "follow the safe area's smell, stop inside and stay")
