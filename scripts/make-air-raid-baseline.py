@@ -27,18 +27,17 @@ settings tried on the design set (compare --generation 1099511627777), never the
 Usage: python3 scripts/make-air-raid-baseline.py EXPERIMENT.toml [--binary BIN] [gains] > OUT.json
 """
 import argparse
+import importlib.util
 import json
-import re
-import subprocess
+import os
 import sys
 
 
-def layout(experiment, binary):
-    text = subprocess.run([binary, "inspect", experiment], check=True, capture_output=True,
-                          text=True).stdout
-    names = [m.group(2) for m in re.finditer(r"^\s*\[\s*(\d+)\]\s+(\S+)\s*$", text, re.M)]
-    outs = re.search(r"^outputs: (.*)$", text, re.M).group(1).split(", ")
-    return names, outs
+# The input layout as `inspect` prints it, read by make-vehicle.py.
+_spec = importlib.util.spec_from_file_location(
+    "make_vehicle", os.path.join(os.path.dirname(os.path.abspath(__file__)), "make-vehicle.py"))
+_vehicle = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(_vehicle)
 
 
 def main():
@@ -55,9 +54,7 @@ def main():
     ap.add_argument("--whisker", type=float, default=1.5)
     ap.add_argument("--brake", type=float, default=1.0)
     a = ap.parse_args()
-    inputs, outputs = layout(a.experiment, a.binary)
-    if outputs != ["motor_left", "motor_right"]:
-        sys.exit(f"expected outputs motor_left, motor_right, got {outputs}")
+    inputs, outputs = _vehicle.motor_layout(a.experiment, a.binary)
     ix = {n: i for i, n in enumerate(inputs)}
     n = len(inputs)
     areas = [x for x in inputs if x.startswith("area_")]

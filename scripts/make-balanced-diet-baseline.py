@@ -25,12 +25,11 @@ import json
 import os
 import sys
 
-# The input layout as `inspect` prints it, read by make-vehicle.py's `layout`.
+# The input layout as `inspect` prints it, read by make-vehicle.py's `motor_layout`.
 _spec = importlib.util.spec_from_file_location(
     "make_vehicle", os.path.join(os.path.dirname(os.path.abspath(__file__)), "make-vehicle.py"))
 _vehicle = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(_vehicle)
-layout = _vehicle.layout
 
 
 def main():
@@ -43,9 +42,7 @@ def main():
     ap.add_argument("--forward", type=float, default=0.5)
     ap.add_argument("--brake", type=float, default=0.5)
     a = ap.parse_args()
-    inputs, outputs = layout(a.experiment, a.binary)
-    if outputs != ["motor_left", "motor_right"]:
-        sys.exit(f"expected outputs motor_left, motor_right, got {outputs}")
+    inputs, outputs = _vehicle.motor_layout(a.experiment, a.binary)
     index = {n: i for i, n in enumerate(inputs)}
     gain = {1: a.common, 2: a.common, 3: a.scarce, 4: a.scarce}
 

@@ -38,6 +38,15 @@ def layout(experiment, binary):
     return names, outs
 
 
+def motor_layout(experiment, binary):
+    """`layout`, for a vehicle driving the two motors only: exits unless the outputs are
+    motor_left, motor_right."""
+    names, outs = layout(experiment, binary)
+    if outs != ["motor_left", "motor_right"]:
+        sys.exit(f"expected outputs motor_left, motor_right, got {outs}")
+    return names, outs
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("experiment")

@@ -152,35 +152,6 @@ start = [50, 150]
 max_rpt = 0.25
 "#;
 
-#[test]
-fn a_chase_predator_reaches_a_still_creature_and_kills_it() {
-    let mut w = world(CHASE, 1, 1);
-    w.set_actor_pose(
-        0,
-        Pose {
-            position: Vec2::new(50.0, 150.0),
-            heading: Vec2::new(0.0, 1.0),
-        },
-    );
-    put(&mut w, 0, 150.0, 150.0, 0.0);
-    let mut died = None;
-    for t in 0..200 {
-        w.step(&mut [Still]);
-        if !w.creatures()[0].alive {
-            died = Some(t);
-            break;
-        }
-    }
-    // 100 − 6 LU at π LU per tick, after turning a quarter turn: about 32 ticks.
-    let t = died.expect("the predator kills the creature");
-    assert!((25..60).contains(&t), "died at tick {t}");
-    let d = w.actors()[0]
-        .pose
-        .position
-        .distance_squared(w.creatures()[0].pose.position);
-    assert!(d <= 36.0, "bodies touch at the kill: d² = {d}");
-}
-
 /// The tick (0-based) at which the chase predator of `text`, put at (50, 150) facing +y,
 /// kills a still creature at (150, 150), with the world `w` it ran in.
 fn kill_tick(text: &str) -> (Option<u64>, World) {
@@ -200,6 +171,19 @@ fn kill_tick(text: &str) -> (Option<u64>, World) {
         }
     }
     (None, w)
+}
+
+#[test]
+fn a_chase_predator_reaches_a_still_creature_and_kills_it() {
+    let (died, w) = kill_tick(CHASE);
+    // 100 − 6 LU at π LU per tick, after turning a quarter turn: about 32 ticks.
+    let t = died.expect("the predator kills the creature");
+    assert!((25..60).contains(&t), "died at tick {t}");
+    let d = w.actors()[0]
+        .pose
+        .position
+        .distance_squared(w.creatures()[0].pose.position);
+    assert!(d <= 36.0, "bodies touch at the kill: d² = {d}");
 }
 
 #[test]

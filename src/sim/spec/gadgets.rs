@@ -382,9 +382,9 @@ fn turn(key: &str, degrees: Option<f64>) -> Valid {
     Ok(())
 }
 
-/// A `[min, max]` of ticks that may be 0 (pauses, sleeps).
-fn ticks_range(key: &str, t: [u64; 2]) -> Valid {
-    count_within(&format!("{key}[0]"), t[0], 0, MAX_TICKS, "ticks")?;
+/// A `[min, max]` of ticks with `lowest ≤ min ≤ max ≤ MAX_TICKS`.
+fn ticks_range(key: &str, t: [u64; 2], lowest: u64) -> Valid {
+    count_within(&format!("{key}[0]"), t[0], lowest, MAX_TICKS, "ticks")?;
     count_within(
         &format!("{key}[1]"),
         t[1],
@@ -394,15 +394,9 @@ fn ticks_range(key: &str, t: [u64; 2]) -> Valid {
     )
 }
 
+/// Hold ranges of random commands: at least one tick.
 fn hold(key: &str, h: [u64; 2]) -> Valid {
-    count_within(&format!("{key}[0]"), h[0], 1, MAX_TICKS, "ticks")?;
-    count_within(
-        &format!("{key}[1]"),
-        h[1],
-        h[0],
-        MAX_TICKS,
-        "ticks, at least min",
-    )
+    ticks_range(key, h, 1)
 }
 
 /// Validates every gadget and actor table of a world with arena `arena`; keys start with
@@ -502,7 +496,7 @@ pub fn validate(
             inside(&format!("{key}.start"), s, arena)?;
         }
         hold(&format!("{key}.hold_ticks"), p.hold_ticks)?;
-        ticks_range(&format!("{key}.asleep"), p.asleep)?;
+        ticks_range(&format!("{key}.asleep"), p.asleep, 0)?;
         turn(&format!("{key}.turn_degrees"), p.turn_degrees)?;
         smell(&key, &p.odour, p.intensity, p.range)?;
         colour(&format!("{key}.colour"), &p.colour)?;
@@ -519,7 +513,7 @@ pub fn validate(
         positive(&format!("{key}.speed"), a.speed)?;
         non_negative(&format!("{key}.strike_radius"), a.strike_radius)?;
         smell(&key, &a.odour, a.intensity, a.range)?;
-        ticks_range(&format!("{key}.pause"), a.pause)?;
+        ticks_range(&format!("{key}.pause"), a.pause, 0)?;
     }
     Ok(())
 }
