@@ -29,6 +29,12 @@ impl Smell {
         }
     }
 
+    /// Silences it (`quiet`) or gives it back its emission (silent again when that is all
+    /// zeros): for a predator asleep or away between flights.
+    pub fn set_quiet(&mut self, quiet: bool) {
+        self.silent = quiet || self.emission.iter().all(|&e| e == 0.0);
+    }
+
     /// A thing that does not smell.
     pub const NONE: Smell = Smell {
         emission: [0.0; 8],

@@ -218,7 +218,7 @@ fn predators(
             asleep,
         });
         let mut smell = Smell::new(&p.odour, p.intensity, p.range);
-        smell.silent |= asleep > 0;
+        smell.set_quiet(asleep > 0);
         things.push(Thing {
             position: pose.position,
             radius: ground.radius,
@@ -251,7 +251,7 @@ fn flyers(world: &WorldSpec, things: &mut Vec<Thing>, rng: &mut Rng) -> Vec<Flye
         };
         f.enter(world.arena, rng);
         let mut smell = Smell::new(&a.odour, a.intensity, a.range);
-        smell.silent |= !f.in_flight();
+        smell.set_quiet(!f.in_flight());
         things.push(Thing {
             position: f.position,
             radius: 0.0,

@@ -200,8 +200,7 @@ impl Gadgets {
                 let a = &mut self.actors[a];
                 a.asleep -= 1;
                 if a.awake() {
-                    let smell = &mut ctx.things[a.thing].smell;
-                    smell.silent = smell.emission.iter().all(|&e| e == 0.0);
+                    ctx.things[a.thing].smell.set_quiet(false);
                 }
                 (0.0, 0.0, None)
             }
@@ -257,8 +256,7 @@ impl Gadgets {
             thing.position = fl.position;
             if fl.pause[1] > 0 {
                 // Away between flights it is not smelled.
-                thing.smell.silent =
-                    !fl.in_flight() || thing.smell.emission.iter().all(|&e| e == 0.0);
+                thing.smell.set_quiet(!fl.in_flight());
             }
             if fl.in_flight() {
                 ctx.strike_all(fl.position, fl.strike_radius, 0.0, fl.effect);
