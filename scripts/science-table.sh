@@ -2,8 +2,9 @@
 # The science table (issue 16): for every shipped experiment (not the pure simulator demos,
 # open-arena and walled-arena, which say so at their top), run 5 seeds at the file's own
 # budget, then print as Markdown, per experiment: the algorithm and budget, the median wall
-# time of a run, the median and range of held-out fitness (`compare --trials 20`, worlds
-# evolution never saw) and of the behaviour measures, 64 random genomes' median and best, the
+# time of a run, the median and range of held-out fitness (`compare --trials 20`, or the
+# list's sixth column for experiments whose trials are too noisy for 20; worlds evolution
+# never saw) and of the behaviour measures, 64 random genomes' median and best, the
 # hand-designed baseline, and the ablation (the sense the behaviour needs taken away) with
 # its drop.
 #
@@ -17,7 +18,8 @@
 # run on one core while the other core runs another; a run alone with --jobs 2 is faster.
 #
 # The experiment lists (one per helper, tab-separated: experiment, ablation, baseline,
-# behaviour command, optional measures to show) are data files; a behaviour command of
+# behaviour command, optional measures to show, optional held-out trials, default 20) are
+# data files; a behaviour command of
 # `compare` takes the measures the experiment file's [behaviour] names from compare's JSON, so that each helper edits
 # only its own lines:
 LISTS=(scripts/science-table.tsv scripts/science-table-design2.tsv)
@@ -74,10 +76,10 @@ runs, seeds, only, binary = (os.environ[k] for k in ("RUNS", "SEEDS", "ONLY", "B
 seeds = seeds.split()
 
 
-def compare(experiment, genomes, random):
+def compare(experiment, genomes, random, trials):
     """Held-out fitness of each genome file, and the random genomes' (median, best)."""
     out = subprocess.run([binary, "compare", *genomes, "--experiment", experiment,
-                          "--trials", "20", "--random", str(random), "--json"],
+                          "--trials", str(trials), "--random", str(random), "--json"],
                          capture_output=True, text=True, check=True).stdout
     report = json.loads(out)
     fit = {g["path"]: nan_if_none(g["fitness"]) for g in report["genomes"]}
@@ -135,6 +137,7 @@ for line in os.environ["ROWS"].splitlines():
     cols = line.rstrip("\n").split("\t")
     exp, abl, base, cmd = cols[:4]
     keys = cols[4].split(",") if len(cols) > 4 and cols[4] else None
+    trials = int(cols[5]) if len(cols) > 5 and cols[5] else 20
     if only not in exp:
         continue
     name = os.path.basename(exp)[:-5]
@@ -146,7 +149,7 @@ for line in os.environ["ROWS"].splitlines():
     walls = [float(open(os.path.join(os.path.dirname(c), "wall.txt")).read())
              for c in champs if os.path.exists(os.path.join(os.path.dirname(c), "wall.txt"))]
     have_base = os.path.exists(base)
-    fit, rnd, meas = compare(exp, champs + ([base] if have_base else []), 64)
+    fit, rnd, meas = compare(exp, champs + ([base] if have_base else []), 64, trials)
     beh = behaviour(cmd, champs + ([base] if have_base else []), meas)
     if keys is None:
         first = next(iter(beh.values()))
@@ -161,7 +164,7 @@ for line in os.environ["ROWS"].splitlines():
     else:
         base_col = "none"
     if os.path.exists(abl):
-        afit, _, ameas = compare(abl, champs, 0)
+        afit, _, ameas = compare(abl, champs, 0, trials)
         amed = statistics.median(afit[c] for c in champs)
         abeh = behaviour(cmd.replace(exp, abl), champs, ameas)
         acol = (f"{amed:.2f} ({amed - statistics.median(held):+.2f}); "
@@ -172,6 +175,6 @@ for line in os.environ["ROWS"].splitlines():
     ok = statistics.median(held) > max(rnd[1] if rnd else float("-inf"),
                                        fit[base] if have_base else float("-inf"))
     wall = f"{statistics.median(walls):.0f}" if walls else "n/a"
-    print(f"| {name} | {workload(exp)} | {wall} | {med_range(held)} (n={len(held)}) | {bcol} | "
+    print(f"| {name} | {workload(exp)} | {wall} | {med_range(held)} (n={len(held)}, {trials} worlds) | {bcol} | "
           f"{rnd[0]:.2f} / {rnd[1]:.2f} | {base_col} | {acol} | {'yes' if ok else 'no'} |")
 PY

@@ -7,7 +7,8 @@ EXPERIMENT.toml and the steering convention of scripts/make-design2-baselines.py
   spin.json      left +max, right -max
   straight.json  both motors +max (whisker turn-away off)
   arc.json       left full, right half
-  to-shelter.json  follow the safe area's smell (component 8) and stop inside it (area input)
+  to-shelter.json  follow the safe area's smell (component 8), or its beacon's bearing where
+                   the world has one (input landmark_1_sin), and stop inside it (area input)
                    and stay there: "go to the nest / a shelter and stay"
 Usage: python3 scripts/shelter-controls.py EXPERIMENT.toml OUTDIR
 """
@@ -20,6 +21,9 @@ here = os.path.dirname(os.path.abspath(__file__))
 spec = importlib.util.spec_from_file_location("mdb", os.path.join(here, "make-design2-baselines.py"))
 mdb = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(mdb)
+
+
+BEACON_GAIN = 1.0   # the best of 0.5, 1 and 2 on both experiments' design sets
 
 
 def save(path, names, params, what):
@@ -50,9 +54,16 @@ def main():
     # Both shelters smell strongly (air-raid's at intensity 5, predator-arena's nest at 10):
     # a gain of 6 follows the gradient, 60 saturates the motors and spins on the spot.
     gain = 6.0
-    p = mdb.vehicle(names, towards=[(8, gain)], whisker=1.5, forward=0.5,
-                    extra=[(a, -0.5, -0.5) for a in areas])
-    save(f"{out}/to-shelter.json", names, p, "follow the safe area's smell, stop inside and stay")
+    stop = [(a, -0.5, -0.5) for a in areas]
+    if "landmark_1_sin" in names:
+        # The beacon's sin(bearing) is +1 with the shelter to the right: left wheel faster.
+        p = mdb.vehicle(names, whisker=1.5, forward=0.5,
+                        extra=stop + [("landmark_1_sin", BEACON_GAIN, -BEACON_GAIN)])
+        what = "steer towards the safe area's beacon, stop inside and stay"
+    else:
+        p = mdb.vehicle(names, towards=[(8, gain)], whisker=1.5, forward=0.5, extra=stop)
+        what = "follow the safe area's smell, stop inside and stay"
+    save(f"{out}/to-shelter.json", names, p, what)
     return 0
 
 
