@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # Regenerates the README's pictures under docs/pictures/: for the main job
-# (experiments/foraging.toml) and one gadget experiment (experiments/t-maze.toml by default, GADGET=locked-room for another), a full-budget
-# run's fitness plot, a trajectory picture of its champion (trial 0) and a still of the
-# replay page at the middle of that trial (headless Chromium). PNGs are kept small
-# (resized, 64 colours).
+# (experiments/foraging.toml), a gadget experiment (experiments/t-maze.toml) and a shelter
+# experiment (experiments/predator-arena.toml), a full-budget run's fitness plot, a trajectory
+# picture of its champion and a still of the replay page at the middle of that trial
+# (headless Chromium). The trial is trial 0 of the champion's own generation, except for
+# predator-arena: held-out trial 1, whose predator wakes at tick 265, so that the picture shows
+# both foraging and going home. PNGs are kept small (resized, 64 colours).
 #
 #   bash scripts/make-pictures.sh            (needs rsvg-convert, ImageMagick, chromium:
 #                                             apt-get install -y librsvg2-bin imagemagick chromium)
-#   FORAGING_GENERATIONS=20 GADGET_GENERATIONS=15 GADGET=t-maze bash scripts/make-pictures.sh  (quick look)
+#   PICTURES="t-maze locked-room" bash scripts/make-pictures.sh   (only these experiments)
+#   GENERATIONS=15 bash scripts/make-pictures.sh                  (quick look, short runs)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 for tool in rsvg-convert convert chromium; do
@@ -19,15 +22,18 @@ out=docs/pictures
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 mkdir -p "$out"
-gadget=${GADGET:-t-maze}
-# Each at its file's own budget unless FORAGING_GENERATIONS / GADGET_GENERATIONS say otherwise.
-for pair in "foraging:${FORAGING_GENERATIONS:-}" "$gadget:${GADGET_GENERATIONS:-}"; do
-  name=${pair%%:*}; gens=${pair##*:}
+# Each at its file's own budget unless GENERATIONS says otherwise.
+gens=${GENERATIONS:-}
+for name in ${PICTURES:-foraging t-maze predator-arena}; do
   run=$tmp/$name
+  case $name in
+    predator-arena) trial=(--generation 1099511627776 --trial 1) ;;
+    *) trial=(--trial 0) ;;
+  esac
   "$bin" run "experiments/$name.toml" ${gens:+--generations "$gens"} --out "$run" --force --quiet
   "$bin" plot "$run" -o "$tmp/$name-fitness.svg"
-  "$bin" render "$run/best.json" --experiment "$run/experiment.toml" --trial 0 -o "$tmp/$name-trajectory.svg"
-  "$bin" replay "$run/best.json" --experiment "$run/experiment.toml" --trial 0 --html "$tmp/$name.html" >/dev/null
+  "$bin" render "$run/best.json" --experiment "$run/experiment.toml" "${trial[@]}" -o "$tmp/$name-trajectory.svg"
+  "$bin" replay "$run/best.json" --experiment "$run/experiment.toml" "${trial[@]}" --html "$tmp/$name.html" >/dev/null
   rsvg-convert -w 800 "$tmp/$name-fitness.svg" -o "$tmp/$name-fitness.png"
   rsvg-convert -w 900 "$tmp/$name-trajectory.svg" -o "$tmp/$name-trajectory.png"
   # The middle of the trial: half the experiment's ticks per trial.
