@@ -43,7 +43,7 @@ spec.loader.exec_module(mdb)
 
 G = 20.0          # gain of the AND units (layer 2)
 KN = 100.0        # gain on the nest's smell difference (chosen on the design set: 30-300)
-KB = 3.0          # gain on the beacon's bearing (sin), when there is one (3 and 20 tried)
+KB = 3.0          # gain on the beacon's bearing (sin), when there is one (1, 3, 10, 20 tried)
 TH = 2.0          # turn towards the nest (1-4 tried; 4 zigzags, 1 is too slow)
 
 
