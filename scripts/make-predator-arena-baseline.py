@@ -47,9 +47,9 @@ KB = 3.0          # gain on the beacon's bearing (sin), when there is one (1, 3,
 TH = 2.0          # turn towards the nest (1-4 tried; 4 zigzags, 1 is too slow)
 
 
-def home_unit(ix):
+def home_unit(beacon):
     """S's weights: by the nest's beacon where the world has one, else by the nest's smell."""
-    if "landmark_1_sin" in ix:
+    if beacon:
         return [("landmark_1_sin", KB)]
     return [("smell_right_8", KN), ("smell_left_8", -KN)]
 
@@ -58,8 +58,8 @@ def main():
     exp = sys.argv[1] if len(sys.argv) > 1 else "experiments/predator-arena.toml"
     out = sys.argv[2] if len(sys.argv) > 2 else "genomes/predator-arena-baseline.json"
     names = mdb.layout(exp)
-    default_thr = 0.1 if "landmark_1_sin" in names else 0.3
-    thr = float(sys.argv[3]) if len(sys.argv) > 3 else default_thr
+    beacon = "landmark_1_sin" in names
+    thr = float(sys.argv[3]) if len(sys.argv) > 3 else (0.1 if beacon else 0.3)
     n = len(names)
     ix = {name: i for i, name in enumerate(names)}
 
@@ -73,7 +73,7 @@ def main():
     sd = 50.0 / thr                      # danger gate: sharp around the threshold
     l1 = [
         unit([("smell_left_7", sd), ("smell_right_7", sd)], -50.0),          # D: sd * (P - thr)
-        unit(home_unit(ix)),                                                 # S (graded)
+        unit(home_unit(beacon)),                                                 # S (graded)
         unit([("area_1", 20.0)], -10.0),                                     # A
         unit([("smell_right_1", 200.0), ("smell_left_1", -200.0)]),          # F
         unit([("whisker_left", 3.0), ("whisker_right", -3.0)]),              # W
@@ -141,7 +141,7 @@ def main():
         "origin": {"description": "hand-designed baseline for experiments/predator-arena.toml "
                    "(scripts/make-predator-arena-baseline.py): forage by the food's smell; "
                    f"when the predator's smell (left + right) is above {thr}, steer "
-                   + ("towards the nest's beacon" if "landmark_1_sin" in ix else "up the nest's smell")
+                   + ("towards the nest's beacon" if beacon else "up the nest's smell")
                    + " and stop inside the nest; whisker turn-away; brake while eating unless in danger"},
     }
     with open(out, "w") as f:
