@@ -66,7 +66,14 @@ impl ValidatedChampion {
 
 /// Is generation `generation` (of `total`) one after which to validate?
 pub fn is_due(spec: &ValidationSpec, generation: u64, total: u64) -> bool {
-    spec.enabled() && ((generation + 1) % spec.every == 0 || generation + 1 >= total)
+    spec.enabled() && (is_scheduled(spec, generation) || generation + 1 >= total)
+}
+
+/// Is generation `generation` validated by `every`'s schedule, whatever the run's length? A
+/// run also validates its last generation ([`is_due`]); that end-of-run validation is the one
+/// a longer run would not make, so extending a run sets it aside (see `run::extension`).
+pub fn is_scheduled(spec: &ValidationSpec, generation: u64) -> bool {
+    spec.enabled() && (generation + 1) % spec.every == 0
 }
 
 /// The fixed validation worlds of `experiment` (one creature each): world t is built from

@@ -651,6 +651,20 @@ pub fn write_checkpoint<T: Serialize + ?Sized>(
     payload: &T,
     keep: usize,
 ) -> Result<PathBuf, CheckpointError> {
+    write_checkpoint_superseding(dir, config_hash, generation, payload, keep, |_| false)
+}
+
+/// [`write_checkpoint`], which also removes the older checkpoints for whose generation
+/// `superseded` is true (after the new one is written, before the others are pruned; they do
+/// not count towards `keep`): checkpoints only needed to continue from until this one existed.
+pub fn write_checkpoint_superseding<T: Serialize + ?Sized>(
+    dir: &Path,
+    config_hash: &str,
+    generation: u64,
+    payload: &T,
+    keep: usize,
+    superseded: impl Fn(u64) -> bool,
+) -> Result<PathBuf, CheckpointError> {
     if keep == 0 {
         return Err(CheckpointError::new(dir, CheckpointErrorKind::KeepZero));
     }
@@ -669,11 +683,17 @@ pub fn write_checkpoint<T: Serialize + ?Sized>(
             },
         )
     };
-    let older: Vec<(u64, PathBuf)> = list_checkpoints(dir)
-        .map_err(|e| prune(dir, e))?
-        .into_iter()
-        .filter(|(g, _)| *g < generation)
-        .collect();
+    let mut older = Vec::new();
+    for (g, old) in list_checkpoints(dir).map_err(|e| prune(dir, e))? {
+        if g >= generation {
+            continue;
+        }
+        if superseded(g) {
+            fs::remove_file(&old).map_err(|e| prune(&old, e))?;
+        } else {
+            older.push((g, old));
+        }
+    }
     let excess = older.len().saturating_sub(keep - 1);
     for (_, old) in &older[..excess] {
         fs::remove_file(old).map_err(|e| prune(old, e))?;

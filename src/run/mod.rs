@@ -31,7 +31,10 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use thiserror::Error;
 
+mod extension;
 mod validated;
+
+pub use extension::EndOfRunValidation;
 
 /// File names inside a run folder.
 pub const EXPERIMENT_FILE: &str = "experiment.toml";
@@ -73,6 +76,11 @@ pub struct CheckpointPayload {
     /// The best individual on validation so far (`[validation]` on).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub validated_best: Option<ValidatedChampion>,
+    /// Present in a finished run's last checkpoint when its last generation was validated
+    /// only because it was the last: what that validation changed, so that extending the run
+    /// can set it aside.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub end_of_run_validation: Option<EndOfRunValidation>,
 }
 
 /// Why a run could not start, continue or finish.
@@ -492,6 +500,7 @@ pub fn start(
             history_extra: Vec::new(),
             validated_best: None,
             validation_worlds: None,
+            end_of_run_validation: None,
         },
         population,
         options,
@@ -792,8 +801,49 @@ pub fn resume_with(
     }
     write_atomic(&experiment_path, experiment.to_toml().as_bytes())
         .map_err(io_err(&experiment_path))?;
+    let mut payload = payload;
+    let extending = experiment.evolution.generations > last_generation + 1;
+    let replanned = payload.experiment.evolution.generations != experiment.evolution.generations;
+    if replanned {
+        extension::replan_older_checkpoints(&cdir, last_generation, &experiment)?;
+    }
+    let rewound = match &payload.end_of_run_validation {
+        Some(end) if extending => {
+            let written_with = Experiment::try_from(payload.experiment.clone()).map_err(invalid)?;
+            let last_extra = payload.history_extra.last().cloned().unwrap_or_default();
+            let r = extension::rewind(
+                &written_with,
+                end,
+                payload.validated_best.take(),
+                &last_extra,
+            );
+            payload.validated_best = r.validated_best;
+            if let Some(row) = payload.history_extra.last_mut() {
+                *row = r.last_extra;
+            }
+            payload.end_of_run_validation = None;
+            progress.note(&format!(
+                "generation {last_generation} was validated only because it was the run's last; \
+                 that validation is set aside so that the run continues as one planned for {} \
+                 generations from the start",
+                experiment.evolution.generations
+            ));
+            true
+        }
+        _ => false,
+    };
     let csv_path = dir.join(FITNESS_FILE);
     let columns = extra_columns(&experiment);
+    if rewound {
+        // The rewound row replaces the validated one without a "repaired" note.
+        let bytes = crate::record::fitness_csv::to_bytes_with(
+            &columns,
+            &payload.history,
+            &payload.history_extra,
+        )
+        .map_err(io_err(&csv_path))?;
+        write_atomic(&csv_path, &bytes).map_err(io_err(&csv_path))?;
+    }
     let csv = if payload.history.len() as u64 == last_generation + 1 {
         repair_csv(
             &csv_path,
@@ -825,6 +875,7 @@ pub fn resume_with(
         history_extra: payload.history_extra,
         validated_best: payload.validated_best,
         validation_worlds: None,
+        end_of_run_validation: payload.end_of_run_validation.clone(),
         experiment,
         _lock: lock,
         search: payload.search.clone(),
@@ -840,6 +891,18 @@ pub fn resume_with(
             checkpoint: Some(checkpoint),
             validated_best: state.validated_best,
         });
+    }
+    if rewound {
+        // best.json as a run planned this long has it now.
+        if state.validated_best.is_none() {
+            remove_if_present(&dir.join(BEST_FILE))?;
+        }
+        state.write_best()?;
+    }
+    if rewound || replanned {
+        // The checkpoint continued from, with the new plan; it goes when the next one is
+        // written if the schedule would not have it.
+        state.write_checkpoint(&payload.last)?;
     }
     let mut population =
         next_generation_of(&state.experiment, &payload.last, payload.search.as_ref());
@@ -1095,6 +1158,8 @@ struct Loop {
     validated_best: Option<ValidatedChampion>,
     /// The validation worlds, built at the first validation of this process.
     validation_worlds: Option<Vec<crate::sim::world::World>>,
+    /// Set after the last generation when its validation was only for being the last.
+    end_of_run_validation: Option<EndOfRunValidation>,
 }
 
 impl Loop {
@@ -1155,13 +1220,16 @@ impl Loop {
             search: self.search.clone(),
             history_extra: self.history_extra.clone(),
             validated_best: self.validated_best.clone(),
+            end_of_run_validation: self.end_of_run_validation.clone(),
         };
-        Ok(checkpoint::write_checkpoint(
+        let every = self.experiment.output.checkpoint_every;
+        Ok(checkpoint::write_checkpoint_superseding(
             &self.dir.join(CHECKPOINT_DIR),
             &self.experiment.config_hash(),
             last.generation,
             &payload,
             self.experiment.output.keep_checkpoints as usize,
+            |older| extension::superseded_checkpoint(every, last.generation, older),
         )?)
     }
 
@@ -1169,6 +1237,17 @@ impl Loop {
     fn finish(&mut self, last: &EvaluatedGeneration) -> Result<PathBuf, RunError> {
         self.write_best()?;
         self.write_checkpoint(last)
+    }
+}
+
+/// Removes `path`; a file already gone is fine.
+fn remove_if_present(path: &Path) -> Result<(), RunError> {
+    match std::fs::remove_file(path) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(RunError::Io {
+            path: path.to_path_buf(),
+            error: e,
+        }),
+        _ => Ok(()),
     }
 }
 
@@ -1293,7 +1372,17 @@ fn drive(
                 &mut state.validation_worlds,
             )
         })?;
-        if let Some(v) = validation::improved(state.validated_best.as_ref(), validated.as_ref()) {
+        let replaced = validation::improved(state.validated_best.as_ref(), validated.as_ref());
+        if validated.is_some()
+            && generation + 1 >= total
+            && !validation::is_scheduled(&state.experiment.validation, generation)
+        {
+            state.end_of_run_validation = Some(EndOfRunValidation {
+                replaced_champion: replaced.is_some(),
+                previous: replaced.as_ref().and_then(|_| state.validated_best.clone()),
+            });
+        }
+        if let Some(v) = replaced {
             state.validated_best = Some(v);
             state
                 .write_best()

@@ -6,5 +6,6 @@
 //! cores with those tests' own runs, so that where a signal lands would depend on what else
 //! the binary runs at the time; alone, only their own tests compete.
 
+mod extended_runs;
 mod sigint_sigterm_stop;
 mod sigkill_resume;
