@@ -25,18 +25,18 @@ import subprocess
 import sys
 import tempfile
 
-HELD_OUT = "1099511627776"
-
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("experiment")
     ap.add_argument("genomes", nargs="+")
-    ap.add_argument("--generation", default=None, help="default: compare's held-out set (2^40)")
+    ap.add_argument("--generation", default=None, help="default: compare's held-out worlds (--worlds held-out)")
     ap.add_argument("--binary", default=os.environ.get("BERRY_EVOLVE", "target/release/berry-evolve"))
     ap.add_argument("--trials", type=int, default=20)
     a = ap.parse_args()
     gen = ["--generation", a.generation] if a.generation else []
+    # replay's default is the genome's own generation: name compare's worlds explicitly.
+    worlds = gen or ["--worlds", "held-out"]
     out = subprocess.run([a.binary, "compare", *a.genomes, "--experiment", a.experiment,
                           "--trials", str(a.trials), "--random", "0", "--json", *gen],
                          capture_output=True, text=True, check=True).stdout
@@ -50,7 +50,7 @@ def main():
         m = " ".join(f"{k} {v:.3f}" for k, v in g["measures"].items())
         stem = os.path.join(tmp, "trace")
         subprocess.run([a.binary, "replay", g["path"], "--experiment", a.experiment,
-                        "--generation", a.generation or HELD_OUT, "--trace", stem + ".csv"],
+                        *worlds, "--trace", stem + ".csv"],
                        capture_output=True, check=True)
         per = collections.defaultdict(list)
         for r in csv.DictReader(open(stem + ".csv")):

@@ -3,7 +3,7 @@
 (foraging, crowded-arena, shock-avoidance, eye-arena, balanced-diet).
 
 Until the `measures` branch reports behaviour measures itself, this replays a genome on the
-held-out worlds that `berry-evolve compare` uses (generation 2^40), reads the per-tick trace
+held-out worlds that `berry-evolve compare` uses (`--worlds held-out`), reads the per-tick trace
 (`replay --trace`) and computes, as means over the trials:
 
   eaten           substance eaten (sum of the metabolic vector at the end; no decay here)
@@ -31,15 +31,13 @@ import sys
 import tempfile
 import tomllib
 
-HELD_OUT_GENERATION = 1 << 40
-
 
 def trace(binary, experiment, genome, trials):
     """Replays `genome` on `trials` held-out worlds; returns one list of rows per trial and
     the trials' scores."""
     text = open(experiment).read()
-    # A copy with `trials` trials: trial k's world depends only on the seed, the generation
-    # and k, so these are compare's held-out worlds.
+    # A copy with `trials` trials: held-out world k depends only on the seed and k, so these
+    # are compare's held-out worlds.
     # (Only the [evaluation] table's: [validation] has a `trials` key too.)
     start = text.find("[evaluation]")
     head, tail = text[:start], text[start:]
@@ -51,8 +49,8 @@ def trace(binary, experiment, genome, trials):
         exp = os.path.join(tmp, "experiment.toml")
         open(exp, "w").write(text)
         out = os.path.join(tmp, "trace.csv")
-        res = subprocess.run([binary, "replay", "--experiment", exp, genome, "--generation",
-                              str(HELD_OUT_GENERATION), "--trace", out, "--json"],
+        res = subprocess.run([binary, "replay", "--experiment", exp, genome, "--worlds",
+                              "held-out", "--trace", out, "--json"],
                              capture_output=True, text=True, check=True)
         # replay --json: one document whose trials carry their scores (null: not finite).
         scores = [float("nan") if t["score"] is None else t["score"]

@@ -2,7 +2,7 @@
 """Behaviour measures of a genome on held-out worlds, for the design2 experiments.
 
 Until the `measures` branch reports behaviour measures itself, this replays a genome on the
-held-out worlds that `berry-evolve compare` uses (generation 2^40), reads the per-tick trace
+held-out worlds that `berry-evolve compare` uses (`--worlds held-out`), reads the per-tick trace
 (`replay --trace`) and computes each experiment's behaviour measure from the creature's path:
 
   t-maze          goal box reached (share of trials), rewarded arm entered first (share)
@@ -26,8 +26,6 @@ import sys
 import tempfile
 import tomllib
 
-HELD_OUT_GENERATION = 1 << 40
-
 
 def in_region(x, y, r, pad=0.0):
     return r[0] - pad <= x <= r[2] + pad and r[1] - pad <= y <= r[3] + pad
@@ -36,8 +34,8 @@ def in_region(x, y, r, pad=0.0):
 def trace(binary, experiment, genome, trials, seed=None):
     """Replays `genome` on `trials` held-out worlds; returns one list of rows per trial."""
     text = open(experiment).read()
-    # A copy of the experiment with `trials` trials: trial k's world depends only on the
-    # seed, the generation and k, so these are compare's held-out worlds.
+    # A copy of the experiment with `trials` trials: held-out world k depends only on the
+    # seed and k, so these are compare's held-out worlds.
     # Only [evaluation]'s `trials` ([validation] has one too).
     text, n = re.subn(r"(?ms)^(\[evaluation\][^\[]*?^)trials\s*=\s*\d+",
                       lambda m: m.group(1) + f"trials = {trials}", text)
@@ -47,8 +45,8 @@ def trace(binary, experiment, genome, trials, seed=None):
         exp = os.path.join(tmp, "experiment.toml")
         open(exp, "w").write(text)
         out = os.path.join(tmp, "trace.csv")
-        cmd = [binary, "replay", "--experiment", exp, genome, "--generation",
-               str(HELD_OUT_GENERATION), "--trace", out, "--json"]
+        cmd = [binary, "replay", "--experiment", exp, genome, "--worlds", "held-out",
+               "--trace", out, "--json"]
         if seed is not None:
             cmd += ["--seed", str(seed)]
         res = subprocess.run(cmd, capture_output=True, text=True, check=True)

@@ -27,7 +27,7 @@ gens=${GENERATIONS:-}
 for name in ${PICTURES:-foraging t-maze predator-arena}; do
   run=$tmp/$name
   case $name in
-    predator-arena) trial=(--generation 1099511627776 --trial 1) ;;
+    predator-arena) trial=(--worlds held-out --trial 1) ;;
     *) trial=(--trial 0) ;;
   esac
   "$bin" run "experiments/$name.toml" ${gens:+--generations "$gens"} --out "$run" --force --quiet

@@ -1,9 +1,11 @@
 //! `berry-evolve compare`: evaluate several genomes, and random genomes as a baseline, on the
 //! same trial worlds of an experiment, so evolved and hand-designed controllers can be compared
-//! fairly. By default the worlds are a held-out set that evolution never saw.
+//! fairly. By default the worlds are a held-out set that evolution never saw; `--worlds`
+//! names another set (the experiment's validation worlds, or a generation's training worlds).
 
 use crate::cli::console::outln;
 use crate::cli::json::{self, finite, Named};
+use crate::cli::worlds::{experiment_file, warn_other_experiment, WorldSet, WorldsChoice};
 
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::brain::spec::Topology;
@@ -11,30 +13,33 @@ use berry_evolve::evo::evaluate::{aggregate, run_trial};
 use berry_evolve::evo::init::initial_population;
 use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::stats::FitnessStats;
+use berry_evolve::evo::trial::{run_trial_in_world, NoObserver, TrialId};
 use berry_evolve::experiment::{Aggregate, Experiment};
 use berry_evolve::record::genome_file::GenomeFile;
-use berry_evolve::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
+use berry_evolve::seed::{stream, IndividualId, Purpose, TrialIndex};
+use berry_evolve::sim::world::World;
 use clap::Args;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::path::PathBuf;
-
-/// Generation number whose trial worlds serve as the held-out test set: far beyond any run's
-/// length, so no individual was ever selected on them.
-pub const HELD_OUT_GENERATION: u64 = 1 << 40;
 
 /// Arguments of `compare`.
 #[derive(Debug, Args)]
 pub struct CompareArgs {
     /// Genome files to evaluate.
     pub genomes: Vec<PathBuf>,
-    /// The experiment whose worlds and fitness to use.
+    /// The experiment whose worlds and fitness to use (default: the experiment.toml beside
+    /// the genome files, as in a run folder).
     #[arg(long)]
-    pub experiment: PathBuf,
-    /// Use this generation's trial worlds (default: a held-out set evolution never saw).
+    pub experiment: Option<PathBuf>,
+    /// Whose worlds (default: held-out; training: those of --generation, default 0).
+    #[arg(long, value_enum)]
+    pub worlds: Option<WorldsChoice>,
+    /// Use this generation's training worlds (as `--worlds training --generation G`).
     #[arg(long)]
     pub generation: Option<u64>,
-    /// Trials per genome (default: the experiment's).
+    /// Trials per genome (default: the experiment's; with `--worlds validation`, the first N
+    /// validation worlds, default its [validation] trials).
     #[arg(long)]
     pub trials: Option<u64>,
     /// Random genomes (drawn as the initial population is) to evaluate as a baseline.
@@ -190,19 +195,33 @@ impl GenomeReport {
 pub struct Worlds {
     /// True for the held-out set (never used in training or validation).
     pub held_out: bool,
+    /// True for the experiment's validation worlds (absent otherwise).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub validation: bool,
     /// The generation number whose worlds these are (for the held-out set,
-    /// [`HELD_OUT_GENERATION`]).
+    /// [`crate::cli::worlds::HELD_OUT_GENERATION`]; 0 for the validation worlds, whose
+    /// streams are of their own purpose).
     pub generation: u64,
+    /// The set, resolved.
+    #[serde(skip)]
+    pub set: WorldSet,
 }
 
 impl Worlds {
-    /// `the held-out worlds (...)` or `generation G's training worlds`.
-    pub fn text(&self) -> String {
-        if self.held_out {
-            "the held-out worlds (never used in training or validation)".to_string()
-        } else {
-            format!("generation {}'s training worlds", self.generation)
+    /// The worlds of `set`.
+    pub fn of(set: WorldSet) -> Worlds {
+        Worlds {
+            held_out: set == WorldSet::HeldOut,
+            validation: set == WorldSet::Validation,
+            generation: set.generation().0,
+            set,
         }
+    }
+
+    /// `the held-out worlds (...)`, `the validation worlds (...)` or `generation G's
+    /// training worlds`.
+    pub fn text(&self) -> String {
+        self.set.description()
     }
 }
 
@@ -282,24 +301,35 @@ impl CompareReport {
     }
 }
 
-/// Lives every trial of `genome` in `generation`'s worlds (group 0).
+/// Lives every trial of `genome` in `set`'s worlds (group 0): the `built` worlds (the
+/// validation worlds) when given, else those its generation's streams build.
 fn outcomes(
     experiment: &Experiment,
     topology: &Topology,
     genome: &Genome,
-    generation: Generation,
+    set: WorldSet,
+    built: Option<&[World]>,
 ) -> anyhow::Result<Vec<TrialOutcome>> {
+    let genomes = std::slice::from_ref(genome);
+    let generation = set.generation();
+    if let Some(worlds) = built {
+        return Ok(worlds
+            .iter()
+            .zip(0..)
+            .map(|(world, t)| {
+                let id = TrialId {
+                    generation,
+                    group: 0,
+                    trial: TrialIndex(t),
+                };
+                run_trial_in_world(experiment, topology, genomes, id, world.clone(), NoObserver)
+                    .map(|o| o[0])
+            })
+            .collect::<Result<Vec<_>, _>>()?);
+    }
     Ok((0..experiment.evaluation.trials)
         .map(|t| {
-            run_trial(
-                experiment,
-                topology,
-                std::slice::from_ref(genome),
-                generation,
-                0,
-                TrialIndex(t),
-            )
-            .map(|o| o[0])
+            run_trial(experiment, topology, genomes, generation, 0, TrialIndex(t)).map(|o| o[0])
         })
         .collect::<Result<Vec<_>, _>>()?)
 }
@@ -317,18 +347,26 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
 
 /// Evaluates what `args` names and gathers the report.
 fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
-    let mut overrides = Experiment::load(&args.experiment)?.with_overrides();
+    let set = WorldSet::choose(args.worlds, args.generation, WorldsChoice::HeldOut, 0)?;
+    let experiment_path = experiment_file(args.experiment.as_deref(), &args.genomes)?;
+    let mut experiment = Experiment::load(&experiment_path)?;
+    set.check(&experiment, &experiment_path)?;
     if let Some(t) = args.trials {
-        overrides = overrides.trials(t);
+        experiment = set.with_trials(&experiment, t)?;
     }
     // Every genome meets the same worlds: common random numbers, group 0.
-    let experiment = overrides.common_random_numbers(true).build()?;
-    let generation = Generation(args.generation.unwrap_or(HELD_OUT_GENERATION));
+    let experiment = experiment
+        .with_overrides()
+        .common_random_numbers(true)
+        .build()?;
+    let built = set.built_worlds(&experiment)?;
+    let built = built.as_deref();
     let mut genomes = Vec::new();
     for path in &args.genomes {
         let file = GenomeFile::load(path)?;
         let topology = file.topology_for(&experiment, path)?;
-        let o = outcomes(&experiment, &topology, &file.genome(), generation)?;
+        warn_other_experiment(&file, path, &experiment, &experiment_path);
+        let o = outcomes(&experiment, &topology, &file.genome(), set, built)?;
         genomes.push(GenomeReport::new(
             &experiment,
             Some(path.display().to_string()),
@@ -336,20 +374,17 @@ fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
         ));
     }
     let random = (args.random > 0)
-        .then(|| random_genomes(&experiment, generation, args.random))
+        .then(|| random_genomes(&experiment, set, built, args.random))
         .transpose()?;
     Ok(CompareReport {
         schema: "berry-evolve/compare/1",
         experiment: experiment.name.clone(),
-        experiment_file: args.experiment.display().to_string(),
+        experiment_file: experiment_path.display().to_string(),
         seed: experiment.seed,
-        trials: experiment.evaluation.trials,
+        trials: set.trials(&experiment),
         ticks: experiment.evaluation.ticks,
         aggregate: experiment.evaluation.aggregate,
-        worlds: Worlds {
-            held_out: args.generation.is_none(),
-            generation: generation.0,
-        },
+        worlds: Worlds::of(set),
         genomes,
         random,
     })
@@ -359,14 +394,15 @@ fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
 /// (collected in draw order).
 fn random_genomes(
     experiment: &Experiment,
-    generation: Generation,
+    set: WorldSet,
+    built: Option<&[World]>,
     count: u64,
 ) -> anyhow::Result<RandomReport> {
     let topology = experiment.topology();
     let mut rng = stream(
         experiment.seed(),
         Purpose::Baseline,
-        generation,
+        set.generation(),
         IndividualId(0),
         TrialIndex(0),
     );
@@ -376,7 +412,7 @@ fn random_genomes(
     let genomes = drawn
         .par_iter()
         .map(|g| {
-            let o = outcomes(experiment, &topology, g, generation)?;
+            let o = outcomes(experiment, &topology, g, set, built)?;
             Ok(GenomeReport::new(experiment, None, &o))
         })
         .collect::<anyhow::Result<Vec<_>>>()?;

@@ -22,6 +22,7 @@ pub mod run;
 pub mod run_report;
 pub mod simulate;
 pub mod summary;
+pub mod worlds;
 
 use berry_evolve::input::closest;
 use clap::{Parser, Subcommand};

@@ -5,6 +5,7 @@
 
 use crate::cli::console::errln;
 use crate::cli::replay::{refuse_overwriting_inputs, Replay};
+use crate::cli::worlds::{experiment_file, WorldsChoice};
 
 use anyhow::Context;
 use berry_evolve::record::atomic::write_atomic;
@@ -17,13 +18,17 @@ use std::path::PathBuf;
 pub struct RenderArgs {
     /// The genome file (JSON), e.g. a run's best.json or one under genomes/.
     pub genome: PathBuf,
-    /// The experiment whose worlds to use.
+    /// The experiment whose worlds to use (default: the experiment.toml beside the genome
+    /// file, as in a run folder).
     #[arg(long)]
-    pub experiment: PathBuf,
+    pub experiment: Option<PathBuf>,
     /// Which trial to draw.
     #[arg(long, default_value_t = 0)]
     pub trial: u64,
-    /// Whose trial worlds: this generation's (default: the genome's own generation, or 0).
+    /// Whose worlds (default: training, those of --generation).
+    #[arg(long, value_enum)]
+    pub worlds: Option<WorldsChoice>,
+    /// Whose training worlds: this generation's (default: the genome's own generation, or 0).
     #[arg(long)]
     pub generation: Option<u64>,
     /// Override the experiment's seed.
@@ -42,15 +47,20 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
         name.push(format!("-trial-{}.svg", args.trial));
         stem.with_file_name(name)
     });
+    let experiment_path = experiment_file(
+        args.experiment.as_deref(),
+        std::slice::from_ref(&args.genome),
+    )?;
     refuse_overwriting_inputs(
         "-o",
         &output,
-        &[args.genome.as_path(), args.experiment.as_path()],
+        &[args.genome.as_path(), experiment_path.as_path()],
     )?;
     let replay = Replay::prepare(
         &args.genome,
-        &args.experiment,
+        &experiment_path,
         args.seed,
+        args.worlds,
         args.generation,
         Some(args.trial),
     )?;
@@ -58,10 +68,7 @@ pub fn run(args: RenderArgs) -> anyhow::Result<()> {
     let trace = traces.first().context("no trial was lived")?;
     let e = &replay.experiment;
     let caption = Caption {
-        title: format!(
-            "{}: trial {} of generation {}",
-            e.name, args.trial, replay.generation.0
-        ),
+        title: replay.title(args.trial),
         lines: vec![
             format!(
                 "genome {}",

@@ -1,24 +1,28 @@
 //! `berry-evolve replay`: evaluate one genome in an experiment's trial worlds, exactly as
 //! evolution evaluated it (the one trial path, [`berry_evolve::evo::trial`]), print its
 //! fitness and metabolic vector, and on request write the trace of the whole world (CSV and
-//! JSON lines) and an animated replay page (HTML) of those very lives.
+//! JSON lines) and an animated replay page (HTML) of those very lives. The worlds are a
+//! generation's training worlds (by default the genome's own generation), or a named set
+//! (`--worlds held-out|validation`, see [`crate::cli::worlds`]).
 
 use crate::cli::compare::{measures_in_order, measures_text, TrialReport};
 use crate::cli::console::{errln, outln};
 use crate::cli::json::{self, Named};
+use crate::cli::worlds::{experiment_file, warn_other_experiment, WorldSet, WorldsChoice};
 
 use anyhow::Context;
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::brain::spec::Topology;
 use berry_evolve::evo::evaluate::aggregate;
 use berry_evolve::evo::life::TrialOutcome;
-use berry_evolve::evo::trial::{self, NoObserver};
+use berry_evolve::evo::trial::{self, NoObserver, TickObserver, TrialId};
 use berry_evolve::experiment::{Aggregate, Experiment};
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::record::replay_html;
 use berry_evolve::record::trace::files::{csv_paths, write_csv_files, write_jsonl};
 use berry_evolve::record::trace::recorder::{TraceRecorder, TrialTrace};
 use berry_evolve::seed::{Generation, TrialIndex};
+use berry_evolve::sim::world::World;
 use clap::Args;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -28,13 +32,17 @@ use std::path::{Path, PathBuf};
 pub struct ReplayArgs {
     /// The genome file (JSON), e.g. a run's best.json or one under genomes/.
     pub genome: PathBuf,
-    /// The experiment whose worlds to use.
+    /// The experiment whose worlds to use (default: the experiment.toml beside the genome
+    /// file, as in a run folder).
     #[arg(long)]
-    pub experiment: PathBuf,
-    /// Whose trial worlds: this generation's (default: the genome's own generation, or 0).
+    pub experiment: Option<PathBuf>,
+    /// Whose worlds (default: training, those of --generation).
+    #[arg(long, value_enum)]
+    pub worlds: Option<WorldsChoice>,
+    /// Whose training worlds: this generation's (default: the genome's own generation, or 0).
     #[arg(long)]
     pub generation: Option<u64>,
-    /// Replay only this trial (default: all of the experiment's trials).
+    /// Replay only this trial (default: all of the set's trials).
     #[arg(long)]
     pub trial: Option<u64>,
     /// Override the experiment's seed (use the seed the genome was evolved with).
@@ -64,9 +72,14 @@ pub(crate) struct Replay {
     pub experiment: Experiment,
     pub topology: Topology,
     pub genome: Genome,
+    /// The named set, or the training worlds of a generation.
+    pub worlds: WorldSet,
+    /// The generation whose streams build the worlds.
     pub generation: Generation,
     pub group: u64,
     pub trials: Vec<u64>,
+    /// The validation worlds, built once (None for the other sets, built trial by trial).
+    built: Option<Vec<World>>,
 }
 
 impl Replay {
@@ -75,6 +88,7 @@ impl Replay {
         genome_path: &Path,
         experiment_path: &Path,
         seed: Option<u64>,
+        worlds: Option<WorldsChoice>,
         generation: Option<u64>,
         trial: Option<u64>,
     ) -> anyhow::Result<Replay> {
@@ -88,7 +102,10 @@ impl Replay {
         }
         let file = GenomeFile::load(genome_path)?;
         let topology = file.topology_for(&experiment, genome_path)?;
-        if let Some(evolved) = file.origin.seed.filter(|&s| s != experiment.seed) {
+        // Another experiment's genome: its seed and config hash differ as a matter of course,
+        // and the warning says more than the notes below would.
+        let other = warn_other_experiment(&file, genome_path, &experiment, experiment_path);
+        if let Some(evolved) = file.origin.seed.filter(|&s| s != experiment.seed && !other) {
             errln!(
                 "note: {} was evolved with seed {evolved}, this experiment has seed {}; replay \
                  with --seed {evolved} to meet the worlds it was evaluated on",
@@ -96,7 +113,7 @@ impl Replay {
                 experiment.seed
             );
         }
-        if let Some(recorded) = &file.origin.config_hash {
+        if let Some(recorded) = file.origin.config_hash.as_ref().filter(|_| !other) {
             let here = experiment.config_hash();
             if *recorded != here {
                 errln!(
@@ -110,34 +127,56 @@ impl Replay {
             }
         }
         let genome = file.genome();
-        let generation = Generation(generation.or(file.origin.generation).unwrap_or(0));
-        // Without common random numbers the worlds depend on the individual's index too.
-        let group = if experiment.evaluation.common_random_numbers {
-            0
-        } else {
-            file.origin.individual.unwrap_or(0)
+        let worlds = WorldSet::choose(
+            worlds,
+            generation,
+            WorldsChoice::Training,
+            file.origin.generation.unwrap_or(0),
+        )?;
+        worlds.check(&experiment, experiment_path)?;
+        // Without common random numbers a generation's worlds depend on the individual's
+        // index too; the held-out worlds are compare's, one set for every genome (group 0).
+        let group = match worlds {
+            WorldSet::Training(_) if !experiment.evaluation.common_random_numbers => {
+                file.origin.individual.unwrap_or(0)
+            }
+            _ => 0,
         };
+        let count = worlds.trials(&experiment);
         let trials: Vec<u64> = match trial {
             Some(t) => {
+                let what = match worlds {
+                    WorldSet::Validation => "validation worlds",
+                    _ => "trials",
+                };
                 anyhow::ensure!(
-                    t < experiment.evaluation.trials,
-                    "--trial {t}: experiment {} has trials 0..{} (0 to {}); choose one of those",
+                    t < count,
+                    "--trial {t}: experiment {} has {what} 0..{count} (0 to {}); choose one of \
+                     those",
                     experiment_path.display(),
-                    experiment.evaluation.trials,
-                    experiment.evaluation.trials.saturating_sub(1)
+                    count.saturating_sub(1)
                 );
                 vec![t]
             }
-            None => (0..experiment.evaluation.trials).collect(),
+            None => (0..count).collect(),
         };
+        let built = worlds.built_worlds(&experiment)?;
         Ok(Replay {
             experiment,
             topology,
             genome,
-            generation,
+            worlds,
+            generation: worlds.generation(),
             group,
             trials,
+            built,
         })
+    }
+
+    /// The title of trial `t`: `foraging: held-out world 2`, `foraging: trial 2 of
+    /// generation 5`.
+    pub fn title(&self, t: u64) -> String {
+        format!("{}: {}", self.experiment.name, self.worlds.trial_title(t))
     }
 
     /// Lives trial `t`, recording it when `recorder` is given.
@@ -146,15 +185,35 @@ impl Replay {
         t: u64,
         recorder: Option<&mut TraceRecorder>,
     ) -> anyhow::Result<TrialOutcome> {
+        let outcomes = match recorder {
+            Some(r) => self.live(t, r)?,
+            None => self.live(t, NoObserver)?,
+        };
+        Ok(outcomes[0])
+    }
+
+    /// Lives trial `t` on the one trial path evaluation takes (the traced life is the scored
+    /// one), in the validation world built beforehand or in the world its stream builds.
+    fn live<O: TickObserver>(&self, t: u64, observer: O) -> anyhow::Result<Vec<TrialOutcome>> {
         let genomes = std::slice::from_ref(&self.genome);
         let (e, topology) = (&self.experiment, &self.topology);
         let (generation, group, trial) = (self.generation, self.group, TrialIndex(t));
-        // The one trial path evaluation takes: the traced life is the scored one.
-        let outcomes = match recorder {
-            Some(r) => trial::run_trial(e, topology, genomes, generation, group, trial, r)?,
-            None => trial::run_trial(e, topology, genomes, generation, group, trial, NoObserver)?,
-        };
-        Ok(outcomes[0])
+        Ok(match &self.built {
+            Some(worlds) => {
+                let world = usize::try_from(t)
+                    .ok()
+                    .and_then(|k| worlds.get(k))
+                    .context("no such validation world")?
+                    .clone();
+                let id = TrialId {
+                    generation,
+                    group,
+                    trial,
+                };
+                trial::run_trial_in_world(e, topology, genomes, id, world, observer)?
+            }
+            None => trial::run_trial(e, topology, genomes, generation, group, trial, observer)?,
+        })
     }
 
     /// Lives every selected trial, recording them.
@@ -220,7 +279,7 @@ pub struct ReplayReport {
     pub genome: String,
     /// The experiment's name.
     pub experiment: String,
-    /// The experiment file given.
+    /// The experiment file used (given, or the one beside the genome).
     pub experiment_file: String,
     /// The seed the worlds derive from (the experiment's, or `--seed`).
     pub seed: u64,
@@ -228,6 +287,12 @@ pub struct ReplayReport {
     pub generation: u64,
     /// The individual index whose worlds these are (0 under common random numbers).
     pub group: u64,
+    /// The named set (`held-out`, `validation`; absent for a generation's training worlds).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub worlds: Option<&'static str>,
+    /// The set, resolved.
+    #[serde(skip)]
+    pub set: WorldSet,
     /// How the trials' scores become the fitness.
     pub aggregate: Aggregate,
     /// The fitness over the trials replayed (`null` when the brain produced a non-finite
@@ -248,9 +313,9 @@ impl ReplayReport {
     fn print_text(&self) {
         for t in &self.trials {
             let m = t.metabolism;
+            let label = self.set.trial_label(t.trial);
             outln!(
-                "trial {}: score {:.6}  metabolism [{:.4}, {:.4}, {:.4}, {:.4}]  shocked ticks {}{}",
-                t.trial,
+                "{label}: score {:.6}  metabolism [{:.4}, {:.4}, {:.4}, {:.4}]  shocked ticks {}{}",
                 t.score.unwrap_or(f64::NAN),
                 m[0],
                 m[1],
@@ -264,19 +329,14 @@ impl ReplayReport {
                 }
             );
             if !t.measures.is_empty() {
-                outln!(
-                    "trial {}:  measures:{}",
-                    t.trial,
-                    measures_text(&t.measures)
-                );
+                outln!("{label}:  measures:{}", measures_text(&t.measures));
             }
         }
         match self.fitness {
             Some(f) => outln!(
-                "fitness {f:.6} ({:?} over {} trial(s) of generation {})",
+                "fitness {f:.6} ({:?} over {})",
                 self.aggregate,
-                self.trials.len(),
-                self.generation
+                self.set.count_text(self.trials.len())
             ),
             None => outln!("fitness: none (the brain produced a non-finite output)"),
         }
@@ -292,7 +352,11 @@ impl ReplayReport {
 
 /// Runs the subcommand.
 pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
-    let inputs = [args.genome.as_path(), args.experiment.as_path()];
+    let experiment_path = experiment_file(
+        args.experiment.as_deref(),
+        std::slice::from_ref(&args.genome),
+    )?;
+    let inputs = [args.genome.as_path(), experiment_path.as_path()];
     if let Some(path) = &args.trace {
         for p in csv_paths(path) {
             refuse_overwriting_inputs("--trace", &p, &inputs)?;
@@ -306,8 +370,9 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
     }
     let replay = Replay::prepare(
         &args.genome,
-        &args.experiment,
+        &experiment_path,
         args.seed,
+        args.worlds,
         args.generation,
         args.trial,
     )?;
@@ -344,7 +409,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
         let first = traces
             .first()
             .context("no trial was replayed, so there is no page to write")?;
-        replay_html::write(first, path)?;
+        replay_html::write_titled(first, &replay.title(first.world.trial), path)?;
         errln!("replay page written to {}", path.display());
         files.html = Some(path.display().to_string());
     }
@@ -352,10 +417,12 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
         schema: "berry-evolve/replay/1",
         genome: args.genome.display().to_string(),
         experiment: experiment.name.clone(),
-        experiment_file: args.experiment.display().to_string(),
+        experiment_file: experiment_path.display().to_string(),
         seed: experiment.seed,
         generation: replay.generation.0,
         group: replay.group,
+        worlds: (!matches!(replay.worlds, WorldSet::Training(_))).then(|| replay.worlds.name()),
+        set: replay.worlds,
         aggregate: experiment.evaluation.aggregate,
         fitness: evaluation.fitness,
         metabolism: evaluation.metabolism,

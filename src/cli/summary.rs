@@ -1,11 +1,14 @@
 //! `berry-evolve summary`: the replicates of one experiment (the `seed-<s>/` run folders that
 //! `run --seeds` makes) summed up: `summary.csv` (per generation, quartiles across seeds of
 //! best, mean and validation fitness) and `held-out.csv` (each seed's best.json, random
-//! genomes and baseline genomes on the held-out worlds `compare` uses).
+//! genomes and baseline genomes on the held-out worlds `compare` uses; `--worlds validation`
+//! writes `validation.csv` from the experiment's validation worlds instead, `--worlds
+//! training --generation G` `training-G.csv` from generation G's training worlds).
 
-use crate::cli::compare::{fitness_text, measures_in_order, HELD_OUT_GENERATION};
+use crate::cli::compare::{fitness_text, measures_in_order};
 use crate::cli::console::outln;
 use crate::cli::json::{self, Named};
+use crate::cli::worlds::{warn_other_experiment, WorldSet, WorldsChoice};
 
 use anyhow::Context;
 use berry_evolve::brain::genome::Genome;
@@ -18,10 +21,10 @@ use berry_evolve::record::summary::{
     self, held_out_bytes, quartiles, read_seeds, seed_folders, summary_bytes, HeldOutRow,
     SummaryRow, HELD_OUT_FILE, SUMMARY_FILE,
 };
-use berry_evolve::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
+use berry_evolve::seed::{stream, IndividualId, Purpose, TrialIndex};
 use clap::Args;
 use serde::Serialize;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `summary`.
 #[derive(Debug, Args)]
@@ -32,9 +35,17 @@ pub struct SummaryArgs {
     /// experiment.toml; every genome meets the same worlds).
     #[arg(long)]
     pub experiment: Option<PathBuf>,
-    /// Held-out trials per genome (default: the experiment's).
+    /// Held-out trials per genome (default: the experiment's; with `--worlds validation`, the
+    /// first N validation worlds, default its [validation] trials).
     #[arg(long)]
     pub trials: Option<u64>,
+    /// Whose worlds the genomes meet (default: held-out, written to held-out.csv;
+    /// validation: validation.csv; training, those of --generation: training-G.csv).
+    #[arg(long, value_enum, conflicts_with = "no_held_out")]
+    pub worlds: Option<WorldsChoice>,
+    /// With `--worlds training`: whose training worlds (default: 0).
+    #[arg(long, conflicts_with = "no_held_out")]
+    pub generation: Option<u64>,
     /// Random genomes (drawn as compare draws them) whose median and best go in held-out.csv.
     #[arg(long, default_value_t = 64)]
     pub random: u64,
@@ -81,6 +92,15 @@ pub struct HeldOutEntry {
 pub struct HeldOutReport {
     /// The file written.
     pub held_out_csv: String,
+    /// The named set when not the held-out worlds (`validation`, `training`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub worlds: Option<&'static str>,
+    /// With `training`: the generation whose worlds.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub generation: Option<u64>,
+    /// The set, resolved.
+    #[serde(skip)]
+    pub set: WorldSet,
     /// Held-out trials per genome.
     pub trials: u64,
     /// Seeds whose folder has no best.json yet (left out).
@@ -137,9 +157,13 @@ impl SummaryReport {
         for seed in &h.without_best {
             outln!("seed {seed}: no best.json yet (left out of held-out.csv)");
         }
+        let which = match h.set {
+            WorldSet::Training(g) => format!("generation {g}"),
+            set => set.name().to_string(),
+        };
         if let Some(q) = &h.seed_fitness {
             outln!(
-                "held-out fitness over {} seeds ({} trials): median {:.4} (quartiles {:.4}–{:.4})",
+                "{which} fitness over {} seeds ({} trials): median {:.4} (quartiles {:.4}–{:.4})",
                 h.seeds_with_fitness,
                 h.trials,
                 q.median,
@@ -150,7 +174,7 @@ impl SummaryReport {
         for r in h.rows.iter().filter(|r| r.who != "seed") {
             let f = fitness_text(r.fitness);
             let name = r.genome.as_deref().unwrap_or(&r.who);
-            outln!("{name}: held-out fitness {f}");
+            outln!("{name}: {which} fitness {f}");
         }
         outln!("{}", h.held_out_csv);
     }
@@ -170,15 +194,20 @@ pub fn run(args: SummaryArgs) -> anyhow::Result<()> {
 /// Writes summary.csv (and held-out.csv) and gathers what to report.
 fn summarize(args: &SummaryArgs) -> anyhow::Result<SummaryReport> {
     let seeds = read_seeds(&args.folder)?;
+    // The worlds and the experiment are checked before any file is written.
+    let set = WorldSet::choose(args.worlds, args.generation, WorldsChoice::HeldOut, 0)?;
+    let experiment = if args.no_held_out {
+        None
+    } else {
+        Some(held_out_experiment(args, set)?)
+    };
     let tables: Vec<_> = seeds.iter().map(|(_, t)| t.clone()).collect();
     let rows = summary::summarize(&tables);
     let path = args.folder.join(SUMMARY_FILE);
     summary::write(&path, &summary_bytes(&rows)?)?;
-    let held_out = if args.no_held_out {
-        None
-    } else {
-        Some(held_out(args)?)
-    };
+    let held_out = experiment
+        .map(|(experiment_path, experiment)| held_out(args, set, &experiment_path, &experiment))
+        .transpose()?;
     Ok(SummaryReport {
         schema: "berry-evolve/summary/1",
         folder: args.folder.display().to_string(),
@@ -190,29 +219,50 @@ fn summarize(args: &SummaryArgs) -> anyhow::Result<SummaryReport> {
     })
 }
 
-/// Evaluates each seed's best.json, random genomes and the baselines on the held-out worlds
-/// and writes held-out.csv.
-fn held_out(args: &SummaryArgs) -> anyhow::Result<HeldOutReport> {
+/// The experiment whose worlds the genomes meet (`--experiment`, or the lowest seed's), with
+/// `--trials` and common random numbers (every genome meets the same worlds, as in compare),
+/// and its file; refuses a set it has not.
+fn held_out_experiment(args: &SummaryArgs, set: WorldSet) -> anyhow::Result<(PathBuf, Experiment)> {
     let folders = seed_folders(&args.folder)?;
     let experiment_path = match &args.experiment {
         Some(p) => p.clone(),
         None => folders[0].1.join(berry_evolve::run::EXPERIMENT_FILE),
     };
-    let mut overrides = Experiment::load(&experiment_path)?.with_overrides();
+    let mut experiment = Experiment::load(&experiment_path)?;
+    set.check(&experiment, &experiment_path)?;
     if let Some(t) = args.trials {
-        overrides = overrides.trials(t);
+        experiment = set.with_trials(&experiment, t)?;
     }
-    // Every genome meets the same worlds, as in compare.
-    let experiment = overrides.common_random_numbers(true).build()?;
-    let generation = Generation(HELD_OUT_GENERATION);
-    // The worlds compare uses: group 0 of the held-out generation, one creature each.
-    let worlds = worlds_from(&experiment, experiment.evaluation.trials, generation, |t| {
-        trial_stream(&experiment, generation, 0, t)
-    })?;
+    let experiment = experiment
+        .with_overrides()
+        .common_random_numbers(true)
+        .build()?;
+    Ok((experiment_path, experiment))
+}
+
+/// Evaluates each seed's best.json, random genomes and the baselines on the held-out worlds
+/// (or `set`'s) of `experiment` and writes held-out.csv (validation.csv, training-G.csv).
+fn held_out(
+    args: &SummaryArgs,
+    set: WorldSet,
+    experiment_path: &Path,
+    experiment: &Experiment,
+) -> anyhow::Result<HeldOutReport> {
+    let folders = seed_folders(&args.folder)?;
+    let generation = set.generation();
+    // The worlds compare uses: the validation worlds, or group 0 of the generation, one
+    // creature each.
+    let worlds = match set.built_worlds(experiment)? {
+        Some(worlds) => worlds,
+        None => worlds_from(experiment, experiment.evaluation.trials, generation, |t| {
+            trial_stream(experiment, generation, 0, t)
+        })?,
+    };
     let evaluate_file = |path: &PathBuf| -> anyhow::Result<Evaluation> {
         let file = GenomeFile::load(path)?;
-        let topology = file.topology_for(&experiment, path)?;
-        Ok(evaluate_in_worlds(&experiment, &topology, &[file.genome()], &worlds)?.remove(0))
+        let topology = file.topology_for(experiment, path)?;
+        warn_other_experiment(&file, path, experiment, experiment_path);
+        Ok(evaluate_in_worlds(experiment, &topology, &[file.genome()], &worlds)?.remove(0))
     };
     let mut out = Vec::new();
     let mut without_best = Vec::new();
@@ -244,7 +294,7 @@ fn held_out(args: &SummaryArgs) -> anyhow::Result<HeldOutReport> {
         let mut spec = experiment.evolution.clone();
         spec.population = args.random as usize;
         let genomes: Vec<Genome> = initial_population(&spec, topology.parameter_count(), &mut rng);
-        let evaluations = evaluate_in_worlds(&experiment, &topology, &genomes, &worlds)?;
+        let evaluations = evaluate_in_worlds(experiment, &topology, &genomes, &worlds)?;
         let fitness: Vec<f64> = evaluations.iter().filter_map(|e| e.fitness).collect();
         let measure =
             |k: usize| -> Vec<f64> { evaluations.iter().map(|e| e.measures[k]).collect() };
@@ -286,11 +336,22 @@ fn held_out(args: &SummaryArgs) -> anyhow::Result<HeldOutReport> {
         .iter()
         .map(|m| m.name().to_string())
         .collect();
-    let path = args.folder.join(HELD_OUT_FILE);
+    let file = match set {
+        WorldSet::HeldOut => HELD_OUT_FILE.to_string(),
+        WorldSet::Validation => "validation.csv".to_string(),
+        WorldSet::Training(g) => format!("training-{g}.csv"),
+    };
+    let path = args.folder.join(file);
     summary::write(&path, &held_out_bytes(&names, &out)?)?;
     Ok(HeldOutReport {
         held_out_csv: path.display().to_string(),
-        trials: experiment.evaluation.trials,
+        worlds: (set != WorldSet::HeldOut).then(|| set.name()),
+        generation: match set {
+            WorldSet::Training(g) => Some(g),
+            _ => None,
+        },
+        set,
+        trials: worlds.len() as u64,
         without_best,
         seed_fitness: quartiles(&seed_fitness).map(|q| Quartiles {
             q1: q[0],
@@ -301,7 +362,7 @@ fn held_out(args: &SummaryArgs) -> anyhow::Result<HeldOutReport> {
         rows: out
             .into_iter()
             .map(|r| HeldOutEntry {
-                measures: measures_in_order(&experiment, &r.measures),
+                measures: measures_in_order(experiment, &r.measures),
                 who: r.who,
                 seed: r.seed,
                 genome: r.genome,

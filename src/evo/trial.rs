@@ -105,6 +105,23 @@ pub fn run_trial<O: TickObserver>(
     Ok(live(experiment, world, &mut controllers, observer))
 }
 
+/// Lives one trial in a `world` built beforehand for `genomes.len()` creatures (e.g. a
+/// validation world of [`crate::evo::validation::validation_worlds`], which no generation's
+/// stream builds), showing every tick to `observer`: the life evaluation in those worlds
+/// scores. `id` only names the trial to the observer (and numbers individuals in errors).
+pub fn run_trial_in_world<O: TickObserver>(
+    experiment: &Experiment,
+    topology: &Topology,
+    genomes: &[Genome],
+    id: TrialId,
+    world: World,
+    mut observer: O,
+) -> Result<Vec<TrialOutcome>, EvaluationError> {
+    let mut controllers = checked_controllers(experiment, topology, genomes, id.group)?;
+    observer.start(id, &world);
+    Ok(live(experiment, world, &mut controllers, observer))
+}
+
 /// Steps `world` for at most `ticks` ticks with `controllers` (one per creature), showing
 /// each tick to `observer`, and stops after the first tick in which no creature recorded a
 /// score (nothing it could still record).

@@ -23,20 +23,25 @@ use crate::record::trace::recorder::TrialTrace;
 use std::io;
 use std::path::Path;
 
-/// The page for `trace`.
+/// The page for `trace`, titled `experiment: trial T of generation G`.
 pub fn page(trace: &TrialTrace) -> io::Result<String> {
+    let title = format!(
+        "{}: trial {} of generation {}",
+        trace.world.experiment, trace.world.trial, trace.world.generation
+    );
+    page_titled(trace, &title)
+}
+
+/// The page for `trace` under `title` (the caller names the worlds, e.g. `held-out world 2`,
+/// which the trace alone cannot tell).
+pub fn page_titled(trace: &TrialTrace, title: &str) -> io::Result<String> {
     let mut data = Vec::new();
     write_jsonl_to(std::slice::from_ref(trace), Some(4), &mut data)?;
     let data =
         String::from_utf8(data).map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e))?;
     // Inside a <script> element "</" could end it; "<\/" is the same JSON string.
     let data = data.replace("</", "<\\/");
-    let title = format!(
-        "{}: trial {} of generation {}",
-        trace.world.experiment, trace.world.trial, trace.world.generation
-    )
-    .replace('&', "&amp;")
-    .replace('<', "&lt;");
+    let title = title.replace('&', "&amp;").replace('<', "&lt;");
     Ok(TEMPLATE
         .replace("{{TITLE}}", &title)
         .replace("{{DATA}}", &data))
@@ -45,6 +50,12 @@ pub fn page(trace: &TrialTrace) -> io::Result<String> {
 /// Writes the page for `trace` to `path` (atomically).
 pub fn write(trace: &TrialTrace, path: &Path) -> io::Result<()> {
     let html = page(trace)?;
+    write_atomic_with(path, |w| w.write_all(html.as_bytes()))
+}
+
+/// Writes the page for `trace` under `title` ([`page_titled`]) to `path` (atomically).
+pub fn write_titled(trace: &TrialTrace, title: &str, path: &Path) -> io::Result<()> {
+    let html = page_titled(trace, title)?;
     write_atomic_with(path, |w| w.write_all(html.as_bytes()))
 }
 

@@ -12,6 +12,7 @@ mod config_reference;
 mod console_output;
 mod dead_end_messages;
 mod gadget_experiments;
+mod held_out_by_name;
 mod hostile_inputs;
 mod json_output;
 mod landmark_experiments;
