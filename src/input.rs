@@ -136,6 +136,23 @@ pub fn cut(text: &str, max: usize) -> String {
     format!("{head}… ({} more characters)", count - max)
 }
 
+/// `message` with every word (a run of non-space characters: a path, a quoted value) longer
+/// than `max` characters cut as [`cut`] does, so that a message quoting a huge input stays
+/// short while keeping its advice. Spacing is kept.
+pub fn cut_long_words(message: &str, max: usize) -> String {
+    let mut out = String::with_capacity(message.len().min(4 * max));
+    let mut rest = message;
+    while !rest.is_empty() {
+        let space = rest.find(|c: char| !c.is_whitespace()).unwrap_or(rest.len());
+        out.push_str(&rest[..space]);
+        rest = &rest[space..];
+        let word = rest.find(char::is_whitespace).unwrap_or(rest.len());
+        out.push_str(&cut(&rest[..word], max));
+        rest = &rest[word..];
+    }
+    out
+}
+
 /// Levenshtein distance between two short words (insertions, deletions, substitutions).
 pub fn edit_distance(a: &str, b: &str) -> usize {
     let b: Vec<char> = b.chars().collect();
@@ -194,6 +211,10 @@ mod tests {
     fn long_values_are_cut_with_a_count() {
         assert_eq!(cut("abc", 3), "abc");
         assert_eq!(cut("abcdef", 2), "ab… (4 more characters)");
+        assert_eq!(
+            cut_long_words("see  abcdef and\nab", 3),
+            "see  abc… (3 more characters) and\nab"
+        );
     }
 
     #[cfg(unix)]

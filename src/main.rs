@@ -48,6 +48,9 @@ fn main() {
     }
 }
 
+/// The longest word (a path, a quoted value) an error message shows whole.
+const MAX_QUOTED: usize = 300;
+
 /// Prints a failed command's error as a cause chain and returns the exit code.
 fn exit_code(result: anyhow::Result<()>) -> i32 {
     let Err(error) = result else {
@@ -65,13 +68,16 @@ fn exit_code(result: anyhow::Result<()>) -> i32 {
     let interrupted = error
         .downcast_ref::<berry_evolve::run::RunError>()
         .is_some_and(|e| matches!(e, berry_evolve::run::RunError::Interrupted { .. }));
+    // Messages quote what the user gave (names, paths, values): a huge one is cut, never
+    // echoed whole.
+    let short = |text: String| berry_evolve::input::cut_long_words(&text, MAX_QUOTED);
     if interrupted {
-        errln!("stopped: {error}");
+        errln!("stopped: {}", short(error.to_string()));
         return 130;
     }
-    errln!("error: {error}");
+    errln!("error: {}", short(error.to_string()));
     for cause in error.chain().skip(1) {
-        errln!("  caused by: {cause}");
+        errln!("  caused by: {}", short(cause.to_string()));
     }
     1
 }

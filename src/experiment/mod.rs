@@ -42,6 +42,10 @@ use thiserror::Error;
 /// The largest seed accepted: TOML integers are signed 64-bit.
 pub const MAX_SEED: u64 = i64::MAX as u64;
 
+/// The longest experiment name: it names the run folder, and file systems allow 255 bytes
+/// for a name (seed replicates and temporary files add to it).
+pub const MAX_NAME_BYTES: usize = 100;
+
 /// The most network parameters a generation may hold in total (population × parameters per
 /// genome): 8 bytes each, and two generations are in memory at once, so at most 4 GB. Each
 /// limit alone (population, units per layer, layers) still allows petabytes together.
@@ -325,6 +329,16 @@ impl ExperimentConfig {
             return Err(InvalidValue::new(
                 "name",
                 "may hold only letters, digits, '-', '_' and '.' (it names the run folder)",
+            ));
+        }
+        if self.name.len() > MAX_NAME_BYTES {
+            return Err(InvalidValue::new(
+                "name",
+                format!(
+                    "is {} characters long; at most {MAX_NAME_BYTES} (it names the run folder \
+                     results/<name>/, and seed replicates add to it): choose a shorter name",
+                    self.name.chars().count()
+                ),
             ));
         }
         if self.seed > MAX_SEED {

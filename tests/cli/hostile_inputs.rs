@@ -175,6 +175,28 @@ fn long_values_are_cut_in_messages_and_counts_and_names_are_bounded() {
         ]);
         assert!(err.len() < 4000, "a {}-byte message", err.len());
     }
+    // A valid but huge name (it would name the run folder) is refused, not echoed.
+    let p = tmp.path().join("long-name.toml");
+    std::fs::write(&p, base.replace("name = \"tiny\"", &format!("name = \"{long}\""))).unwrap();
+    for args in [vec!["run", p.to_str().unwrap()], vec!["inspect", p.to_str().unwrap()]] {
+        let err = run_err(&args);
+        assert!(err.len() < 4000, "{args:?}: a {}-byte message", err.len());
+        assert!(err.contains("at most 100"), "{err}");
+    }
+    // A huge path is cut in whatever message quotes it.
+    let deep = tmp
+        .path()
+        .join("d".repeat(200))
+        .join("e".repeat(20_000))
+        .join("f");
+    let err = run_err(&[
+        "run",
+        fixture("tiny.toml").to_str().unwrap(),
+        "--out",
+        deep.to_str().unwrap(),
+    ]);
+    assert!(err.len() < 4000, "a {}-byte message: {err}", err.len());
+    assert!(err.contains("more characters"), "{err}");
     for name in ["..", ".", "a/b", ""] {
         let p = tmp.path().join("name.toml");
         std::fs::write(

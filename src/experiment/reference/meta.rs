@@ -151,7 +151,7 @@ pub fn keys() -> Vec<KeyMeta> {
     let inputs = InputsSpec::default();
     vec![
         // The top level.
-        k("ExperimentConfig.name", "", any().note("letters, digits, '-', '_' and '.'; not only dots"), RUN),
+        k("ExperimentConfig.name", "", any().note("letters, digits, '-', '_' and '.'; not only dots; at most 100 characters"), RUN),
         k("ExperimentConfig.seed", "", ge0().note("below 2^63"), RUN),
         k("ExperimentConfig.world", "", any(), "§3, §4"),
         k("ExperimentConfig.creature", "", any(), "§5"),
