@@ -50,6 +50,8 @@ pub struct ReplayArgs {
     pub seed: Option<u64>,
     /// Write the trace of the whole world to this CSV file (creatures), with
     /// STEM-actors.csv, STEM-objects.csv, STEM-events.csv and STEM-world.jsonl beside it.
+    /// It ends with the scored life: on the tick in which the last creature died, as
+    /// `simulate --trace` does.
     #[arg(long)]
     pub trace: Option<PathBuf>,
     /// Write the same trace as JSON lines to this file.

@@ -16,10 +16,12 @@ use std::path::PathBuf;
 pub struct SimulateArgs {
     /// An experiment file; its [world], [creature] and [demo] tables are used.
     pub file: PathBuf,
-    /// Ticks to simulate.
+    /// Ticks to simulate (fewer when every creature dies first: the simulation stops after
+    /// the tick in which the last one died, as a scored trial and `replay --trace` do).
     #[arg(long, default_value_t = 1000)]
     pub ticks: u64,
-    /// Write the per-tick trace CSV here.
+    /// Write the per-tick trace CSV here: a row per creature per tick, dead ones included
+    /// with alive = 0, up to the tick in which the last creature died.
     #[arg(long)]
     pub trace: Option<PathBuf>,
     /// Override the experiment's seed (the world is drawn from it).
@@ -69,10 +71,18 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
         )),
         None => None,
     };
+    let mut all_dead = false;
     for _ in 0..args.ticks {
         world.step(&mut controllers);
         if let Some(t) = &mut trace {
             t.write_tick(&world)?;
+        }
+        // The rule of a scored trial (`evo::trial::live`, which `replay --trace` records):
+        // the life ends after the first tick no creature lived through, so both traces end
+        // on the tick whose rows say alive = 0 for everyone.
+        if !world.creatures().iter().any(|c| c.alive) {
+            all_dead = true;
+            break;
         }
     }
     if let (Some(t), Some(path)) = (trace, &args.trace) {
@@ -90,6 +100,13 @@ pub fn run(args: SimulateArgs) -> anyhow::Result<()> {
             c.eaten,
             c.metabolism,
             if c.alive { "" } else { ", dead" }
+        );
+    }
+    if all_dead {
+        errln!(
+            "every creature was dead after tick {} of {}: the simulation stopped there, as a scored trial does",
+            world.tick(),
+            args.ticks
         );
     }
     if let Some(path) = &args.trace {

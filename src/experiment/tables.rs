@@ -193,7 +193,9 @@ pub struct FitnessSpec {
     /// integrated) (default: 0).
     #[serde(skip_serializing_if = "is_zero")]
     pub imbalance_penalty: f64,
-    /// Added once per tick alive: `alive_bonus × ticks_alive` (default: 0).
+    /// Added once per tick alive: `alive_bonus × ticks_alive`, the ticks at whose end the
+    /// creature was alive (ticks are numbered from 1, as in traces: one killed in tick 58
+    /// lived 57 ticks) (default: 0).
     #[serde(skip_serializing_if = "is_zero")]
     pub alive_bonus: f64,
     /// Subtracted once when the creature is dead at the end of the trial (killed by a
@@ -382,7 +384,8 @@ pub fn area_index(world: &WorldSpec, key: &str, name: &str) -> Result<usize, Inv
 )]
 #[serde(rename_all = "snake_case")]
 pub enum Measure {
-    /// Ticks the creature was alive at the end of (and its brain's output finite).
+    /// Ticks the creature was alive at the end of (and its brain's output finite): one
+    /// killed in tick 58 (ticks numbered from 1, as in traces) lived 57 ticks.
     TicksAlive,
     /// Distinct food objects it took substance from at least once.
     DistinctFood,

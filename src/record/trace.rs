@@ -10,6 +10,13 @@
 //! tick), `shock` (0/1, the shock state at the end of the tick, which the shock sensor reads
 //! next tick), `m_a`..`m_d` (metabolism after the tick), `alive` (0/1).
 //!
+//! Rows cover every creature on every tick, dead ones included (alive = 0, pose and
+//! metabolism as they were when it died). `simulate` stops after the tick in which the last
+//! creature died, so its trace ends on the first tick whose rows all say alive = 0: the same
+//! rule as a scored trial, whose trace `replay --trace` writes ([`recorder`]). A creature
+//! killed in tick 58 has rows up to tick 58 (alive = 0 there) and lived 57 ticks
+//! (`ticks_alive`: the ticks at whose end it was alive).
+//!
 //! Numbers are written by the csv crate's shortest round-trip formatting, so the same world
 //! gives the same bytes.
 //!

@@ -24,5 +24,6 @@ mod replay_in_browser;
 mod replicates;
 mod reproducibility_and_errors;
 mod run_folder;
+mod traces_end_with_the_life;
 mod unwritable_outputs;
 mod workload_estimate;

@@ -91,6 +91,57 @@ fn crowded_wanderers_never_stop_for_good() {
     );
 }
 
+/// The longest run of consecutive ticks in which wanderer 0 of `text` (no creatures) did not
+/// move its centre, over `ticks` ticks of each of `seeds`: (ticks, seed, last tick of it).
+fn longest_still(text: &str, seeds: std::ops::Range<u64>, ticks: u64) -> (u64, u64, u64) {
+    let mut worst = (0, 0, 0);
+    for seed in seeds {
+        let mut w = world(text, 0, seed);
+        let mut none: [Still; 0] = [];
+        let mut last = w.actors()[0].pose.position;
+        let mut still = 0;
+        for t in 1..=ticks {
+            w.step(&mut none);
+            let p = w.actors()[0].pose.position;
+            still = if p == last { still + 1 } else { 0 };
+            last = p;
+            if still > worst.0 {
+                worst = (still, seed, t);
+            }
+        }
+    }
+    worst
+}
+
+/// A random command that backs a wanderer into a wall (it has no rear sensor), or drives it
+/// along its chord into the wall it leans on, cannot move it, and was held for its drawn
+/// number of ticks; with the next draws pointing into the wall too it stood still in a
+/// 30 × 30 pen for up to 170 ticks (seed 20; 289 ticks, seed 9, at crowded-arena's 0.2 RPT
+/// held 5–40 ticks), a spin in place counting as still here. A held command that cannot
+/// move it now ends its hold, and the next tick draws a fresh one: the longest still runs
+/// left are 10 and 12 ticks (a turn away spins in place for up to a full circle, 12 ticks
+/// at 30°, and each draw that cannot move costs one tick); 20 leaves room.
+#[test]
+fn wanderer_backed_into_a_wall_does_not_stand_still() {
+    for (text, most) in [
+        (
+            "[world]\narena = [30, 30]\n[world.wanderers]\ncount = 1\n",
+            20,
+        ),
+        (
+            "[world]\narena = [30, 30]\n[world.wanderers]\ncount = 1\nmax_rpt = 0.2\n\
+             hold_ticks = [5, 40]\n",
+            20,
+        ),
+    ] {
+        let (still, seed, tick) = longest_still(text, 0..30, 6_000);
+        assert!(
+            still <= most,
+            "{text:?}: seed {seed} stood still for {still} ticks, to tick {tick}"
+        );
+    }
+}
+
 /// In a corridor narrower than the whisker span (7 LU: at any heading a whisker touches a
 /// wall) no heading frees both whiskers; 0.3.5's wanderer spun back and forth on the spot.
 /// After each full circle the wanderer drives its held command for a tick, so it still moves

@@ -4,6 +4,12 @@
 //! wanderer's and predator's pose, the food whose amount changed, and the [`Event`]s of the
 //! tick.
 //!
+//! The trial path ends a life after the first tick in which no creature recorded a score
+//! (all dead, or their brains' output not finite), so a trace ends on that tick: a creature
+//! killed in tick 58 (ticks are numbered from 1: the ticks done) has rows up to tick 58,
+//! alive = 0 there, and lived 57 ticks. `simulate`'s trace ([`crate::record::trace`]) ends
+//! by the same rule. While others live, a dead creature keeps a row per tick with alive = 0.
+//!
 //! Events are derived by comparing the world after a tick with the world after the one
 //! before, so the simulator's hot path knows nothing of traces:
 //!

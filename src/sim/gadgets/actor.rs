@@ -40,6 +40,9 @@ pub struct Actor {
     pub held: (f64, f64),
     /// Ticks left on the held command.
     pub hold_left: u64,
+    /// This tick's command is the held random one (not a turn away, a steer or a sleep):
+    /// when it cannot move the body, the hold ends ([`Actor::moved_on`]).
+    pub on_held: bool,
     /// Next waypoint of a patrol.
     pub waypoint: usize,
     /// How it turns away from a touch while wandering.
@@ -78,7 +81,8 @@ pub enum Turn {
 /// corner about 70°: the 30° default always lands in them). Where no heading is free (a
 /// corridor narrower than the whisker span, or bodies all around), after a full circle
 /// without freeing both whiskers it drives its held command for one tick and starts another
-/// circle, so it still moves along the corridor instead of spinning forever.
+/// circle, so it still moves along the corridor instead of spinning forever. The whole rule,
+/// in words: docs/simulator-decisions.md, "How wanderers move".
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TurnAway {
     /// Spin signal per wheel in RPT: `turn_degrees / 720`, at most `max_rpt`.
@@ -113,8 +117,10 @@ impl TurnAway {
 impl Actor {
     /// The wanderer's command: a fresh random one when the held one ran out (draws: left,
     /// right, then the hold length), else the held one, except while a whisker touches:
-    /// then it turns away ([`TurnAway`]), which does not consume the held command (its hold
-    /// still counts down). The direction is chosen on the first touching tick: a left touch
+    /// then it turns away ([`TurnAway`]), which does not replace the held command but uses
+    /// up its ticks (the hold counts down on turning ticks too, and a fresh command is drawn
+    /// on a turning tick when the hold ran out). A held command that could not move the body
+    /// ends its hold ([`Actor::moved_on`]). The direction is chosen on the first touching tick: a left touch
     /// turns it right, a right touch left, both a direction drawn from `rng` (one draw, after
     /// those of a fresh command).
     pub fn wander(&mut self, whiskers: [bool; 2], rng: &mut Rng) -> (f64, f64) {
@@ -126,9 +132,11 @@ impl Actor {
         }
         self.hold_left -= 1;
         let t = &mut self.turn_away;
+        self.on_held = false;
         if whiskers == [false, false] {
             t.turning = None;
             t.turned = 0;
+            self.on_held = true;
             return self.held;
         }
         let turn = *t.turning.get_or_insert_with(|| match whiskers {
@@ -141,12 +149,31 @@ impl Actor {
         if t.turned > t.full_circle {
             // A full circle found no free heading: move on the held command for a tick.
             t.turned = 0;
+            self.on_held = true;
             return self.held;
         }
         match turn {
             Turn::Right => (t.rpt, -t.rpt),
             Turn::Left => (-t.rpt, t.rpt),
         }
+    }
+
+    /// After this tick's move to `pose`: a held random command that left the body where it
+    /// was (its move blocked before it travelled any distance: a wanderer backed into a wall,
+    /// or driving into a body) ends its hold, so the next tick draws a fresh one from the
+    /// same generator, in the same place in the tick order (left, right, hold length).
+    ///
+    /// Why: the report's wanderers have no rear sensor, and a command held for its drawn
+    /// number of ticks kept a wanderer pressed against a wall; with fresh commands that
+    /// pointed into the wall too it stood still for up to 170 ticks in a 30 × 30 pen (289
+    /// with crowded-arena's 0.2 RPT held 5–40 ticks), while §4.8 wants wanderers to keep the
+    /// world changing. A turn away (a spin) and a steer are not random commands and keep
+    /// their rules.
+    pub fn moved_on(&mut self, pose: Pose) {
+        if self.on_held && pose.position == self.pose.position {
+            self.hold_left = 0;
+        }
+        self.pose = pose;
     }
 
     /// Steers towards `target`: the wheel difference that turns the heading onto it in one

@@ -198,6 +198,7 @@ impl Gadgets {
             Role::Predator { .. } if !actor.awake() => {
                 // Asleep where it lies; it wakes (and smells) after this tick's command.
                 let a = &mut self.actors[a];
+                a.on_held = false;
                 a.asleep -= 1;
                 if a.awake() {
                     ctx.things[a.thing].smell.set_quiet(false);
@@ -223,7 +224,10 @@ impl Gadgets {
                     }
                 };
                 let (l, rr) = match target {
-                    Some(t) => actor.steer(t),
+                    Some(t) => {
+                        self.actors[a].on_held = false;
+                        actor.steer(t)
+                    }
                     None => self.actors[a].wander(whiskers, ctx.rng),
                 };
                 (l, rr, Some(effect))
@@ -231,12 +235,13 @@ impl Gadgets {
         }
     }
 
-    /// Phase 2, after actor `a`'s move to `pose`: its body goes there, and a predator
+    /// Phase 2, after actor `a`'s move to `pose`: its body goes there (a held random command
+    /// that could not move it ends its hold, [`Actor::moved_on`]), and a predator
     /// (`predator`: its effect) attacks every living creature it touches outside safe areas.
     #[inline]
     pub fn moved(&mut self, a: usize, pose: Pose, predator: Option<Effect>, ctx: &mut Context<'_>) {
         let actor = &mut self.actors[a];
-        actor.pose = pose;
+        actor.moved_on(pose);
         ctx.things[actor.thing].position = pose.position;
         if let Some(effect) = predator {
             let r = ctx.radius;

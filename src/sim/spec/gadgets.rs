@@ -118,7 +118,10 @@ pub struct WanderersSpec {
     /// Largest motor signal in rotations per tick (default: 0.25).
     pub max_rpt: f64,
     /// Each random motor command is held for a number of ticks drawn uniformly from
-    /// `[min, max]` (default: `[5, 30]`, min >= 1).
+    /// `[min, max]` (default: `[5, 30]`, min >= 1). Ticks spent turning away from a touch
+    /// count towards the hold, and a held command that cannot move the wanderer (its move
+    /// blocked before it travels any distance, e.g. backing into a wall) ends its hold: the
+    /// next tick draws a fresh one. See docs/simulator-decisions.md.
     #[serde(deserialize_with = "exact_lists::pair")]
     pub hold_ticks: [u64; 2],
     /// Odour of their bodies (default: zeros).
@@ -135,7 +138,10 @@ pub struct WanderersSpec {
     /// Largest turn per tick in degrees while turning away from what a whisker touches, in
     /// (0, 180] (default: absent = 30). The turn is a spin in place, at most `max_rpt` per
     /// wheel (a spin of s RPT turns 720·s degrees), kept in one direction until neither
-    /// whisker touches; see [`TurnAway`](crate::sim::gadgets::TurnAway).
+    /// whisker touches; see [`TurnAway`](crate::sim::gadgets::TurnAway). Where no heading
+    /// frees both whiskers it drives its held command for one tick after every ⌈360 / step⌉
+    /// turning ticks (step: the turn per tick), also when the step does not divide 360°
+    /// (12 ticks at 30°, 15 at 25°).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub turn_degrees: Option<f64>,
 }
@@ -200,7 +206,8 @@ pub struct PredatorSpec {
         deserialize_with = "crate::sim::spec::values::exact::option_array"
     )]
     pub start: Option<Point>,
-    /// `wander` holds each random command for `[min, max]` ticks (default: `[5, 30]`).
+    /// `wander` (and `chase` with no prey) holds each random command for `[min, max]`
+    /// ticks, by the rules of `[world.wanderers] hold_ticks` (default: `[5, 30]`).
     #[serde(deserialize_with = "exact_lists::pair")]
     pub hold_ticks: [u64; 2],
     /// Odour of its body (default: zeros).
@@ -215,7 +222,7 @@ pub struct PredatorSpec {
     #[serde(deserialize_with = "crate::sim::spec::values::exact::array")]
     pub colour: [f64; 3],
     /// Largest turn per tick in degrees while a wandering predator turns away from a touch,
-    /// as `[world.wanderers] turn_degrees` (default: absent = 30).
+    /// by the rules of `[world.wanderers] turn_degrees` (default: absent = 30).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub turn_degrees: Option<f64>,
     /// Ticks it sleeps where it starts at the beginning of a trial, drawn uniformly from
