@@ -143,7 +143,9 @@ pub fn cut_long_words(message: &str, max: usize) -> String {
     let mut out = String::with_capacity(message.len().min(4 * max));
     let mut rest = message;
     while !rest.is_empty() {
-        let space = rest.find(|c: char| !c.is_whitespace()).unwrap_or(rest.len());
+        let space = rest
+            .find(|c: char| !c.is_whitespace())
+            .unwrap_or(rest.len());
         out.push_str(&rest[..space]);
         rest = &rest[space..];
         let word = rest.find(char::is_whitespace).unwrap_or(rest.len());

@@ -177,8 +177,15 @@ fn long_values_are_cut_in_messages_and_counts_and_names_are_bounded() {
     }
     // A valid but huge name (it would name the run folder) is refused, not echoed.
     let p = tmp.path().join("long-name.toml");
-    std::fs::write(&p, base.replace("name = \"tiny\"", &format!("name = \"{long}\""))).unwrap();
-    for args in [vec!["run", p.to_str().unwrap()], vec!["inspect", p.to_str().unwrap()]] {
+    std::fs::write(
+        &p,
+        base.replace("name = \"tiny\"", &format!("name = \"{long}\"")),
+    )
+    .unwrap();
+    for args in [
+        vec!["run", p.to_str().unwrap()],
+        vec!["inspect", p.to_str().unwrap()],
+    ] {
         let err = run_err(&args);
         assert!(err.len() < 4000, "{args:?}: a {}-byte message", err.len());
         assert!(err.contains("at most 100"), "{err}");

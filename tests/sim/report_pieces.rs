@@ -142,6 +142,29 @@ fn wanderer_backed_into_a_wall_does_not_stand_still() {
     }
 }
 
+/// A chasing predator with no prey in reach wanders, but keeps a held command that cannot
+/// move it (it waits, as predator-arena's results were measured with); the same predator with
+/// the wander strategy redraws. Here no creature is in the pen.
+#[test]
+fn chaser_without_prey_keeps_its_blocked_command() {
+    let pen = |strategy: &str| {
+        format!(
+            "[world]\narena = [30, 30]\n[[world.predators]]\nstrategy = \"{strategy}\"\n\
+             start = [15.0, 15.0]\n"
+        )
+    };
+    let (wander, ..) = longest_still(&pen("wander"), 0..30, 6_000);
+    let (chase, ..) = longest_still(&pen("chase"), 0..30, 6_000);
+    assert!(
+        wander <= 20,
+        "a wandering predator stood still {wander} ticks"
+    );
+    assert!(
+        chase > 40,
+        "a chaser without prey stood still at most {chase} ticks"
+    );
+}
+
 /// In a corridor narrower than the whisker span (7 LU: at any heading a whisker touches a
 /// wall) no heading frees both whiskers; 0.3.5's wanderer spun back and forth on the spot.
 /// After each full circle the wanderer drives its held command for a tick, so it still moves

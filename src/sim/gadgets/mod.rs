@@ -228,7 +228,16 @@ impl Gadgets {
                         self.actors[a].on_held = false;
                         actor.steer(t)
                     }
-                    None => self.actors[a].wander(whiskers, ctx.rng),
+                    None => {
+                        let command = self.actors[a].wander(whiskers, ctx.rng);
+                        // A chaser with no prey in reach waits on its held command, blocked
+                        // or not: the redraw is the wanderers' rule (§4.8), and predator-arena's
+                        // results were measured with chasers that wait.
+                        if strategy == Strategy::Chase {
+                            self.actors[a].on_held = false;
+                        }
+                        command
+                    }
                 };
                 (l, rr, Some(effect))
             }
