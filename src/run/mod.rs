@@ -205,7 +205,7 @@ pub enum RunError {
         message: String,
     },
     /// The experiment file in the folder differs from the checkpoint's experiment.
-    #[error("{path} differs from the experiment in checkpoint {checkpoint} (config hash {found} vs {expected}; {changes}); the run would no longer be the one its seed describes. Restore the file, or pass --allow-config-change to continue anyway (the change is recorded in the run folder)")]
+    #[error("{path} differs from the experiment in checkpoint {checkpoint} (config hash {found} vs {expected}; {changes}); the run would no longer be the one its seed describes. Restore the file, or continue anyway (the change is recorded in the run folder): {command}")]
     ConfigChanged {
         /// The experiment file.
         path: PathBuf,
@@ -217,6 +217,8 @@ pub enum RunError {
         expected: String,
         /// The changed keys, `key: checkpoint's -> file's`, separated by "; ".
         changes: String,
+        /// The command that continues anyway.
+        command: String,
     },
     /// `resume --generations N` asked for fewer generations than the checkpoint holds.
     #[error("--generations {requested}: checkpoint {checkpoint} already holds {completed} completed generations; ask for at least that many{older}")]
@@ -521,6 +523,38 @@ pub struct ResumeRequest {
     pub shorten: bool,
 }
 
+/// The flags a resume needs, to name the whole command that works in a refusal.
+#[derive(Debug, Clone, Copy)]
+struct ResumeFlags {
+    discard_newer: bool,
+    allow_config_change: bool,
+    shorten: bool,
+}
+
+impl ResumeFlags {
+    /// `berry-evolve resume TARGET [--generations G]` with these flags.
+    fn command(&self, target: &Path, generations: Option<u64>) -> String {
+        let mut command = format!(
+            "{} resume {}",
+            crate::invocation::program(),
+            target.display()
+        );
+        if let Some(g) = generations {
+            command.push_str(&format!(" --generations {g}"));
+        }
+        for (on, flag) in [
+            (self.discard_newer, " --discard-newer"),
+            (self.shorten, " --shorten"),
+            (self.allow_config_change, " --allow-config-change"),
+        ] {
+            if on {
+                command.push_str(flag);
+            }
+        }
+        command
+    }
+}
+
 /// Where to resume from: a run folder (its newest good checkpoint) or a checkpoint file.
 pub fn resume(
     target: &Path,
@@ -640,33 +674,15 @@ pub fn resume_with(
         .filter(|(g, _)| *g > last_generation)
         .map(|(_, p)| p)
         .collect();
-    let mut discard = None;
-    if !newer.is_empty() {
-        let names = newer
-            .iter()
-            .map(|p| {
-                p.file_name()
-                    .unwrap_or_default()
-                    .to_string_lossy()
-                    .into_owned()
-            })
-            .collect::<Vec<_>>();
-        if !request.discard_newer {
-            return Err(RunError::NewerCheckpoints {
-                dir: dir.clone(),
-                checkpoint: loaded_path,
-                newer: names.join(", "),
-                command: format!(
-                    "{} resume {} --discard-newer{}",
-                    crate::invocation::program(),
-                    target.display(),
-                    generations.map_or(String::new(), |g| format!(" --generations {g}"))
-                ),
-            });
-        }
-        // Moved aside only after every other check passed (a refused resume touches nothing).
-        discard = Some(names);
-    }
+    let newer_names = newer
+        .iter()
+        .map(|p| {
+            p.file_name()
+                .unwrap_or_default()
+                .to_string_lossy()
+                .into_owned()
+        })
+        .collect::<Vec<_>>();
     if program != checkpoint::PROGRAM {
         // Reproducibility is promised per version: another version may compute differently
         // (0.2.0 changed the brains' arithmetic), so say so rather than stay silent.
@@ -682,21 +698,23 @@ pub fn resume_with(
         path: experiment_path.clone(),
         error,
     };
+    // First every decision, then (only when none refuses) every change: a refused resume
+    // touches nothing, and its message gives the whole command that works, with every flag
+    // this resume needs.
+    let mut needs = ResumeFlags {
+        discard_newer: request.discard_newer || !newer.is_empty(),
+        allow_config_change: request.allow_config_change,
+        shorten: request.shorten,
+    };
     // Validated already when the checkpoint was loaded (`check_payload_shape`).
-    let mut experiment = Experiment::try_from(payload.experiment.clone()).map_err(invalid)?;
+    let checkpointed = Experiment::try_from(payload.experiment.clone()).map_err(invalid)?;
+    let mut experiment = checkpointed.clone();
+    let mut config_changed = None;
     if experiment_path.exists() {
         let on_disk = Experiment::load(&experiment_path)?;
         if on_disk.config_hash() != experiment.config_hash() {
-            if !request.allow_config_change {
-                return Err(RunError::ConfigChanged {
-                    path: experiment_path,
-                    checkpoint: loaded_path,
-                    found: on_disk.config_hash()[..12].to_string(),
-                    expected: experiment.config_hash()[..12].to_string(),
-                    changes: changed_keys(&experiment, &on_disk).join("; "),
-                });
-            }
-            record_config_change(&dir, &experiment, &on_disk, &loaded_path)?;
+            needs.allow_config_change = true;
+            config_changed = Some(on_disk.clone());
             experiment = on_disk;
         } else {
             if on_disk.evolution.generations != experiment.evolution.generations
@@ -724,6 +742,7 @@ pub fn resume_with(
         }
     }
     let mut shortened = None;
+    let mut fewer = None;
     if let Some(g) = generations {
         if g < last_generation + 1 {
             let older = checkpoint::list_checkpoints(&cdir)
@@ -732,11 +751,14 @@ pub fn resume_with(
                 .rev()
                 .find(|(og, _)| *og < g)
                 .map_or(String::new(), |(_, p)| {
+                    let flags = ResumeFlags {
+                        discard_newer: true,
+                        shorten: needs.shorten || g < experiment.evolution.generations,
+                        ..needs
+                    };
                     format!(
-                        ", or continue from an older checkpoint: {} resume {} --discard-newer --generations {g}{}",
-                        crate::invocation::program(),
-                        p.display(),
-                        if g < experiment.evolution.generations { " --shorten" } else { "" }
+                        ", or continue from an older checkpoint: {}",
+                        flags.command(&p, Some(g))
                     )
                 });
             return Err(RunError::TooFewGenerations {
@@ -748,22 +770,8 @@ pub fn resume_with(
         }
         let planned = experiment.evolution.generations;
         if g < planned {
-            if !request.shorten {
-                return Err(RunError::FewerGenerations {
-                    requested: g,
-                    planned,
-                    command: format!(
-                        "{} resume {} --generations {g} --shorten{}",
-                        crate::invocation::program(),
-                        target.display(),
-                        if request.discard_newer {
-                            " --discard-newer"
-                        } else {
-                            ""
-                        }
-                    ),
-                });
-            }
+            needs.shorten = true;
+            fewer = Some((g, planned));
             shortened = Some(format!(
                 "resumed from {} with --shorten: generations {planned} -> {g}",
                 loaded_path.display()
@@ -775,7 +783,39 @@ pub fn resume_with(
             .build()
             .map_err(invalid)?;
     }
-    if let Some(names) = discard {
+    let command = needs.command(target, generations);
+    if let Some(on_disk) = &config_changed {
+        if !request.allow_config_change {
+            return Err(RunError::ConfigChanged {
+                path: experiment_path,
+                checkpoint: loaded_path,
+                found: on_disk.config_hash()[..12].to_string(),
+                expected: checkpointed.config_hash()[..12].to_string(),
+                changes: changed_keys(&checkpointed, on_disk).join("; "),
+                command,
+            });
+        }
+    }
+    if !newer.is_empty() && !request.discard_newer {
+        return Err(RunError::NewerCheckpoints {
+            dir: dir.clone(),
+            checkpoint: loaded_path,
+            newer: newer_names.join(", "),
+            command,
+        });
+    }
+    if let Some((requested, planned)) = fewer.filter(|_| !request.shorten) {
+        return Err(RunError::FewerGenerations {
+            requested,
+            planned,
+            command,
+        });
+    }
+    // Every check passed: now the changes.
+    if config_changed.is_some() {
+        record_config_change(&dir, &checkpointed, &experiment, &loaded_path)?;
+    }
+    if !newer.is_empty() {
         let aside = dir.join(DISCARDED_DIR);
         std::fs::create_dir_all(&aside).map_err(io_err(&aside))?;
         for p in &newer {
@@ -787,12 +827,12 @@ pub fn resume_with(
             &format!(
                 "resumed from {} with --discard-newer: moved {} to {DISCARDED_DIR}/",
                 loaded_path.display(),
-                names.join(", ")
+                newer_names.join(", ")
             ),
         )?;
         progress.note(&format!(
             "moved the newer checkpoints {} to {}",
-            names.join(", "),
+            newer_names.join(", "),
             aside.display()
         ));
     }
