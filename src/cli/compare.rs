@@ -282,7 +282,8 @@ impl CompareReport {
     }
 }
 
-/// Lives every trial of `genome` in `generation`'s worlds (group 0).
+/// Lives every trial of `genome` in `generation`'s worlds (group 0), the trials in parallel
+/// (collected in trial order, so the same bits on any number of threads).
 fn outcomes(
     experiment: &Experiment,
     topology: &Topology,
@@ -290,6 +291,7 @@ fn outcomes(
     generation: Generation,
 ) -> anyhow::Result<Vec<TrialOutcome>> {
     Ok((0..experiment.evaluation.trials)
+        .into_par_iter()
         .map(|t| {
             run_trial(
                 experiment,
@@ -315,8 +317,9 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     }
 }
 
-/// Evaluates what `args` names and gathers the report.
-fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
+/// Evaluates what `args` names and gathers the report (also the end-of-run held-out check's
+/// evaluation, `cli::check`).
+pub(crate) fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
     let mut overrides = Experiment::load(&args.experiment)?.with_overrides();
     if let Some(t) = args.trials {
         overrides = overrides.trials(t);

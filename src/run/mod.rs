@@ -418,6 +418,23 @@ fn remove_own_files(dir: &Path) -> Result<Vec<String>, RunError> {
     Ok(removed)
 }
 
+/// Builds generation 0's trial worlds as the run will (group 0), so that a world that cannot
+/// be built (a placement rule with no room) is found before anything is written: `run`
+/// refuses it touching no folder, and `inspect` reports it.
+pub fn check_worlds(experiment: &Experiment) -> Result<(), EvaluationError> {
+    let creatures = experiment.evaluation.group_size as usize;
+    for t in 0..experiment.evaluation.trials {
+        crate::evo::life::trial_world(
+            experiment,
+            creatures,
+            crate::seed::Generation(0),
+            0,
+            crate::seed::TrialIndex(t),
+        )?;
+    }
+    Ok(())
+}
+
 /// Starts a new run of `experiment` in `dir`. Refuses a folder that already holds a run
 /// unless `force`, in which case the old run's own files (and only those) are removed first.
 /// Refuses at once, touching nothing, a folder another process writes.
@@ -438,6 +455,8 @@ pub fn start(
             target: std::fs::read_link(dir).unwrap_or_default(),
         });
     }
+    // Before the folder exists: the fixed file then starts without --force.
+    check_worlds(&experiment)?;
     std::fs::create_dir_all(dir).map_err(|error| RunError::CreateFolder {
         dir: dir.to_path_buf(),
         error,
