@@ -8,10 +8,9 @@ use super::estimate;
 use super::progress::reporter;
 use super::run_report::{self, CheckRequest};
 use anyhow::Context;
-use berry_evolve::evo::life::EvaluationError;
 use berry_evolve::experiment::{Experiment, ExperimentError};
 use berry_evolve::record::fitness_csv::FitnessRow;
-use berry_evolve::run::{start, JobHook, Progress, RunError, RunOptions};
+use berry_evolve::run::{start, JobHook, Progress, RunOptions};
 use berry_evolve::validate::InvalidValue;
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -55,7 +54,8 @@ pub struct RunArgs {
     pub force: bool,
     /// At the end, print one JSON document on stdout instead of the text summary (schema
     /// `berry-evolve/run/1`: status done or interrupted, run folder, generations done, best
-    /// and validation fitness, best.json, resume command; with --seeds
+    /// and validation fitness, best.json, resume command, the held-out check `check` and the
+    /// commands to look at the champion `look`; with --seeds
     /// `berry-evolve/run-seeds/1`, one such entry per seed). Progress stays on stderr; --quiet
     /// silences it but not the document.
     #[arg(long)]
@@ -177,6 +177,7 @@ pub fn run(args: RunArgs, ranks: Option<&Ranks>) -> anyhow::Result<()> {
         .clone()
         .unwrap_or_else(|| experiment.default_run_dir());
     refuse_replicates(&dir, &args.experiment, experiment.seed)?;
+    buildable(&experiment, &args.experiment)?;
     let (experiment, baseline_note) = check::resolve_baseline(experiment, &args.experiment)?;
     warn_before_start(&experiment, &args, baseline_note);
     let stop = stop_flag(Some(Interrupting {
@@ -204,7 +205,6 @@ pub fn run(args: RunArgs, ranks: Option<&Ranks>) -> anyhow::Result<()> {
         },
         progress.as_mut(),
     );
-    let result = result.map_err(|e| world_error(e, &args.experiment));
     let check = CheckRequest {
         enabled: !args.no_check,
         jobs,
@@ -218,23 +218,21 @@ pub fn run(args: RunArgs, ranks: Option<&Ranks>) -> anyhow::Result<()> {
     outcome
 }
 
-/// A world that cannot be built, said as the experiment file's problem: `start` refuses it
-/// before creating the run folder, so the fixed file starts again as it is.
-fn world_error(e: RunError, file: &Path) -> RunError {
-    match e {
-        RunError::Evaluation(error @ EvaluationError::World { .. }) => {
-            RunError::Experiment(ExperimentError::Invalid {
-                path: file.to_path_buf(),
-                error: InvalidValue::new(
-                    "world",
-                    format!(
-                        "{error}; no run folder was written, so the fixed file starts as it is"
-                    ),
-                ),
-            })
+/// Refuses, as the experiment file's problem, a world that cannot be built (a placement
+/// rule with no room), before anything is written: the fixed file then starts again with
+/// the same command. `start` refuses it too (so does every caller of the library), but
+/// without naming the file.
+fn buildable(experiment: &Experiment, file: &Path) -> anyhow::Result<()> {
+    berry_evolve::run::check_worlds(experiment).map_err(|error| {
+        ExperimentError::Invalid {
+            path: file.to_path_buf(),
+            error: InvalidValue::new(
+                "world",
+                format!("{error}; nothing was written, so the fixed file starts as it is"),
+            ),
         }
-        other => other,
-    }
+        .into()
+    })
 }
 
 /// Before a run starts, what would make it a dead end, on stderr (also with --quiet, as the
@@ -536,8 +534,8 @@ fn run_seeds(args: &RunArgs, seeds: &[u64], ranks: Option<&Ranks>) -> anyhow::Re
         let result = if continued {
             berry_evolve::run::resume(&dir, args.generations, false, options, progress.as_mut())
         } else {
+            buildable(&e, &args.experiment)?;
             start(e, &dir, args.force, options, progress.as_mut())
-                .map_err(|e| world_error(e, &args.experiment))
         };
         report
             .add(seed, continued, result)

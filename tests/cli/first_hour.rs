@@ -264,7 +264,7 @@ fn resume_opens_with_the_checkpoint_it_continues_from_and_checks_at_the_end() {
 fn a_relative_baseline_still_resolves_when_resume_runs_elsewhere_and_a_missing_one_is_a_note() {
     let tmp = tempfile::tempdir().unwrap();
     a_tiny_genome(tmp.path());
-    let file = tiny_with_baseline(&tmp.path().join("exp"), "tiny.toml", "../genomes/base.json");
+    tiny_with_baseline(&tmp.path().join("exp"), "tiny.toml", "../genomes/base.json");
     let dir = tmp.path().join("run");
     // Started from another folder with a relative experiment path, resumed from a third.
     let out = bin()
@@ -451,7 +451,7 @@ fn a_world_that_cannot_be_built_is_caught_by_inspect_and_run_leaves_no_folder() 
     ];
     let err = run_err(&command);
     assert!(
-        err.contains("cannot place object") && err.contains("no run folder was written"),
+        err.contains("cannot place object") && err.contains("nothing was written"),
         "{err}"
     );
     assert!(!dir.exists(), "a refused run leaves no folder");
@@ -459,6 +459,25 @@ fn a_world_that_cannot_be_built_is_caught_by_inspect_and_run_leaves_no_folder() 
     std::fs::write(&file, text).unwrap();
     run_ok(&command);
     assert!(dir.join("best.json").is_file());
+}
+
+#[test]
+fn the_library_refuses_a_world_that_cannot_be_built_before_creating_the_folder() {
+    use berry_evolve::run::{start, RunError, RunOptions, Silent};
+    let tmp = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(fixture("tiny.toml"))
+        .unwrap()
+        .replace("count = 6", "count = 5000");
+    let experiment = Experiment::from_toml(&text, Path::new("crowded.toml")).unwrap();
+    let dir = tmp.path().join("run");
+    let options = RunOptions {
+        jobs: 1,
+        stop: None,
+        evaluator: None,
+    };
+    let error = start(experiment, &dir, false, options, &mut Silent).unwrap_err();
+    assert!(matches!(error, RunError::Evaluation(_)), "{error}");
+    assert!(!dir.exists(), "{error}");
 }
 
 #[test]
