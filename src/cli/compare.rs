@@ -302,7 +302,8 @@ impl CompareReport {
 }
 
 /// Lives every trial of `genome` in `set`'s worlds (group 0): the `built` worlds (the
-/// validation worlds) when given, else those its generation's streams build.
+/// validation worlds) when given, else those its generation's streams build; the trials in
+/// parallel (collected in trial order, so the same bits on any number of threads).
 fn outcomes(
     experiment: &Experiment,
     topology: &Topology,
@@ -314,13 +315,13 @@ fn outcomes(
     let generation = set.generation();
     if let Some(worlds) = built {
         return Ok(worlds
-            .iter()
-            .zip(0..)
-            .map(|(world, t)| {
+            .par_iter()
+            .enumerate()
+            .map(|(t, world)| {
                 let id = TrialId {
                     generation,
                     group: 0,
-                    trial: TrialIndex(t),
+                    trial: TrialIndex(t as u64),
                 };
                 run_trial_in_world(experiment, topology, genomes, id, world.clone(), NoObserver)
                     .map(|o| o[0])
@@ -328,6 +329,7 @@ fn outcomes(
             .collect::<Result<Vec<_>, _>>()?);
     }
     Ok((0..experiment.evaluation.trials)
+        .into_par_iter()
         .map(|t| {
             run_trial(experiment, topology, genomes, generation, 0, TrialIndex(t)).map(|o| o[0])
         })
@@ -345,8 +347,9 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     }
 }
 
-/// Evaluates what `args` names and gathers the report.
-fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
+/// Evaluates what `args` names and gathers the report (also the end-of-run held-out check's
+/// evaluation, `cli::check`).
+pub(crate) fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
     let set = WorldSet::choose(args.worlds, args.generation, WorldsChoice::HeldOut, 0)?;
     let experiment_path = experiment_file(args.experiment.as_deref(), &args.genomes)?;
     let mut experiment = Experiment::load(&experiment_path)?;

@@ -6,8 +6,9 @@ use crate::cli::estimate::{self, count};
 use anyhow::Context;
 use berry_evolve::brain::summary::BrainSummary;
 use berry_evolve::experiment::tables::{Balance, FitnessMode, FitnessSpec, GoalAt};
-use berry_evolve::experiment::Experiment;
+use berry_evolve::experiment::{Experiment, ExperimentError};
 use berry_evolve::run::estimate::{Estimate, Workload};
+use berry_evolve::validate::InvalidValue;
 use clap::Args;
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -52,6 +53,9 @@ struct Report<'a> {
     behaviour_measures: Vec<&'static str>,
     /// How `best.json` is chosen, as the text's `champion:` line.
     champion: String,
+    /// What would make a run a dead end (e.g. nothing in the world can change the
+    /// fitness), as the text's `warning:` lines; empty when nothing does.
+    warnings: Vec<String>,
     workload: Workload,
     /// `null` with `--no-estimate`, or when the calibration could not run.
     estimate: Option<EstimateJson>,
@@ -90,6 +94,14 @@ struct EstimateJson {
 /// Runs the subcommand.
 pub fn run(args: InspectArgs) -> anyhow::Result<()> {
     let experiment = Experiment::load(&args.file)?;
+    // A world that cannot be built would stop `run` before it starts: say so here.
+    berry_evolve::run::check_worlds(&experiment).map_err(|error| ExperimentError::Invalid {
+        path: args.file.clone(),
+        error: InvalidValue::new(
+            "world",
+            format!("{error}; `run` refuses this file until it is fixed"),
+        ),
+    })?;
     let workload = Workload::of(&experiment, 0..experiment.evolution.generations);
     let estimate = if args.no_estimate {
         None
@@ -155,6 +167,9 @@ fn text(
     writeln!(out, "outputs: {}", experiment.output_names().join(", "))?;
     writeln!(out, "brain: {}", experiment.topology().summary())?;
     writeln!(out, "fitness: {}", fitness_words(&experiment.fitness))?;
+    for warning in warnings(experiment) {
+        writeln!(out, "  {warning}")?;
+    }
     writeln!(
         out,
         "behaviour measures: {}",
@@ -237,6 +252,7 @@ fn report<'a>(
         fitness: fitness_words(&experiment.fitness),
         behaviour_measures: measure_names(experiment),
         champion: champion_words(experiment),
+        warnings: warnings(experiment),
         workload,
         estimate: estimate.map(|e| EstimateJson {
             total_seconds: e.total_seconds,
@@ -313,6 +329,13 @@ fn fitness_words(f: &FitnessSpec) -> String {
         write!(words, ", − {} if killed", f.death_penalty).ok();
     }
     words
+}
+
+/// The dead ends a run of `experiment` would meet (`run` warns of them as it starts).
+fn warnings(experiment: &Experiment) -> Vec<String> {
+    super::run::constant_fitness_warning(experiment)
+        .into_iter()
+        .collect()
 }
 
 /// The behaviour measures' names.

@@ -2,6 +2,7 @@
 //! calling the library. Only this layer turns typed errors into messages.
 
 pub mod bench;
+pub mod check;
 pub mod cluster;
 pub mod compare;
 pub mod completions;

@@ -4,11 +4,12 @@ use super::cluster::{evaluator, Ranks};
 use super::console::errln;
 use super::progress::reporter;
 use super::run::Interrupting;
-use super::run::{stop_flag, ExecutionArgs};
-use super::run_report;
-use berry_evolve::run::{resume_target, resume_with, ResumeRequest, RunOptions};
+use super::run::{announcing, stop_flag, ExecutionArgs};
+use super::run_report::{self, CheckRequest};
+use berry_evolve::record::checkpoint::list_checkpoints;
+use berry_evolve::run::{resume_target, resume_with, ResumeRequest, RunOptions, CHECKPOINT_DIR};
 use clap::Args;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `resume`.
 #[derive(Debug, Args)]
@@ -50,8 +51,13 @@ pub fn run(args: ResumeArgs, ranks: Option<&Ranks>) -> anyhow::Result<()> {
             ),
             dir,
         });
+    let opening = opening_line(&args.target);
     let stop = stop_flag(at)?;
-    let mut progress = reporter(args.execution.quiet);
+    let mut progress = announcing(
+        reporter(args.execution.quiet),
+        args.execution.quiet,
+        opening,
+    );
     let jobs = args.execution.jobs.unwrap_or(0);
     let remote = evaluator(ranks, jobs, &stop)?;
     let result = resume_with(
@@ -69,11 +75,43 @@ pub fn run(args: ResumeArgs, ranks: Option<&Ranks>) -> anyhow::Result<()> {
         },
         progress.as_mut(),
     );
-    let outcome = run_report::finish(result, args.json, args.execution.quiet);
+    let check = CheckRequest {
+        enabled: !args.execution.no_check,
+        jobs,
+        baseline: None,
+    };
+    let outcome = run_report::finish(result, args.json, args.execution.quiet, check);
     if !args.execution.quiet {
         if let Some(note) = remote.as_deref().and_then(|e| e.report()) {
             errln!("{note}");
         }
     }
     outcome
+}
+
+/// The line `resume` opens with (printed once the resume is accepted, before its first
+/// note or generation): the run folder and the checkpoint it continues from, the one named
+/// or the folder's newest (the one resume reads: a damaged newest one is refused, not
+/// skipped). None when the target is no run folder (resume then says why).
+fn opening_line(target: &Path) -> Option<String> {
+    let (dir, file) = resume_target(target).ok()?;
+    let (generation, checkpoint) = match file {
+        Some(f) => {
+            let generation = f
+                .file_name()
+                .and_then(|n| n.to_str())
+                .and_then(berry_evolve::record::checkpoint::parse_checkpoint_file_name);
+            (generation, f)
+        }
+        None => {
+            let (g, p) = list_checkpoints(&dir.join(CHECKPOINT_DIR)).ok()?.pop()?;
+            (Some(g), p)
+        }
+    };
+    let done = generation.map_or(String::new(), |g| format!(" (generations 0 to {g} done)"));
+    Some(format!(
+        "resuming the run in {} from checkpoint {}{done}",
+        dir.display(),
+        checkpoint.display()
+    ))
 }

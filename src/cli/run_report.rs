@@ -1,11 +1,15 @@
 //! The end-of-run summary of `run` and `resume`: where the results are, the best individual,
-//! the validation champion and how to go on, printed as text on stderr or, with `--json`, as
-//! one JSON document on stdout (also when the run was interrupted, before the `stopped:`
-//! line). Both forms are printed from [`RunOutcome`], so they carry the same numbers.
+//! the validation champion, the held-out check (did it work?, `cli::check`), how to look at
+//! the champion and how to go on, printed as text on stderr or, with `--json`, as one JSON
+//! document on stdout (also when the run was interrupted, before the `stopped:` line). Both
+//! forms are printed from [`RunOutcome`], so they carry the same numbers.
 
+use crate::cli::check::{self, CheckReport};
 use crate::cli::compare::fitness_text;
 use crate::cli::console::{errln, outln};
 use crate::cli::json;
+use berry_evolve::invocation::{program, shell_word};
+use std::path::PathBuf;
 
 use berry_evolve::run::{RunError, RunSummary, BEST_FILE};
 use serde::Serialize;
@@ -65,6 +69,17 @@ pub struct RunOutcome {
     pub checkpoint: Option<String>,
     /// The command that continues the run (add `--generations N` to extend a finished one).
     pub resume_command: String,
+    /// The held-out check of a finished run (`run` and `resume`; absent with --no-check, for
+    /// an interrupted run, without best.json, and for the seeds of `run --seeds`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub check: Option<CheckReport>,
+    /// Why a check that was asked for could not be made, when it could not.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub check_failed: Option<String>,
+    /// Commands that show the champion: a picture of one trial (`render`) and an animated
+    /// page (`replay --html`), with the run folder's real paths (`run` and `resume`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub look: Vec<String>,
 }
 
 impl RunOutcome {
@@ -94,7 +109,31 @@ impl RunOutcome {
                 berry_evolve::invocation::program(),
                 summary.dir.display()
             ),
+            check: None,
+            check_failed: None,
+            look: Vec::new(),
         }
+    }
+
+    /// The commands that show best.json, when the run has one.
+    fn look_commands(&self) -> Vec<String> {
+        let Some(best) = &self.best_json else {
+            return Vec::new();
+        };
+        let dir = std::path::Path::new(&self.run_dir);
+        let word = |p: &std::path::Path| shell_word(&p.display().to_string());
+        let (best, experiment) = (
+            word(std::path::Path::new(best)),
+            word(&dir.join(berry_evolve::run::EXPERIMENT_FILE)),
+        );
+        vec![
+            format!("{} render {best} --experiment {experiment}", program()),
+            format!(
+                "{} replay {best} --experiment {experiment} --trial 0 --html {}",
+                program(),
+                word(&dir.join("best.html"))
+            ),
+        ]
     }
 
     /// Prints the text summary on stderr (the run's product is its folder, not stdout).
@@ -119,10 +158,24 @@ impl RunOutcome {
                     .map_or(String::new(), |i| format!(", individual {i}"))
             );
         }
+        if let Some(c) = &self.check {
+            for line in c.lines() {
+                errln!("{line}");
+            }
+        }
+        if let Some(why) = &self.check_failed {
+            errln!("held-out check not made: {why}");
+        }
         errln!(
             "results in {}: fitness.csv, best.json, checkpoints/",
             self.run_dir
         );
+        if let [render, replay] = self.look.as_slice() {
+            errln!(
+                "look at the champion: {render}  (draws its path in trial 0 as best-trial-0.svg)"
+            );
+            errln!("  or watch it move: {replay}  (open best.html in a browser)");
+        }
     }
 
     /// The one-line text of a replicate (`run --seeds`) on stdout.
@@ -150,13 +203,28 @@ struct RunDocument<'a> {
     run: &'a RunOutcome,
 }
 
-/// Reports the end of a run: as text on stderr (unless `quiet`), or as JSON on stdout. An
-/// interrupted run is reported as JSON too, then its error is returned so that `main` says
-/// `stopped:` and exits 130; other errors are returned untouched.
+/// Whether and how a finished run is checked on held-out worlds (`cli::check`).
+#[derive(Debug, Clone)]
+pub struct CheckRequest {
+    /// False with `--no-check`.
+    pub enabled: bool,
+    /// Worker threads (0: one per core), as the run's.
+    pub jobs: usize,
+    /// The baseline genome resolved from the experiment file the run was started from
+    /// (`run`; `resume` finds the run folder's copy).
+    pub baseline: Option<PathBuf>,
+}
+
+/// Reports the end of a run: as text on stderr (unless `quiet`), or as JSON on stdout. A
+/// finished run is first checked on held-out worlds as `check` says (not when its result
+/// would not be shown: `--quiet` without `--json`). An interrupted run is reported as JSON
+/// too, then its error is returned so that `main` says `stopped:` and exits 130; other
+/// errors are returned untouched.
 pub fn finish(
     result: Result<RunSummary, RunError>,
     json_output: bool,
     quiet: bool,
+    check: CheckRequest,
 ) -> anyhow::Result<()> {
     let (status, summary) = match &result {
         Ok(summary) => (Status::Done, summary),
@@ -165,7 +233,15 @@ pub fn finish(
         }
         Err(_) => return Ok(result.map(drop)?),
     };
-    let outcome = RunOutcome::new(status, summary);
+    let mut outcome = RunOutcome::new(status, summary);
+    outcome.look = outcome.look_commands();
+    if status == Status::Done && check.enabled && (json_output || !quiet) {
+        // The run is done and its files are written: a failed check is said, not an error.
+        match check::held_out_check(summary, check.jobs, check.baseline.as_deref()) {
+            Ok(report) => outcome.check = report,
+            Err(e) => outcome.check_failed = Some(format!("{e:#}")),
+        }
+    }
     if json_output {
         json::print(&RunDocument {
             schema: "berry-evolve/run/1",

@@ -137,6 +137,21 @@ impl EvolutionSpec {
 
     /// Checks every value; keys start with `evolution.`.
     pub fn validate(&self) -> Valid {
+        if self.population < 2 {
+            // The real minimum, and, for the GA, what else a population of 2 needs (the
+            // default tournament of 3 is larger).
+            let ga = match self.algorithm {
+                Algorithm::Ga => {
+                    " (with [evolution.selection] tournament_size = 2 or less: the default \
+                     tournament of 3 needs a population of 3)"
+                }
+                Algorithm::Pgpe => "",
+            };
+            return Err(InvalidValue::new(
+                "evolution.population",
+                format!("must be at least 2{ga}, got {}", self.population),
+            ));
+        }
         count_within(
             "evolution.population",
             self.population as u64,
@@ -356,6 +371,21 @@ impl SelectionSpec {
     /// Checks the table against the population size; keys start with `evolution.selection.`.
     pub fn validate(&self, population: usize) -> Valid {
         match *self {
+            SelectionSpec::Tournament { size } if size > population && size > 0 => {
+                // Usually a small population with the default tournament of 3: name both keys
+                // and the population this tournament needs, not only the key the user never
+                // wrote.
+                Err(InvalidValue::new(
+                    "evolution.selection.tournament_size",
+                    format!(
+                        "a tournament of {size} (3 when not written) needs a population of at \
+                         least {size}, got evolution.population = {population}; raise the \
+                         population to {size} or more, or set tournament_size to at most \
+                         {population} (the smallest population a GA takes is 2, with \
+                         tournament_size = 2 or less)"
+                    ),
+                ))
+            }
             SelectionSpec::Tournament { size } => count_within(
                 "evolution.selection.tournament_size",
                 size as u64,

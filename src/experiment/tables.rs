@@ -2,12 +2,13 @@
 //! the genetic algorithm: `[evaluation]`, `[fitness]`, `[behaviour]`, `[validation]` and
 //! `[output]`.
 
-use crate::sim::spec::WorldSpec;
+use crate::sim::spec::{CreatureSpec, WorldSpec};
 use crate::validate::{
     all_finite, count_within, finite, non_negative, positive, InvalidValue, Valid,
 };
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
 
 /// Most trials per individual: beyond this a generation would take days.
 pub const MAX_TRIALS: u64 = 10_000;
@@ -326,6 +327,26 @@ impl FitnessSpec {
         Ok(())
     }
 
+    /// Can anything a creature does make its score differ from another's in `world`? False
+    /// only when that is certain: the world holds nothing (no object, no placement rule with
+    /// a count, no predator, no wanderer, no shocking walls that the score counts), moving
+    /// costs no metabolism, and no term pays for where the creature goes or how far. Then
+    /// every life scores the same and selection is blind (e.g. the defaults file's empty
+    /// world). Anything in the world counts as a possible change, so this never cries wolf.
+    pub fn can_vary(&self, world: &WorldSpec, creature: &CreatureSpec) -> bool {
+        let world_holds_something = !world.objects.is_empty()
+            || world.place.iter().any(|p| p.count > 0)
+            || !world.predators.is_empty()
+            || !world.air_predators.is_empty()
+            || world.wanderers.count > 0
+            || (world.wall_shock && self.shock_penalty != 0.0);
+        let moving_counts = creature.decay_per_lu.iter().any(|&d| d != 0.0)
+            || self.forward_bonus != 0.0
+            || self.area_bonus != 0.0
+            || self.goal_bonus != 0.0;
+        world_holds_something || moving_counts
+    }
+
     /// Is every term beyond the metabolic gain and the shock penalty off? Then a life's score
     /// needs nothing but the metabolism and the shock flag of each tick.
     pub fn is_plain(&self) -> bool {
@@ -594,6 +615,13 @@ pub struct OutputSpec {
     pub checkpoint_every: u64,
     /// How many checkpoints to keep; older ones are deleted (default: 3, at least 1).
     pub keep_checkpoints: u64,
+    /// A hand-designed genome file to compare the champion with at the end of a run (the
+    /// held-out check), e.g. `"../genomes/foraging-baseline.json"`: a path relative to the
+    /// folder of the experiment file (default: none). A run stores it resolved (absolute) in
+    /// its folder's experiment.toml, so that `resume` finds the same file; a file that is not
+    /// there is left out of the check with a note, never an error.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub baseline: Option<String>,
 }
 
 impl Default for OutputSpec {
@@ -601,6 +629,7 @@ impl Default for OutputSpec {
         OutputSpec {
             checkpoint_every: 10,
             keep_checkpoints: 3,
+            baseline: None,
         }
     }
 }
@@ -621,6 +650,22 @@ impl OutputSpec {
             1,
             1_000,
             "files",
-        )
+        )?;
+        if let Some(path) = &self.baseline {
+            if path.trim().is_empty() || path.contains('\0') {
+                return Err(InvalidValue::new(
+                    "output.baseline",
+                    "must name a genome file (a path relative to the experiment file's \
+                     folder, e.g. \"../genomes/foraging-baseline.json\"), or be left out",
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The baseline genome file, resolved against `folder` (the folder of the experiment file
+    /// that names it; an absolute path stays as it is); `None` when there is none.
+    pub fn baseline_in(&self, folder: &Path) -> Option<PathBuf> {
+        self.baseline.as_ref().map(|b| folder.join(b))
     }
 }

@@ -4,9 +4,10 @@
 //! checkout of the repository.
 //!
 //! A template is the shipped file's text byte for byte, comments included; only its `name`
-//! changes when it is written out ([`Template::with_name`]). No shipped experiment refers to
-//! another file (genomes and worlds are named in comments only), so a template runs as it
-//! stands wherever it is written.
+//! changes when it is written out ([`Template::with_name`]). The only other file a shipped
+//! experiment names is its baseline genome (`[output] baseline = "../genomes/..."`, relative
+//! to `experiments/`), which only the end-of-run held-out check reads: written elsewhere, the
+//! template still runs as it stands, and the check leaves the missing baseline out with a note.
 
 use super::{Experiment, ExperimentError};
 use std::path::Path;

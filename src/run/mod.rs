@@ -50,6 +50,9 @@ pub const CHECKPOINT_DIR: &str = "checkpoints";
 pub const DISCARDED_DIR: &str = "discarded-checkpoints";
 /// The log of explicit changes to a run (config changes, shortening, discarded checkpoints).
 pub const CHANGES_FILE: &str = "config-changes.log";
+/// A copy of the experiment's baseline genome (`[output] baseline`), kept for the held-out
+/// check of a later `resume`, which cannot resolve the key from the run folder.
+pub const BASELINE_FILE: &str = "baseline.json";
 
 /// What a checkpoint holds besides its envelope (format, program version, config hash,
 /// generation, checksum). No random generator state is needed: every stream is derived from
@@ -400,6 +403,7 @@ fn remove_own_files(dir: &Path) -> Result<Vec<String>, RunError> {
         BEST_FILE,
         CHAMPIONS_FILE,
         CHANGES_FILE,
+        BASELINE_FILE,
     ] {
         let p = dir.join(f);
         if p.symlink_metadata().is_ok_and(|m| m.is_file()) {
@@ -428,6 +432,23 @@ fn remove_own_files(dir: &Path) -> Result<Vec<String>, RunError> {
     Ok(removed)
 }
 
+/// Builds generation 0's trial worlds as the run will (group 0), so that a world that cannot
+/// be built (a placement rule with no room) is found before anything is written: `run`
+/// refuses it touching no folder, and `inspect` reports it.
+pub fn check_worlds(experiment: &Experiment) -> Result<(), EvaluationError> {
+    let creatures = experiment.evaluation.group_size as usize;
+    for t in 0..experiment.evaluation.trials {
+        crate::evo::life::trial_world(
+            experiment,
+            creatures,
+            crate::seed::Generation(0),
+            0,
+            crate::seed::TrialIndex(t),
+        )?;
+    }
+    Ok(())
+}
+
 /// Starts a new run of `experiment` in `dir`. Refuses a folder that already holds a run
 /// unless `force`, in which case the old run's own files (and only those) are removed first.
 /// Refuses at once, touching nothing, a folder another process writes.
@@ -448,6 +469,8 @@ pub fn start(
             target: std::fs::read_link(dir).unwrap_or_default(),
         });
     }
+    // Before the folder exists: the fixed file then starts without --force.
+    check_worlds(&experiment)?;
     std::fs::create_dir_all(dir).map_err(|error| RunError::CreateFolder {
         dir: dir.to_path_buf(),
         error,

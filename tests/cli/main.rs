@@ -11,6 +11,7 @@ mod completions_and_man;
 mod config_reference;
 mod console_output;
 mod dead_end_messages;
+mod first_hour;
 mod gadget_experiments;
 mod held_out_by_name;
 mod hostile_inputs;

@@ -20,7 +20,11 @@ pub fn defaults_toml() -> String {
          # Each key's meaning, unit and range is in the comment above it; keys that have no\n\
          # default (optional keys, lists of tables, other variants) are commented out.\n\
          # Every key: docs/experiment-reference.md. Check a file: berry-evolve inspect FILE.\n\
-         # Units: lengths in LU, time in ticks, motor speeds in RPT, angles in degrees.\n",
+         # Units: lengths in LU, time in ticks, motor speeds in RPT, angles in degrees.\n\
+         # As it stands the world is empty: nothing to eat, so every creature scores 0 and\n\
+         # evolution has nothing to select (`inspect` and `run` say so). Add food, as\n\
+         # experiments/foraging.toml does with [world.kinds.<name>] and [[world.place]], or\n\
+         # start from a built-in experiment instead: berry-evolve new NAME --from foraging\n",
     );
     // Paths under which everything is written commented out.
     let mut commented: Vec<String> = Vec::new();

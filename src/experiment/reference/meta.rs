@@ -394,6 +394,7 @@ pub fn keys() -> Vec<KeyMeta> {
         k("ValidationSpec.trials", "trials", Range::between(1.0, MAX_TRIALS as f64), GA),
         k("OutputSpec.checkpoint_every", "generations", Range::between(1.0, u32::MAX as f64), RUN),
         k("OutputSpec.keep_checkpoints", "files", Range::between(1.0, 1000.0), RUN),
+        k("OutputSpec.baseline", "", any().note("a genome file, relative to the experiment file's folder"), RUN),
         k("DemoSpec.creatures", "creatures", Range::between(1.0, MAX_DEMO_CREATURES as f64).note("checked by `simulate`"), RUN),
         k("DemoSpec.controller", "", any(), RUN),
         k("ScriptedSpec.kind", "", any(), RUN),
