@@ -344,7 +344,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
         let first = traces
             .first()
             .context("no trial was replayed, so there is no page to write")?;
-        replay_html::write(first, path)?;
+        replay_html::write(first, &experiment.output_names(), path)?;
         errln!("replay page written to {}", path.display());
         files.html = Some(path.display().to_string());
     }
