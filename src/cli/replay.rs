@@ -411,7 +411,12 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
         let first = traces
             .first()
             .context("no trial was replayed, so there is no page to write")?;
-        replay_html::write_titled(first, &replay.title(first.world.trial), path)?;
+        replay_html::write_titled(
+            first,
+            &replay.title(first.world.trial),
+            &experiment.output_names(),
+            path,
+        )?;
         errln!("replay page written to {}", path.display());
         files.html = Some(path.display().to_string());
     }

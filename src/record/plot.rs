@@ -11,12 +11,16 @@
 //!   `Q_q1` to `Q_q3` (first and third quartiles across seeds) when both columns exist.
 //!
 //! Every curve is one `<polyline>` of the SVG (its legend sample is another, of two points).
+//! The legend (`<g id="legend">`, a framed box) stands below the plot, outside the axes, so
+//! that it never covers a curve whatever the curves do; its entries flow left to right in
+//! rows as wide as the picture, and the picture grows by the rows it needs.
 //! Text is written as SVG `<text>` for the viewer to set, so no font file is needed. PNG is
 //! not offered: plotters' bitmap backend needs a font file to draw text (system fonts through
 //! font-kit, or a TTF compiled in for ab_glyph) and the `image` crate; convert the SVG
 //! instead (`rsvg-convert plot.svg -o plot.png`).
 
 use crate::record::atomic::write_atomic;
+use crate::record::render::text_width;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -146,8 +150,12 @@ impl Table {
     }
 }
 
-/// Size of every plot in pixels.
+/// Size of every plot in pixels, without its legend below.
 const SIZE: (u32, u32) = (800, 500);
+/// The legend's font size, row height and margin from the picture's sides, in pixels.
+const LEGEND_FONT: f64 = 14.0;
+const LEGEND_ROW: f64 = 22.0;
+const LEGEND_MARGIN: f64 = 12.0;
 
 /// One named curve, optionally with a band.
 struct Curve {
@@ -238,7 +246,15 @@ pub fn summary_plot(table: &Table, title: &str) -> Result<String, PlotError> {
         };
         let colour = COLOURS[curves.len() % COLOURS.len()];
         curves.push(Curve {
-            name: format!("{} (median, quartiles)", quantity.replace('_', " ")),
+            name: format!(
+                "{} ({})",
+                quantity.replace('_', " "),
+                if band.is_some() {
+                    "median, quartiles"
+                } else {
+                    "median"
+                }
+            ),
             points: table.points(x, c),
             band,
             colour,
@@ -284,12 +300,15 @@ fn draw(table: &Table, title: &str, y_label: &str, curves: &[Curve]) -> Result<S
     let (x0, x1) = range(&xs);
     let (y0, y1) = range(&ys);
     let x0 = x0.max(xs.iter().copied().fold(f64::INFINITY, f64::min) - 0.5);
+    let legend = Legend::lay_out(curves);
+    let height = SIZE.1 + legend.height.ceil() as u32;
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (SIZE.0, height)).into_drawing_area();
         let e = |e: &dyn std::fmt::Display| PlotError::Draw(e.to_string());
         root.fill(&WHITE).map_err(|x| e(&x))?;
-        let mut chart = ChartBuilder::on(&root)
+        let (plot_area, _) = root.split_vertically(SIZE.1);
+        let mut chart = ChartBuilder::on(&plot_area)
             .caption(title, ("sans-serif", 22))
             .margin(12)
             .x_label_area_size(40)
@@ -333,23 +352,94 @@ fn draw(table: &Table, title: &str, y_label: &str, curves: &[Curve]) -> Result<S
                     c.points.iter().copied(),
                     colour.stroke_width(2),
                 ))
-                .map_err(|x| e(&x))?
-                .label(c.name.clone())
-                .legend(move |(x, y)| {
-                    PathElement::new([(x, y), (x + 20, y)], colour.stroke_width(2))
-                });
+                .map_err(|x| e(&x))?;
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .label_font(("sans-serif", 14))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|x| e(&x))?;
         root.present().map_err(|x| e(&x))?;
     }
+    // plotters' own legend can only stand inside the axes; this one is written below them.
+    let end = svg
+        .rfind("</svg>")
+        .ok_or_else(|| PlotError::Draw("plotters wrote an SVG without its closing tag".into()))?;
+    svg.insert_str(end, &legend.svg(curves, f64::from(SIZE.1)));
     Ok(svg)
+}
+
+/// Where the legend's entries go: rows of (curve index, x offset), and the box's size.
+struct Legend {
+    rows: Vec<Vec<(usize, f64)>>,
+    width: f64,
+    height: f64,
+}
+
+impl Legend {
+    /// The width of one entry: the line sample, a gap, the name, a gap to the next.
+    fn entry_width(c: &Curve) -> f64 {
+        28.0 + text_width(&c.name, LEGEND_FONT) + 18.0
+    }
+
+    /// Entries left to right, a new row when the next would pass the picture's width.
+    fn lay_out(curves: &[Curve]) -> Legend {
+        let room = f64::from(SIZE.0) - 2.0 * LEGEND_MARGIN - 16.0;
+        let mut rows: Vec<Vec<(usize, f64)>> = vec![Vec::new()];
+        let mut x = 0.0;
+        let mut width: f64 = 0.0;
+        for (k, c) in curves.iter().enumerate() {
+            let w = Self::entry_width(c);
+            if x > 0.0 && x + w > room {
+                rows.push(Vec::new());
+                x = 0.0;
+            }
+            if let Some(row) = rows.last_mut() {
+                row.push((k, x));
+            }
+            x += w;
+            width = width.max(x);
+        }
+        Legend {
+            height: rows.len() as f64 * LEGEND_ROW + 16.0 + LEGEND_MARGIN,
+            width: width.min(room) + 16.0,
+            rows,
+        }
+    }
+
+    /// The legend's SVG: a framed box centred below the plot, whose top is at `top`.
+    fn svg(&self, curves: &[Curve], top: f64) -> String {
+        let x0 = ((f64::from(SIZE.0) - self.width) / 2.0).round();
+        let box_h = self.height - LEGEND_MARGIN;
+        let mut s = format!(
+            "<g id=\"legend\" class=\"legend\">\n<rect x=\"{x0:.0}\" y=\"{top:.0}\" width=\"{:.0}\" height=\"{box_h:.0}\" fill=\"#FFFFFF\" stroke=\"#000000\" stroke-width=\"1\"/>\n",
+            self.width
+        );
+        for (r, row) in self.rows.iter().enumerate() {
+            let y = top + 8.0 + LEGEND_ROW * (r as f64 + 0.5);
+            for &(k, dx) in row {
+                let c = &curves[k];
+                let x = x0 + 8.0 + dx;
+                let RGBColor(red, green, blue) = c.colour;
+                let colour = format!("#{red:02X}{green:02X}{blue:02X}");
+                if c.band.is_some() {
+                    s.push_str(&format!(
+                        "<rect x=\"{x:.0}\" y=\"{:.0}\" width=\"20\" height=\"12\" fill=\"{colour}\" fill-opacity=\"0.2\" stroke=\"none\"/>\n",
+                        y - 6.0
+                    ));
+                }
+                s.push_str(&format!(
+                    "<polyline fill=\"none\" stroke=\"{colour}\" stroke-width=\"2\" points=\"{x:.0},{y:.0} {:.0},{y:.0}\"/>\n<text x=\"{:.0}\" y=\"{y:.0}\" dy=\"0.35em\" font-family=\"sans-serif\" font-size=\"{LEGEND_FONT}\" fill=\"#000000\">{}</text>\n",
+                    x + 20.0,
+                    x + 28.0,
+                    escape(&c.name)
+                ));
+            }
+        }
+        s.push_str("</g>\n");
+        s
+    }
+}
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
 }
 
 /// Writes `svg` to `path` atomically.

@@ -20,7 +20,10 @@
 //! creature's path coloured by time (dark blue at tick 0 to yellow at the end, broken at
 //! teleports), its heading every N ticks, and marks where it ate (green ring), was shocked
 //! (orange triangle), teleported (purple dashed jump) or died (black cross); then a legend
-//! and the trial's outcome.
+//! and the trial's outcome. The legend names only the kinds of object the world has and the
+//! marks of the events the trial had; the picture is as wide as the legend's longest line
+//! needs, measured by [`text_width`] (an upper bound, since the viewer's font sets the text),
+//! so that no line is cut at the right edge.
 
 use crate::record::trace::recorder::{ActorKind, EventKind, TrialTrace};
 use std::fmt::Write as _;
@@ -30,7 +33,7 @@ pub const FOOD_COLOURS: [&str; 4] = ["#d62728", "#1f77b4", "#2ca02c", "#ff7f0e"]
 
 /// The arena's longer side in pixels.
 const ARENA_PX: f64 = 720.0;
-/// The legend's width in pixels.
+/// The legend's least width in pixels (wider when its text needs it).
 const LEGEND_PX: f64 = 300.0;
 const MARGIN: f64 = 20.0;
 
@@ -128,9 +131,13 @@ pub fn render_svg(trace: &TrialTrace, caption: &Caption) -> String {
     let frame = Frame {
         scale: ARENA_PX / aw.max(ah).max(1e-9),
     };
-    let width = MARGIN * 2.0 + frame.len(aw) + LEGEND_PX;
-    let height = (MARGIN * 2.0 + 30.0 + frame.len(ah)).max(560.0);
     let ticks = trace.ticks().max(1);
+    // The legend first: the picture is as wide and as tall as it needs.
+    let legend = legend(trace, caption, MARGIN * 2.0 + frame.len(aw), ticks);
+    let width = (MARGIN * 2.0 + frame.len(aw) + LEGEND_PX).max(legend.right + MARGIN);
+    let height = (MARGIN * 2.0 + 30.0 + frame.len(ah))
+        .max(legend.bottom + MARGIN)
+        .max(560.0);
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -336,10 +343,21 @@ pub fn render_svg(trace: &TrialTrace, caption: &Caption) -> String {
             .collect();
         let _ = writeln!(
             s,
-            r##"<g id="landmark-{k}" class="landmark"><polygon points="{}" fill="#f4d35e" stroke="#a07c00"/><text x="{:.1}" y="{:.1}" font-size="11" fill="#7a5c00">L{}{}</text></g>"##,
+            r##"<g id="landmark-{k}" class="landmark"><polygon points="{}" fill="#f4d35e" stroke="#a07c00"/><text x="{:.1}" y="{:.1}" font-size="11" fill="#7a5c00"{}>L{}{}</text></g>"##,
             star.trim_end(),
-            x + 10.0,
+            // Right of the star in the arena's left half, left of it in the right half, so
+            // that the label stays over the arena and off the legend.
+            if at[0] > centre[0] {
+                x - 10.0
+            } else {
+                x + 10.0
+            },
             y - 6.0,
+            if at[0] > centre[0] {
+                r#" text-anchor="end""#
+            } else {
+                ""
+            },
             k + 1,
             bearing.map_or(String::new(), |b| format!(" ({b:+.0}° from start)"))
         );
@@ -561,7 +579,7 @@ pub fn render_svg(trace: &TrialTrace, caption: &Caption) -> String {
             let _ = writeln!(s, "{mark}");
         }
     }
-    legend(&mut s, trace, caption, MARGIN * 2.0 + frame.len(aw), ticks);
+    s.push_str(&legend.svg);
     let _ = writeln!(s, "</svg>");
     s
 }
@@ -576,25 +594,68 @@ fn shorten(text: &str, n: usize) -> String {
     format!("…{tail}")
 }
 
-fn legend(s: &mut String, trace: &TrialTrace, caption: &Caption, x0: f64, ticks: u64) {
-    let w = &trace.world;
-    let mut y = MARGIN + 44.0;
-    let _ = writeln!(s, r#"<g id="legend" class="legend">"#);
-    let line = |s: &mut String, symbol: &str, text: &str, y: &mut f64| {
+/// Writes the legend's lines, one under the other, and keeps track of how far right and
+/// down they reach.
+struct LegendWriter {
+    s: String,
+    x0: f64,
+    y: f64,
+    right: f64,
+}
+
+impl LegendWriter {
+    /// One line: a symbol (drawn around (0, 0)) and its text at x = 34.
+    fn line(&mut self, symbol: &str, text: &str) {
+        let text = shorten(text, 72);
         let _ = writeln!(
-            s,
-            r#"<g transform="translate({x0:.1},{:.1})">{symbol}<text x="34" y="4">{}</text></g>"#,
-            *y,
-            escape(&shorten(text, 40))
+            self.s,
+            r#"<g transform="translate({:.1},{:.1})">{symbol}<text x="34" y="4">{}</text></g>"#,
+            self.x0,
+            self.y,
+            escape(&text)
         );
-        *y += 20.0;
+        self.right = self.right.max(self.x0 + 34.0 + text_width(&text, 13.0));
+        self.y += 20.0;
+    }
+}
+
+/// The legend's SVG, how far right its text may reach and its bottom, in pixels.
+struct Legend {
+    svg: String,
+    right: f64,
+    bottom: f64,
+}
+
+/// An upper bound of the width of `text` set in a sans-serif font of `size` pixels: per
+/// character a little more than DejaVu Sans needs (the widest of the usual sans-serif fonts;
+/// the picture is set by whoever views it), so that a legend sized by it is never cut.
+pub fn text_width(text: &str, size: f64) -> f64 {
+    text.chars()
+        .map(|c| match c {
+            ' ' | '.' | ',' | ':' | ';' | '\'' | '|' | '!' | '(' | ')' | '[' | ']' | '-' | 'i'
+            | 'j' | 'l' | 'I' | 'f' | 't' | 'r' => 0.42,
+            'm' | 'w' | 'M' | 'W' | '…' | '—' | '%' | '@' => 1.0,
+            c if c.is_uppercase() => 0.78,
+            _ => 0.66,
+        })
+        .sum::<f64>()
+        * size
+}
+
+fn legend(trace: &TrialTrace, caption: &Caption, x0: f64, ticks: u64) -> Legend {
+    let w = &trace.world;
+    let mut lg = LegendWriter {
+        s: String::new(),
+        x0,
+        y: MARGIN + 44.0,
+        right: x0,
     };
+    let _ = writeln!(lg.s, r#"<g id="legend" class="legend">"#);
     for l in &caption.lines {
-        line(s, "", l, &mut y);
+        lg.line("", l);
     }
     for o in trace.outcomes.iter().take(4) {
-        line(
-            s,
+        lg.line(
             "",
             &format!(
                 "score {:.4}, shocked ticks {}{}",
@@ -602,16 +663,13 @@ fn legend(s: &mut String, trace: &TrialTrace, caption: &Caption, x0: f64, ticks:
                 o.shocked_ticks,
                 if o.non_finite { " (NaN brain)" } else { "" }
             ),
-            &mut y,
         );
-        line(
-            s,
+        lg.line(
             "",
             &format!(
                 "metabolism A–D {:.2} {:.2} {:.2} {:.2}",
                 o.metabolism[0], o.metabolism[1], o.metabolism[2], o.metabolism[3]
             ),
-            &mut y,
         );
     }
     let count = |k: EventKind| trace.events.iter().filter(|e| e.event == k).count();
@@ -621,8 +679,7 @@ fn legend(s: &mut String, trace: &TrialTrace, caption: &Caption, x0: f64, ticks:
         .rev()
         .find(|c| c.creature == 0)
         .map_or(0.0, |c| c.travelled);
-    line(
-        s,
+    lg.line(
         "",
         &format!(
             "{ticks} ticks lived, {travelled:.0} LU travelled{}",
@@ -632,10 +689,8 @@ fn legend(s: &mut String, trace: &TrialTrace, caption: &Caption, x0: f64, ticks:
                 ""
             }
         ),
-        &mut y,
     );
-    line(
-        s,
+    lg.line(
         "",
         &format!(
             "{} bites, {} shocks, {} teleports",
@@ -643,149 +698,122 @@ fn legend(s: &mut String, trace: &TrialTrace, caption: &Caption, x0: f64, ticks:
             count(EventKind::Shock),
             count(EventKind::Teleport),
         ),
-        &mut y,
     );
-    y += 6.0;
+    lg.y += 6.0;
     let _ = writeln!(
-        s,
-        r#"<g transform="translate({x0:.1},{y:.1})"><rect x="0" y="-6" width="180" height="10" fill="url(#time)"/><text x="0" y="18" font-size="11">tick 0</text><text x="180" y="18" font-size="11" text-anchor="end">tick {ticks}</text><text x="190" y="4">path, by time</text></g>"#
+        lg.s,
+        r#"<g transform="translate({x0:.1},{:.1})"><rect x="0" y="-6" width="180" height="10" fill="url(#time)"/><text x="0" y="18" font-size="11">tick 0</text><text x="180" y="18" font-size="11" text-anchor="end">tick {ticks}</text><text x="190" y="4">path, by time</text></g>"#,
+        lg.y
     );
-    y += 34.0;
-    line(
-        s,
+    lg.right = lg.right.max(x0 + 190.0 + text_width("path, by time", 13.0));
+    lg.y += 34.0;
+    lg.line(
         r##"<line x1="0" y1="0" x2="14" y2="0" stroke="#222" marker-end="url(#head)"/>"##,
         "heading",
-        &mut y,
     );
     for (t, colour) in FOOD_COLOURS.iter().enumerate() {
         if w.food.iter().any(|f| f.food_type == t) {
-            line(
-                s,
-                &format!(
+            lg.line(&format!(
                     r##"<circle cx="8" cy="0" r="6" fill="#fff" stroke="{colour}" stroke-width="1.5"/><circle cx="8" cy="0" r="4" fill="{colour}"/>"##
                 ),
-                &format!("food {} (disc: amount left)", (b'A' + t as u8) as char),
-                &mut y,
-            );
+                &format!("food {} (disc: amount left)", (b'A' + t as u8) as char));
         }
     }
     if !w.aversives.is_empty() {
-        line(
-            s,
+        lg.line(
             r##"<circle cx="8" cy="0" r="6" fill="#9d4edd" fill-opacity="0.55"/>"##,
             "aversive object",
-            &mut y,
         );
     }
-    line(
-        s,
+    lg.line(
         r##"<line x1="0" y1="0" x2="24" y2="0" stroke="#808080" stroke-width="3.5"/>"##,
         "wall",
-        &mut y,
     );
     if w.walls.iter().any(|x| !x.opaque) {
-        line(
-            s,
-            r##"<line x1="0" y1="0" x2="24" y2="0" stroke="#99ccff" stroke-width="5" stroke-opacity="0.55" stroke-dasharray="7 4"/>"##,
-            "glass wall (smell passes)",
-            &mut y,
-        );
+        lg.line(r##"<line x1="0" y1="0" x2="24" y2="0" stroke="#99ccff" stroke-width="5" stroke-opacity="0.55" stroke-dasharray="7 4"/>"##,
+            "glass wall (smell passes)");
     }
     if !w.doors.is_empty() {
-        line(
-            s,
+        lg.line(
             r##"<line x1="0" y1="0" x2="24" y2="0" stroke="#996633" stroke-width="6"/>"##,
             "door, closed at the end",
-            &mut y,
         );
-        line(
-            s,
-            r##"<line x1="0" y1="0" x2="24" y2="0" stroke="#996633" stroke-width="2" stroke-dasharray="2 5"/>"##,
-            "door, open at the end",
-            &mut y,
-        );
-        line(
-            s,
-            r##"<circle cx="8" cy="0" r="7" fill="#ffb347" fill-opacity="0.25" stroke="#e07b00" stroke-dasharray="4 3"/>"##,
-            "door trigger",
-            &mut y,
-        );
+        lg.line(r##"<line x1="0" y1="0" x2="24" y2="0" stroke="#996633" stroke-width="2" stroke-dasharray="2 5"/>"##,
+            "door, open at the end");
+        lg.line(r##"<circle cx="8" cy="0" r="7" fill="#ffb347" fill-opacity="0.25" stroke="#e07b00" stroke-dasharray="4 3"/>"##,
+            "door trigger");
     }
     if !w.teleporters.is_empty() {
-        line(
-            s,
-            r##"<circle cx="8" cy="0" r="6" fill="#c77dff" fill-opacity="0.35" stroke="#7b2cbf"/>"##,
-            "teleporter entry → exit",
-            &mut y,
-        );
+        lg.line(r##"<circle cx="8" cy="0" r="6" fill="#c77dff" fill-opacity="0.35" stroke="#7b2cbf"/>"##,
+            "teleporter entry → exit");
     }
     if w.areas.iter().any(|a| a.kind == "safe") {
-        line(
-            s,
+        lg.line(
             r##"<rect x="0" y="-6" width="20" height="12" fill="#cdebc5" stroke="#5a9e4b"/>"##,
-            "safe area",
-            &mut y,
+            "safe area (nest)",
         );
     }
     if w.areas.iter().any(|a| a.kind != "safe") {
-        line(
-            s,
+        lg.line(
             r##"<rect x="0" y="-6" width="20" height="12" fill="#f3ecc2" stroke="#b8a94a"/>"##,
             "area",
-            &mut y,
         );
     }
     if !w.landmarks.is_empty() {
-        line(
-            s,
-            r##"<circle cx="8" cy="0" r="5" fill="#f4d35e" stroke="#a07c00"/>"##,
-            "landmark (bearing from start)",
-            &mut y,
+        lg.line(
+            r##"<polygon points="8.0,-7.0 9.8,-2.4 14.7,-2.2 10.9,0.9 12.1,5.7 8.0,3.0 3.9,5.7 5.1,0.9 1.3,-2.2 6.2,-2.4" fill="#f4d35e" stroke="#a07c00"/>"##,
+            "landmark (beacon; bearing from start)",
         );
     }
     if w.actors.iter().any(|a| a.role == "predator") {
-        line(
-            s,
+        lg.line(
             r##"<circle cx="8" cy="0" r="5" fill="#9b2226"/>"##,
             "ground predator and its path",
-            &mut y,
         );
     }
     if !w.air_predators.is_empty() {
-        line(
-            s,
+        lg.line(
             r##"<line x1="0" y1="0" x2="24" y2="0" stroke="#bb3e03" stroke-dasharray="5 3"/>"##,
             "air predator track, strike disc",
-            &mut y,
         );
     }
     if w.actors.iter().any(|a| a.role == "wanderer") {
-        line(
-            s,
+        lg.line(
             r##"<circle cx="8" cy="0" r="5" fill="#8d99ae"/>"##,
             "wanderer and its path",
-            &mut y,
         );
     }
-    line(
-        s,
-        r##"<circle cx="8" cy="0" r="6" fill="none" stroke="#1b9e3a"/>"##,
-        "ate here",
-        &mut y,
-    );
-    line(
-        s,
-        r##"<path d="M8,-6 l5,9 l-10,0 z" fill="#ffb703"/>"##,
-        "shocked (onset)",
-        &mut y,
-    );
-    if w.actors.iter().any(|a| a.role == "predator") || !w.air_predators.is_empty() {
-        line(
-            s,
+    // The marks of the events this trial had, and only those.
+    let had = |k: EventKind| trace.events.iter().any(|e| e.event == k);
+    if had(EventKind::Eat) {
+        lg.line(
+            r##"<circle cx="8" cy="0" r="6" fill="none" stroke="#1b9e3a"/>"##,
+            "ate here",
+        );
+    }
+    if had(EventKind::Shock) {
+        lg.line(
+            r##"<path d="M8,-6 l5,9 l-10,0 z" fill="#ffb703"/>"##,
+            "shocked (onset)",
+        );
+    }
+    if had(EventKind::Attack) {
+        lg.line(
+            r##"<circle cx="8" cy="0" r="6" fill="none" stroke="#9b2226" stroke-width="2"/>"##,
+            "attacked",
+        );
+    }
+    if had(EventKind::Death) {
+        lg.line(
             r##"<path d="M2,-6 l12,12 M14,-6 l-12,12" stroke="#000" stroke-width="3"/>"##,
             "died",
-            &mut y,
         );
     }
-    let _ = writeln!(s, "</g>");
+    let _ = writeln!(lg.s, "</g>");
+    Legend {
+        svg: lg.s,
+        right: lg.right,
+        // The last line's text reaches 4 px below its baseline's row, the row 20 px apart.
+        bottom: lg.y - 20.0 + 8.0,
+    }
 }

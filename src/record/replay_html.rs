@@ -7,60 +7,306 @@
 //! triggers, teleporters, aversive objects, landmarks, the whole path faintly) into a cached
 //! background canvas, and per frame draws only that image plus what changes: doors, food
 //! amounts, wanderers and predators, the creatures' recent trail and bodies, and the cursors
-//! of the side charts (motor commands and metabolic vector over the whole trial, drawn once).
-//! Beside the arena: whiskers, both smell sensors' 8 receptors, food detectors, shock and
-//! the retina (when the eye is an input) of the selected creature.
+//! of the side charts (the brain's outputs and the metabolic vector over the whole trial,
+//! drawn once, their value labels in a gutter left of the curves). Beside the arena: a key to
+//! the arena's symbols listing only the kinds this world has (written here, from the world's
+//! description, so that it needs no script and a test can read it from the file), whiskers,
+//! both smell sensors' 8 receptors, food detectors, shock and the retina (when the eye is an
+//! input) of the selected creature, and the two charts with their colour keys.
 //!
 //! Controls: play/pause (space), speed, a range slider to scrub by tick, step −1/+1 (arrow
-//! keys). `page.html#tick=N` opens paused at tick N, and the page writes into
+//! keys). `page.html#tick=N` opens paused at tick N, and the page writes into the hidden
 //! `<pre id="status">` the tick, each creature's drawn canvas position and the colour of the
 //! canvas pixels there, and the same for the middle of a wall, so that a test can check the
-//! drawing against the trace.
+//! drawing against the trace (a reader of the page never sees it).
 
 use crate::record::atomic::write_atomic_with;
 use crate::record::trace::files::write_jsonl_to;
-use crate::record::trace::recorder::TrialTrace;
+use crate::record::trace::recorder::{EventKind, TrialTrace, WorldDescription};
 use std::io;
 use std::path::Path;
 
-/// The page for `trace`, titled `experiment: trial T of generation G`.
-pub fn page(trace: &TrialTrace) -> io::Result<String> {
+/// The page for `trace`, titled `experiment: trial T of generation G`, lived by a brain
+/// whose outputs are `outputs` (in order, as
+/// [`crate::experiment::Experiment::output_names`] names them).
+pub fn page(trace: &TrialTrace, outputs: &[String]) -> io::Result<String> {
     let title = format!(
         "{}: trial {} of generation {}",
         trace.world.experiment, trace.world.trial, trace.world.generation
     );
-    page_titled(trace, &title)
+    page_titled(trace, &title, outputs)
 }
 
-/// The page for `trace` under `title` (the caller names the worlds, e.g. `held-out world 2`,
-/// which the trace alone cannot tell).
-pub fn page_titled(trace: &TrialTrace, title: &str) -> io::Result<String> {
+/// [`page`] under `title` (the caller names the worlds, e.g. `held-out world 2`, which the
+/// trace alone cannot tell).
+pub fn page_titled(trace: &TrialTrace, title: &str, outputs: &[String]) -> io::Result<String> {
     let mut data = Vec::new();
     write_jsonl_to(std::slice::from_ref(trace), Some(4), &mut data)?;
     let data =
         String::from_utf8(data).map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e))?;
     // Inside a <script> element "</" could end it; "<\/" is the same JSON string.
     let data = data.replace("</", "<\\/");
-    let title = title.replace('&', "&amp;").replace('<', "&lt;");
+    let title = escape(title);
+    let series = motor_series(outputs);
+    let motor_title = escape(&format!(
+        "motor outputs ({}) over the trial",
+        outputs.join(", ")
+    ));
+    let motor_keys: String = series
+        .iter()
+        .map(|s| key(&format!("output-{}", s.name), &swatch(s.colour), s.name))
+        .collect();
+    let metab_keys: String = FOOD_COLOURS
+        .iter()
+        .zip(["A", "B", "C", "D"])
+        .map(|(c, t)| key(&format!("m-{t}"), &swatch(c), &format!("m {t}")))
+        .collect();
+    // The fields of the trace's creature rows the script draws, with their colours.
+    let motor_js = format!(
+        "[{}]",
+        series
+            .iter()
+            .map(|s| format!("[\"{}\",\"{}\"]", s.field, s.colour))
+            .collect::<Vec<_>>()
+            .join(",")
+    );
     Ok(TEMPLATE
         .replace("{{TITLE}}", &title)
+        .replace("{{LEGEND}}", &arena_legend(trace))
+        .replace("{{MOTOR_TITLE}}", &motor_title)
+        .replace("{{MOTOR_KEYS}}", &motor_keys)
+        .replace("{{METAB_KEYS}}", &metab_keys)
+        .replace("{{MOTOR_SERIES}}", &motor_js)
         .replace("{{DATA}}", &data))
 }
 
-/// Writes the page for `trace` to `path` (atomically).
-pub fn write(trace: &TrialTrace, path: &Path) -> io::Result<()> {
-    let html = page(trace)?;
+/// Writes the page for `trace` (lived by a brain with `outputs`) to `path` (atomically).
+pub fn write(trace: &TrialTrace, outputs: &[String], path: &Path) -> io::Result<()> {
+    let html = page(trace, outputs)?;
     write_atomic_with(path, |w| w.write_all(html.as_bytes()))
 }
 
 /// Writes the page for `trace` under `title` ([`page_titled`]) to `path` (atomically).
-pub fn write_titled(trace: &TrialTrace, title: &str, path: &Path) -> io::Result<()> {
-    let html = page_titled(trace, title)?;
+pub fn write_titled(
+    trace: &TrialTrace,
+    title: &str,
+    outputs: &[String],
+    path: &Path,
+) -> io::Result<()> {
+    let html = page_titled(trace, title, outputs)?;
     write_atomic_with(path, |w| w.write_all(html.as_bytes()))
 }
 
 /// The creature body's colour on the page (the test looks for it).
 pub const CREATURE_COLOUR: [u8; 3] = [31, 63, 191];
+
+/// Food types A–D, as the canvas draws them (and the metabolic vector's components).
+const FOOD_COLOURS: [&str; 4] = ["#d62728", "#1f77b4", "#2ca02c", "#ff7f0e"];
+
+/// One curve of the motor chart: a brain output and the trace field that records it.
+struct Series {
+    name: &'static str,
+    field: &'static str,
+    colour: &'static str,
+}
+
+/// The curves of the motor chart: one per output the brain has, of those the trace records
+/// (every output [`crate::experiment::Experiment::output_names`] can name today).
+fn motor_series(outputs: &[String]) -> Vec<Series> {
+    const KNOWN: [Series; 3] = [
+        Series {
+            name: "motor_left",
+            field: "left",
+            colour: "#1f77b4",
+        },
+        Series {
+            name: "motor_right",
+            field: "right",
+            colour: "#d62728",
+        },
+        Series {
+            name: "eat",
+            field: "eat",
+            colour: "#555555",
+        },
+    ];
+    KNOWN
+        .into_iter()
+        .filter(|s| outputs.iter().any(|o| o == s.name))
+        .collect()
+}
+
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// A key entry: a small inline SVG symbol and its words; `kind` names it for tests.
+fn key(kind: &str, symbol: &str, text: &str) -> String {
+    format!(
+        r#"<span class="key" data-kind="{kind}"><svg width="24" height="16" viewBox="-12 -8 24 16" aria-hidden="true">{symbol}</svg>{}</span>"#,
+        escape(text)
+    )
+}
+
+/// A line sample in `colour` (chart keys).
+fn swatch(colour: &str) -> String {
+    format!(r#"<line x1="-10" y1="0" x2="10" y2="0" stroke="{colour}" stroke-width="3"/>"#)
+}
+
+fn rgb(c: [f64; 3]) -> String {
+    let b = |x: f64| (x.clamp(0.0, 1.0) * 255.0).round() as u8;
+    format!("rgb({},{},{})", b(c[0]), b(c[1]), b(c[2]))
+}
+
+/// A line symbol like the canvas draws a wall or door.
+fn segment(colour: &str, width: f64, dash: &str, opacity: f64) -> String {
+    format!(
+        r#"<line x1="-10" y1="0" x2="10" y2="0" stroke="{colour}" stroke-width="{width}" stroke-dasharray="{dash}" stroke-opacity="{opacity}" stroke-linecap="round"/>"#
+    )
+}
+
+/// The key to the arena's symbols: only the kinds `trace`'s world has (and the marks of the
+/// events it had), each drawn as the canvas draws it.
+fn arena_legend(trace: &TrialTrace) -> String {
+    let w: &WorldDescription = &trace.world;
+    let mut out = String::new();
+    let mut add = |kind: &str, symbol: String, text: &str| out.push_str(&key(kind, &symbol, text));
+    add(
+        "creature",
+        r##"<path d="M-10,-5 L-3,-1" stroke="#555" stroke-width="1.5"/><circle cx="0" cy="0" r="5" fill="rgb(31,63,191)"/><path d="M5,0 L10,0" stroke="#000" stroke-width="2"/>"##.into(),
+        if w.creatures.len() > 1 {
+            "creatures, their recent trails"
+        } else {
+            "creature, its recent trail"
+        },
+    );
+    for (t, colour) in FOOD_COLOURS.iter().enumerate() {
+        if w.food.iter().any(|f| f.food_type.min(3) == t) {
+            let name = (b'A' + t as u8) as char;
+            add(
+                &format!("food-{}", name.to_ascii_lowercase()),
+                format!(
+                    r##"<circle cx="0" cy="0" r="5.5" fill="#fff" stroke="{colour}" stroke-width="1.3"/><circle cx="0" cy="0" r="3.5" fill="{colour}"/>"##
+                ),
+                &format!("food {name} (fill = amount)"),
+            );
+        }
+    }
+    if !w.aversives.is_empty() {
+        add(
+            "aversive",
+            r#"<circle cx="0" cy="0" r="6" fill="rgba(157,78,221,0.55)"/>"#.into(),
+            "aversive object",
+        );
+    }
+    if let Some(wall) = w.walls.iter().find(|x| x.opaque) {
+        add("wall", segment(&rgb(wall.colour), 3.5, "none", 1.0), "wall");
+    }
+    if let Some(wall) = w.walls.iter().find(|x| !x.opaque) {
+        add(
+            "glass",
+            segment(&rgb(wall.colour), 5.0, "7 4", 0.55),
+            "glass wall (smell passes)",
+        );
+    }
+    if let Some(door) = w.doors.first() {
+        add(
+            "door",
+            segment(&rgb(door.colour), 6.0, "none", 1.0),
+            "door (dotted while open)",
+        );
+        add(
+            "trigger",
+            r##"<circle cx="0" cy="0" r="6" fill="rgba(255,179,71,0.3)" stroke="#e07b00" stroke-dasharray="4 3"/>"##.into(),
+            "door trigger",
+        );
+    }
+    if !w.teleporters.is_empty() {
+        add(
+            "teleporter",
+            r##"<circle cx="-4" cy="0" r="5" fill="rgba(199,125,255,0.4)" stroke="#7b2cbf"/><path d="M1,0 L10,0" stroke="#7b2cbf" stroke-dasharray="3 2"/>"##.into(),
+            "teleporter entry → exit",
+        );
+    }
+    if w.areas.iter().any(|a| a.kind == "safe") {
+        add(
+            "nest",
+            r#"<rect x="-10" y="-6" width="20" height="12" fill="rgba(160,215,150,0.55)"/>"#.into(),
+            "safe area (nest)",
+        );
+    }
+    if w.areas.iter().any(|a| a.kind != "safe") {
+        add(
+            "area",
+            r#"<rect x="-10" y="-6" width="20" height="12" fill="rgba(235,220,140,0.55)"/>"#.into(),
+            "area",
+        );
+    }
+    if !w.landmarks.is_empty() {
+        let star: String = (0..10)
+            .map(|k| {
+                let a = std::f64::consts::PI / 5.0 * k as f64 - std::f64::consts::FRAC_PI_2;
+                let r = if k % 2 == 1 { 3.0 } else { 7.0 };
+                format!("{:.1},{:.1} ", r * libm::cos(a), r * libm::sin(a))
+            })
+            .collect();
+        add(
+            "landmark",
+            format!(
+                r##"<polygon points="{}" fill="#f4d35e" stroke="#a07c00"/>"##,
+                star.trim_end()
+            ),
+            "landmark (beacon)",
+        );
+    }
+    if w.actors.iter().any(|a| a.role == "predator") {
+        add(
+            "predator",
+            r##"<circle cx="0" cy="0" r="5" fill="#9b2226"/>"##.into(),
+            "ground predator",
+        );
+    }
+    if !w.air_predators.is_empty() {
+        add(
+            "air-predator",
+            r##"<circle cx="0" cy="0" r="7" fill="rgba(187,62,3,0.15)" stroke="#bb3e03"/><rect x="-2" y="-2" width="4" height="4" fill="#bb3e03"/>"##.into(),
+            "air predator, strike disc",
+        );
+    }
+    if w.actors.iter().any(|a| a.role == "wanderer") {
+        add(
+            "wanderer",
+            r##"<circle cx="0" cy="0" r="5" fill="#8d99ae"/>"##.into(),
+            "wanderer",
+        );
+    }
+    let had = |k: EventKind| trace.events.iter().any(|e| e.event == k);
+    if had(EventKind::Eat) {
+        add(
+            "mark-eat",
+            r#"<circle cx="0" cy="0" r="6" fill="none" stroke="rgba(27,158,58,0.5)"/>"#.into(),
+            "ate here",
+        );
+    }
+    if had(EventKind::Shock) {
+        add(
+            "mark-shock",
+            r##"<path d="M0,-6 L5,3 L-5,3 z" fill="#ffb703"/>"##.into(),
+            "shocked here",
+        );
+    }
+    if had(EventKind::Death) {
+        add(
+            "mark-death",
+            r##"<path d="M-6,-6 L6,6 M6,-6 L-6,6" stroke="#000" stroke-width="3"/>"##.into(),
+            "died here",
+        );
+    }
+    out
+}
 
 const TEMPLATE: &str = r##"<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>{{TITLE}}</title>
@@ -73,7 +319,11 @@ canvas{display:block}
 .row{display:flex;gap:8px;align-items:center;flex-wrap:wrap}
 h1{font-size:17px;margin:0 0 6px 0}
 .lbl{color:#555;font-size:12px;margin-top:4px}
-#status{font-size:11px;color:#444;white-space:pre-wrap;margin:4px 0 0 0}
+#status{display:none}
+.keys{display:flex;flex-wrap:wrap;gap:2px 12px;font-size:12px;color:#333}
+.key{display:inline-flex;align-items:center;gap:4px;white-space:nowrap}
+.key svg{flex:none}
+#legend{display:grid;grid-template-columns:repeat(2,minmax(0,1fr));gap:1px 10px;font-size:12px;color:#333;max-width:380px}
 button{min-width:34px}
 </style></head><body>
 <h1>{{TITLE}}</h1>
@@ -89,14 +339,15 @@ button{min-width:34px}
 <div id="wrap">
 <canvas id="arena"></canvas>
 <div id="side">
+<div class="lbl">in the arena</div><div id="legend">{{LEGEND}}</div>
 <div class="lbl">whiskers (left, right) · food detectors A–D · shock</div><canvas id="touch" width="380" height="34"></canvas>
 <div class="lbl">smell receptors 1–8, left sensor then right</div><canvas id="smell" width="380" height="60"></canvas>
 <div class="lbl" id="eyelbl">retina</div><canvas id="eye" width="380" height="30"></canvas>
-<div class="lbl">motor commands (left, right, eat) over the trial</div><canvas id="motor" width="380" height="90"></canvas>
-<div class="lbl">metabolic vector m (A–D) over the trial</div><canvas id="metab" width="380" height="90"></canvas>
+<div class="lbl" id="motorlbl">{{MOTOR_TITLE}}</div><div class="keys" id="motorkeys">{{MOTOR_KEYS}}</div><canvas id="motor" width="380" height="90"></canvas>
+<div class="lbl" id="metablbl">metabolic vector m (A–D) over the trial</div><div class="keys" id="metabkeys">{{METAB_KEYS}}</div><canvas id="metab" width="380" height="90"></canvas>
 <div class="lbl" id="info"></div>
 </div></div>
-<pre id="status"></pre>
+<pre id="status" hidden style="display:none"></pre>
 <script type="application/x-ndjson" id="trace">
 {{DATA}}
 </script>
@@ -155,17 +406,27 @@ const bg=document.createElement("canvas");bg.width=cw;bg.height=chh;
 // The wall whose middle the status reports: the first opaque interior wall, else the first wall.
 const walls=W.walls;const boundary=walls.length>=4&&walls[0].from[0]===0&&walls[0].from[1]===0?4:0;
 let wallIndex=walls.findIndex((w,k)=>k>=boundary&&w.opaque);if(wallIndex<0)wallIndex=walls.findIndex(w=>w.opaque);if(wallIndex<0)wallIndex=0;
-// Side charts, drawn once; the cursor per frame.
+// Side charts, drawn once; the cursor per frame. The value labels stand in a gutter left of
+// the plotting area, so that no curve runs over them.
+const GUTTER=44;
+const fmt=v=>{const a=Math.abs(v);return a===0?"0":(a>=1e4||a<1e-2)?v.toExponential(1):String(+v.toPrecision(3));};
 function chart(id,series,colours,lo,hi){const c=document.getElementById(id),x=c.getContext("2d"),w=c.width,h=c.height;const img=document.createElement("canvas");img.width=w;img.height=h;const b=img.getContext("2d");
- b.fillStyle="#fafafa";b.fillRect(0,0,w,h);b.strokeStyle="#ddd";b.strokeRect(0.5,0.5,w-1,h-1);if(hi<=lo)hi=lo+1;
- const y=v=>h-3-(v-lo)/(hi-lo)*(h-6);if(lo<0&&hi>0){b.strokeStyle="#ccc";b.beginPath();b.moveTo(0,y(0));b.lineTo(w,y(0));b.stroke();}
- series.forEach((s,k)=>{b.strokeStyle=colours[k];b.lineWidth=1;b.beginPath();for(let t=0;t<=T;t++){const px=t/Math.max(1,T)*(w-1);if(t===0)b.moveTo(px,y(s[t]));else b.lineTo(px,y(s[t]));}b.stroke();});
- b.fillStyle="#666";b.font="10px sans-serif";b.fillText(hi.toPrecision(3),3,10);b.fillText(lo.toPrecision(3),3,h-4);
- return t=>{x.drawImage(img,0,0);const px=t/Math.max(1,T)*(w-1);x.strokeStyle="#000";x.beginPath();x.moveTo(px+0.5,0);x.lineTo(px+0.5,h);x.stroke();};}
+ b.fillStyle="#ffffff";b.fillRect(0,0,w,h);b.fillStyle="#fafafa";b.fillRect(GUTTER,0,w-GUTTER,h);b.strokeStyle="#ddd";b.strokeRect(GUTTER+0.5,0.5,w-GUTTER-1,h-1);if(hi<=lo)hi=lo+1;
+ const px=t=>GUTTER+1+t/Math.max(1,T)*(w-GUTTER-3);
+ const y=v=>h-3-(v-lo)/(hi-lo)*(h-6);
+ b.fillStyle="#555";b.font="10px sans-serif";b.textAlign="right";b.textBaseline="middle";
+ const label=(v,at)=>{b.fillText(fmt(v),GUTTER-4,at);b.strokeStyle="#bbb";b.beginPath();b.moveTo(GUTTER-2,Math.round(y(v))+0.5);b.lineTo(GUTTER+1,Math.round(y(v))+0.5);b.stroke();};
+ label(hi,7);label(lo,h-7);
+ if(lo<0&&hi>0){b.strokeStyle="#ccc";b.beginPath();b.moveTo(GUTTER,Math.round(y(0))+0.5);b.lineTo(w,Math.round(y(0))+0.5);b.stroke();if(y(0)>18&&y(0)<h-18)label(0,y(0));}
+ series.forEach((s,k)=>{b.strokeStyle=colours[k];b.lineWidth=1;b.beginPath();for(let t=0;t<=T;t++){if(t===0)b.moveTo(px(t),y(s[t]));else b.lineTo(px(t),y(s[t]));}b.stroke();});
+ return t=>{x.drawImage(img,0,0);const p=Math.round(px(t))+0.5;x.strokeStyle="#000";x.beginPath();x.moveTo(p,0);x.lineTo(p,h);x.stroke();};}
 let cursorMotor=null,cursorMetab=null;
+// The brain's outputs the trace records: [field of the creature row, colour] (the page's keys
+// name them).
+const MOTOR={{MOTOR_SERIES}};
 function buildCharts(i){const get=f=>{const a=new Float64Array(T+1);for(let t=0;t<=T;t++){const c=crow[i][t];a[t]=c?f(c):0;}return a;};
- const L=get(c=>c.left),R=get(c=>c.right),E=get(c=>c.eat);let lo=0,hi=0;for(const s of[L,R])for(const v of s){lo=Math.min(lo,v);hi=Math.max(hi,v);}
- cursorMotor=chart("motor",[L,R,E],["#1f77b4","#d62728","#999"],Math.min(lo,-0.01),Math.max(hi,0.01));
+ const motor=MOTOR.map(([f])=>get(c=>c[f]));let lo=0,hi=0;for(const s of motor)for(const v of s){lo=Math.min(lo,v);hi=Math.max(hi,v);}
+ cursorMotor=chart("motor",motor,MOTOR.map(s=>s[1]),Math.min(lo,-0.01),Math.max(hi,0.01));
  const m=[0,1,2,3].map(k=>get(c=>c.metabolism[k]));let mh=0;for(const s of m)for(const v of s)mh=Math.max(mh,v);
  cursorMetab=chart("metab",m,FOOD,0,Math.max(mh,1e-3));}
 const inputs=W.inputs,idx=n=>inputs.indexOf(n);

@@ -363,7 +363,100 @@ fn render_and_replay_work_on_every_shipped_experiment() {
         assert_eq!(drawn_glass, glass, "{name}: glass walls");
         let page = std::fs::read_to_string(&html).unwrap();
         assert!(page.contains("id=\"status\"") && page.contains("\"type\":\"world\""));
+        // The page's key to the arena: the kinds this world has, and no others.
+        let mut want = vec!["creature".to_string()];
+        for t in 0..4 {
+            if world["food"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .any(|f| f["food_type"] == t)
+            {
+                want.push(format!("food-{}", (b'a' + t as u8) as char));
+            }
+        }
+        let walls = world["walls"].as_array().unwrap();
+        let areas = world["areas"].as_array().unwrap();
+        let events: Vec<String> = first
+            .lines()
+            .filter_map(|l| serde_json::from_str::<serde_json::Value>(l).ok())
+            .filter(|r| r["type"] == "tick")
+            .flat_map(|r| r["events"].as_array().cloned().unwrap_or_default())
+            .map(|e| e["event"].as_str().unwrap().to_string())
+            .collect();
+        for (kind, present) in [
+            ("aversive", n("aversives") > 0),
+            ("wall", walls.iter().any(|w| w["opaque"] == true)),
+            ("glass", glass > 0),
+            ("door", n("doors") > 0),
+            ("trigger", n("doors") > 0),
+            ("teleporter", n("teleporters") > 0),
+            ("nest", areas.iter().any(|a| a["kind"] == "safe")),
+            ("area", areas.iter().any(|a| a["kind"] != "safe")),
+            ("landmark", n("landmarks") > 0),
+            ("predator", role("predator") > 0),
+            ("air-predator", n("air_predators") > 0),
+            ("wanderer", role("wanderer") > 0),
+            ("mark-eat", events.iter().any(|e| e == "eat")),
+            ("mark-shock", events.iter().any(|e| e == "shock")),
+            ("mark-death", events.iter().any(|e| e == "death")),
+        ] {
+            if present {
+                want.push(kind.to_string());
+            }
+        }
+        assert_eq!(
+            legend_kinds(&page),
+            want,
+            "{name}: the replay page's arena key"
+        );
+        // The motor chart names the brain's outputs, and only those.
+        let outputs = Experiment::load(&path).unwrap().output_names();
+        assert_eq!(
+            element_text(&page, "motorlbl"),
+            format!("motor outputs ({}) over the trial", outputs.join(", ")),
+            "{name}"
+        );
+        let keys: Vec<String> = outputs.iter().map(|o| format!("output-{o}")).collect();
+        assert_eq!(
+            kinds_in(&page, "motorkeys"),
+            keys,
+            "{name}: the motor chart's key"
+        );
+        assert_eq!(
+            kinds_in(&page, "metabkeys"),
+            ["m-A", "m-B", "m-C", "m-D"],
+            "{name}: the metabolism chart's key"
+        );
     }
+}
+
+/// The `data-kind` of every entry inside the element `id` of the replay page.
+fn kinds_in(page: &str, id: &str) -> Vec<String> {
+    let start = page
+        .find(&format!("id=\"{id}\""))
+        .unwrap_or_else(|| panic!("no element {id}"));
+    let end = start + page[start..].find("</div>").unwrap();
+    page[start..end]
+        .split("data-kind=\"")
+        .skip(1)
+        .map(|s| s[..s.find('"').unwrap()].to_string())
+        .collect()
+}
+
+/// The replay page's key to the arena's symbols, by kind.
+fn legend_kinds(page: &str) -> Vec<String> {
+    kinds_in(page, "legend")
+}
+
+/// The text of the element `id` of the replay page (no markup inside).
+fn element_text(page: &str, id: &str) -> String {
+    let start = page
+        .find(&format!("id=\"{id}\""))
+        .unwrap_or_else(|| panic!("no element {id}"));
+    let open = start + page[start..].find('>').unwrap() + 1;
+    let close = open + page[open..].find('<').unwrap();
+    page[open..close].to_string()
 }
 
 /// A raider away between flights (`pause`) waits outside the arena: `render` draws no strike
@@ -394,4 +487,271 @@ fn render_draws_no_strike_disc_for_a_raider_away_between_flights() {
     };
     assert_eq!(discs(""), 1);
     assert_eq!(discs("pause = [1000000, 1000000]"), 0);
+}
+
+/// The sum of the `translate(x,y)` of `node` and its ancestors.
+fn translation(node: roxmltree::Node) -> (f64, f64) {
+    node.ancestors()
+        .filter_map(|n| n.attribute("transform"))
+        .filter_map(|t| t.strip_prefix("translate(")?.strip_suffix(')'))
+        .map(|t| {
+            let v: Vec<f64> = t.split(',').map(|x| x.trim().parse().unwrap()).collect();
+            (v[0], v.get(1).copied().unwrap_or(0.0))
+        })
+        .fold((0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1))
+}
+
+/// The picture's viewBox width and height.
+fn view_box(doc: &roxmltree::Document) -> (f64, f64) {
+    let v: Vec<f64> = doc
+        .root_element()
+        .attribute("viewBox")
+        .expect("a viewBox")
+        .split_whitespace()
+        .map(|x| x.parse().unwrap())
+        .collect();
+    (v[2], v[3])
+}
+
+/// Renders `svg` with rsvg-convert and returns (width, height, RGB bytes), read back through
+/// `convert FILE.png ppm:-`; None when either tool is missing.
+fn rasterise(svg: &Path) -> Option<(usize, usize, Vec<u8>)> {
+    let png = svg.with_extension("png");
+    let made = Command::new("rsvg-convert")
+        .arg(svg)
+        .arg("-o")
+        .arg(&png)
+        .status()
+        .ok()?;
+    assert!(made.success(), "rsvg-convert failed on {svg:?}");
+    let out = Command::new("convert")
+        .arg(&png)
+        .arg("ppm:-")
+        .output()
+        .ok()?;
+    if !out.status.success() {
+        return None;
+    }
+    // P6 <width> <height> <max> then the bytes.
+    let bytes = out.stdout;
+    let mut fields = Vec::new();
+    let mut at = 0;
+    while fields.len() < 4 {
+        while bytes[at].is_ascii_whitespace() {
+            at += 1;
+        }
+        let start = at;
+        while !bytes[at].is_ascii_whitespace() {
+            at += 1;
+        }
+        fields.push(String::from_utf8_lossy(&bytes[start..at]).to_string());
+    }
+    assert_eq!(fields[0], "P6");
+    assert_eq!(fields[3], "255");
+    let (w, h) = (fields[1].parse().unwrap(), fields[2].parse().unwrap());
+    Some((w, h, bytes[at + 1..].to_vec()))
+}
+
+/// The README's foraging picture had its legend cut at the right edge: a long genome name and
+/// two-digit metabolism no longer pass the picture's viewBox, by the text width estimate and,
+/// with rsvg-convert, in the pixels of its right edge.
+#[test]
+fn render_legend_is_not_cut_at_the_right_edge() {
+    let tmp = tempfile::tempdir().unwrap();
+    let genome = tmp
+        .path()
+        .join("a-genome-file-with-a-rather-long-name-as-runs-write.json");
+    std::fs::copy(root().join("genomes/braitenberg-forager.json"), &genome).unwrap();
+    let picture = tmp.path().join("foraging.svg");
+    ok(a![
+        "render",
+        &genome,
+        "--experiment",
+        &root().join("experiments/foraging.toml"),
+        "-o",
+        &picture
+    ]);
+    let text = svg(&picture);
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let (width, height) = view_box(&doc);
+    let legend = doc
+        .descendants()
+        .find(|n| n.attribute("id") == Some("legend"))
+        .expect("a legend");
+    let mut longest = 0.0_f64;
+    for t in legend.descendants().filter(|n| n.has_tag_name("text")) {
+        let words = t.text().unwrap_or("");
+        let size: f64 = t
+            .attribute("font-size")
+            .map_or(13.0, |s| s.parse().unwrap());
+        let (dx, dy) = translation(t);
+        let x = dx + t.attribute("x").map_or(0.0, |x| x.parse().unwrap());
+        let y = dy + t.attribute("y").map_or(0.0, |y| y.parse().unwrap());
+        let w = berry_evolve::record::render::text_width(words, size);
+        let right = if t.attribute("text-anchor") == Some("end") {
+            x
+        } else {
+            x + w
+        };
+        longest = longest.max(w);
+        assert!(
+            right <= width - 10.0,
+            "legend text {words:?} reaches x = {right:.0} of a picture {width:.0} wide"
+        );
+        assert!(
+            y + 4.0 <= height,
+            "legend text {words:?} at y = {y:.0} of {height:.0}"
+        );
+    }
+    assert!(
+        text.contains("a-genome-file-with-a-rather-long-name-as-runs-write.json"),
+        "the genome's whole name is in the legend"
+    );
+    assert!(longest > 300.0, "the long line is long: {longest}");
+    match rasterise(&picture) {
+        None => eprintln!(
+            "pixel check skipped: needs rsvg-convert and convert (apt-get install librsvg2-bin imagemagick)"
+        ),
+        Some((w, h, rgb)) => {
+            for y in 0..h {
+                for x in w - 8..w {
+                    let p = &rgb[3 * (y * w + x)..3 * (y * w + x) + 3];
+                    assert_eq!(p, [255, 255, 255], "a drawn pixel at ({x}, {y}) of {w}×{h}");
+                }
+            }
+        }
+    }
+}
+
+/// Does the segment a–b pass through the rectangle [x0, x1]×[y0, y1]? (Liang–Barsky.)
+fn segment_meets_rect(a: (f64, f64), b: (f64, f64), r: [f64; 4]) -> bool {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+    for (p, q) in [
+        (-dx, a.0 - r[0]),
+        (dx, r[1] - a.0),
+        (-dy, a.1 - r[2]),
+        (dy, r[3] - a.1),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return false;
+            }
+        } else {
+            let t = q / p;
+            if p < 0.0 {
+                t0 = t0.max(t);
+            } else {
+                t1 = t1.min(t);
+            }
+        }
+    }
+    t0 <= t1
+}
+
+/// `plot`'s legend covers no curve: curves through every corner of the axes, and the legend's
+/// box (inside the picture) meets none of their segments.
+#[test]
+fn plot_legend_covers_no_curve() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("run");
+    std::fs::create_dir_all(&dir).unwrap();
+    // best climbs from the lower left to the upper right, worst falls from the upper left to
+    // the lower right, mean and median cross the middle: no corner of the axes is empty.
+    let mut csv = String::from("generation,best,mean,median,worst\n");
+    for g in 0..=20 {
+        let t = f64::from(g) / 20.0;
+        csv.push_str(&format!(
+            "{g},{},{},{},{}\n",
+            100.0 * t,
+            50.0 + 40.0 * libm::sin(t * 6.0),
+            50.0,
+            100.0 * (1.0 - t)
+        ));
+    }
+    std::fs::write(dir.join("fitness.csv"), csv).unwrap();
+    for (name, args) in [
+        ("run", vec![dir.clone().into_os_string()]),
+        ("summary", {
+            let summary = tmp.path().join("summary.csv");
+            let mut s = String::from(
+                "generation,best_q1,best_median,best_q3,mean_median,validation_q1,validation_median,validation_q3\n",
+            );
+            for g in 0..=20 {
+                let t = f64::from(g) / 20.0;
+                s.push_str(&format!(
+                    "{g},{},{},{},{},{},{},{}\n",
+                    90.0 * t,
+                    100.0 * t,
+                    100.0 * t + 5.0,
+                    100.0 * (1.0 - t),
+                    40.0,
+                    50.0,
+                    60.0
+                ));
+            }
+            std::fs::write(&summary, s).unwrap();
+            vec![summary.into_os_string()]
+        }),
+    ] {
+        let picture = tmp.path().join(format!("{name}.svg"));
+        let mut argv: Vec<&std::ffi::OsStr> = vec![std::ffi::OsStr::new("plot")];
+        argv.extend(args.iter().map(|a| a.as_os_str()));
+        argv.extend([std::ffi::OsStr::new("-o"), picture.as_os_str()]);
+        ok(&argv);
+        let text = svg(&picture);
+        let doc = roxmltree::Document::parse(&text).unwrap();
+        let (width, height) = view_box(&doc);
+        let legend = doc
+            .descendants()
+            .find(|n| n.attribute("id") == Some("legend"))
+            .unwrap_or_else(|| panic!("{name}: no legend"));
+        let frame = legend
+            .children()
+            .find(|n| n.has_tag_name("rect"))
+            .expect("the legend's box");
+        let num = |k: &str| frame.attribute(k).unwrap().parse::<f64>().unwrap();
+        let r = [
+            num("x"),
+            num("x") + num("width"),
+            num("y"),
+            num("y") + num("height"),
+        ];
+        assert!(
+            r[0] >= 0.0 && r[1] <= width && r[2] >= 0.0 && r[3] <= height,
+            "{name}: the legend {r:?} is not inside the picture ({width}×{height})"
+        );
+        // The entries' text inside the box.
+        for t in legend.descendants().filter(|n| n.has_tag_name("text")) {
+            let x: f64 = t.attribute("x").unwrap().parse().unwrap();
+            let w = berry_evolve::record::render::text_width(t.text().unwrap().trim(), 14.0);
+            assert!(x + w <= r[1], "{name}: {:?} passes the box", t.text());
+        }
+        let mut curves = 0;
+        for p in doc.descendants().filter(|n| n.has_tag_name("polyline")) {
+            let pts: Vec<(f64, f64)> = p
+                .attribute("points")
+                .unwrap()
+                .split_whitespace()
+                .map(|xy| {
+                    let (x, y) = xy.split_once(',').unwrap();
+                    (x.parse().unwrap(), y.parse().unwrap())
+                })
+                .collect();
+            if pts.len() <= 2 {
+                continue;
+            }
+            curves += 1;
+            for s in pts.windows(2) {
+                assert!(
+                    !segment_meets_rect(s[0], s[1], r),
+                    "{name}: the curve {} passes under the legend {r:?} at {:?}–{:?}",
+                    p.attribute("stroke").unwrap_or(""),
+                    s[0],
+                    s[1]
+                );
+            }
+        }
+        assert!(curves >= 3, "{name}: {curves} curves");
+    }
 }

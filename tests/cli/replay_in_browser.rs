@@ -3,6 +3,9 @@
 //! the creature and a wall and which colours the canvas has there, and those must be where
 //! the trace (`--trace`) says, in the creature's and the wall's colours.
 //!
+//! The status element is for tests only: the page keeps it hidden. The charts' keys name the
+//! brain's outputs (the eat output only when the creature eats by action).
+//!
 //! Without Chromium the test says so and passes, unless `BERRY_REQUIRE_CHROMIUM=1` (set by
 //! `.ci/run`), when it fails.
 
@@ -107,8 +110,9 @@ fn the_page_draws_the_arena_and_the_creature_where_the_trace_says() {
         }
     };
     let start = dom
-        .find("<pre id=\"status\">")
+        .find("<pre id=\"status\"")
         .expect("the page has a status element");
+    let start = start + dom[start..].find('>').unwrap() + 1;
     let status = &dom[start..dom[start..].find("</pre>").unwrap() + start];
     let lines: Vec<&str> = status.lines().collect();
     assert!(lines[0].ends_with(&format!("tick {tick}")), "{status}");
@@ -154,4 +158,85 @@ fn the_page_draws_the_arena_and_the_creature_where_the_trace_says() {
     // Another tick moves the creature: the page did not just draw one frame.
     let dom = dump_dom(&format!("file://{}#tick=0", html.display())).unwrap();
     assert!(dom.contains("tick 0\n"), "tick 0 status");
+}
+
+/// Writes the replay page of `experiment` (TOML text) for one of its first genomes.
+fn page_for(toml: &str, dir: &Path) -> String {
+    let file = dir.join("experiment.toml");
+    std::fs::write(&file, toml).unwrap();
+    let experiment = Experiment::load(&file).unwrap();
+    let genome = first_population(&experiment, &experiment.topology()).swap_remove(0);
+    let genome_path = dir.join("genome.json");
+    GenomeFile::new(&experiment, &genome, Origin::default())
+        .save(&genome_path)
+        .unwrap();
+    let html = dir.join("page.html");
+    let out = Command::new(bin())
+        .arg("replay")
+        .arg(&genome_path)
+        .arg("--experiment")
+        .arg(&file)
+        .args(["--trial", "0", "--html"])
+        .arg(&html)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    std::fs::read_to_string(&html).unwrap()
+}
+
+#[test]
+fn the_page_hides_its_status_and_its_motor_chart_names_the_brains_outputs() {
+    let tmp = tempfile::tempdir().unwrap();
+    let tiny = std::fs::read_to_string(fixture("tiny.toml")).unwrap();
+    for (toml, outputs) in [
+        (tiny.clone(), "motor_left, motor_right"),
+        (
+            format!("{tiny}\n[creature]\neating = \"action\"\n"),
+            "motor_left, motor_right, eat",
+        ),
+    ] {
+        let page = page_for(&toml, tmp.path());
+        // The status is for tests: hidden by the attribute and by the style.
+        let at = page.find("<pre id=\"status\"").expect("a status element");
+        let tag = &page[at..at + page[at..].find('>').unwrap()];
+        assert!(
+            tag.contains(" hidden") && tag.contains("display:none"),
+            "the status element is not hidden: {tag}"
+        );
+        assert!(page.contains("#status{display:none}"), "the style hides it");
+        // The motor chart's title and key: the outputs the brain has.
+        let title = format!("motor outputs ({outputs}) over the trial");
+        assert!(
+            page.contains(&format!("id=\"motorlbl\">{title}<")),
+            "{title}"
+        );
+        let keys: Vec<&str> = page
+            .split("data-kind=\"output-")
+            .skip(1)
+            .map(|s| &s[..s.find('"').unwrap()])
+            .collect();
+        assert_eq!(keys.join(", "), outputs);
+        // The script draws the same outputs' fields.
+        let fields = if outputs.ends_with("eat") {
+            "const MOTOR=[[\"left\",\"#1f77b4\"],[\"right\",\"#d62728\"],[\"eat\",\"#555555\"]];"
+        } else {
+            "const MOTOR=[[\"left\",\"#1f77b4\"],[\"right\",\"#d62728\"]];"
+        };
+        assert!(page.contains(fields), "{fields}");
+        // tiny.toml's world: the creature, food A and B, walls; no glass, doors, predators.
+        let legend = &page[page.find("id=\"legend\"").unwrap()..];
+        let legend = &legend[..legend.find("</div>").unwrap()];
+        for kind in ["creature", "food-a", "food-b", "wall"] {
+            assert!(legend.contains(&format!("data-kind=\"{kind}\"")), "{kind}");
+        }
+        for kind in [
+            "food-c", "food-d", "glass", "door", "predator", "nest", "landmark",
+        ] {
+            assert!(!legend.contains(&format!("data-kind=\"{kind}\"")), "{kind}");
+        }
+    }
 }
