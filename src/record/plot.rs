@@ -10,7 +10,8 @@
 //!   (e.g. `best_median`, `mean_median`, `validation_median`) a median line, with a band from
 //!   `Q_q1` to `Q_q3` (first and third quartiles across seeds) when both columns exist.
 //!
-//! Every curve is one `<polyline>` of the SVG (its legend sample is another, of two points).
+//! Every curve is one `<polyline>` of the SVG (its legend sample is another, of two points);
+//! a curve with values on some generations only (validation) also marks each with a circle.
 //! The legend (`<g id="legend">`, a framed box) stands below the plot, outside the axes, so
 //! that it never covers a curve whatever the curves do; its entries flow left to right in
 //! rows as wide as the picture, and the picture grows by the rows it needs.
@@ -353,6 +354,13 @@ fn draw(table: &Table, title: &str, y_label: &str, curves: &[Curve]) -> Result<S
                     colour.stroke_width(2),
                 ))
                 .map_err(|x| e(&x))?;
+            // A curve with values on some generations only (validation, every N and after
+            // the last) gets a mark at each, so that one value is seen too.
+            if c.points.len() < table.rows.len() {
+                chart
+                    .draw_series(c.points.iter().map(|&p| Circle::new(p, 3, colour.filled())))
+                    .map_err(|x| e(&x))?;
+            }
         }
         root.present().map_err(|x| e(&x))?;
     }
