@@ -14,5 +14,6 @@ mod overflowing_brains;
 mod pgpe;
 mod predator_ends_life;
 mod search_trait;
+mod sep_cma_es;
 mod trial_path_observer;
 mod validation_champions;

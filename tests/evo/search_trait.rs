@@ -122,7 +122,7 @@ fn ask_and_tell_give_the_genomes_the_ga_and_pgpe_gave_before_the_trait() {
 /// search and telling it that generation gives the next one, as a run never stopped.
 #[test]
 fn the_state_round_trips_through_checkpoint_json_and_resumes_exactly() {
-    for name in ["tiny.toml", "tiny-pgpe.toml"] {
+    for name in ["tiny.toml", "tiny-pgpe.toml", "tiny-sep-cma-es.toml"] {
         let experiment = load(name);
         let topology = experiment.topology();
         let mut whole = search::of(&experiment, &topology);
@@ -134,8 +134,9 @@ fn the_state_round_trips_through_checkpoint_json_and_resumes_exactly() {
         match &read {
             None => assert_eq!(json, "null", "{name}: the GA writes no state"),
             Some(state) => {
-                assert!(json.starts_with("{\"pgpe\":{\"centre\":["), "{json:.80}");
-                assert_eq!(state.algorithm(), "pgpe");
+                let key = state.algorithm().replace('-', "_");
+                assert!(json.starts_with(&format!("{{\"{key}\":{{")), "{json:.80}");
+                assert_eq!(state.algorithm(), search::of(&experiment, &topology).name());
             }
         }
         whole.tell(&second);
@@ -173,7 +174,11 @@ fn individual(genome: &Genome, fitness: f64) -> Individual {
 /// candidate.
 #[test]
 fn pgpe_names_its_centre_as_champion_candidate_and_the_ga_none() {
-    for (name, centre_only) in [("tiny-pgpe.toml", true), ("tiny.toml", false)] {
+    for (name, centre_only) in [
+        ("tiny-pgpe.toml", true),
+        ("tiny-sep-cma-es.toml", true),
+        ("tiny.toml", false),
+    ] {
         let experiment = load(name);
         let search = search::of(&experiment, &experiment.topology());
         let asked = search.ask();
@@ -228,6 +233,7 @@ fn each_search_describes_itself_and_its_first_genomes_are_its_first_ask() {
     for (name, words) in [
         ("tiny.toml", "genetic algorithm"),
         ("tiny-pgpe.toml", "PGPE"),
+        ("tiny-sep-cma-es.toml", "sep-CMA-ES"),
     ] {
         let experiment = load(name);
         let search = search::of(&experiment, &experiment.topology());

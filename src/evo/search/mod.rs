@@ -26,11 +26,15 @@
 //!   saves no [`SearchState`] and GA checkpoints have no `search` field.
 //! - [`pgpe::Pgpe`], PGPE with ClipUp (`algorithm = "pgpe"`): saves its distribution
 //!   ([`pgpe::PgpeState`]) as `"search": {"pgpe": {...}}`.
+//! - [`sep_cma_es::SepCmaEs`], CMA-ES with a diagonal covariance (`algorithm =
+//!   "sep-cma-es"`): saves its distribution ([`sep_cma_es::SepCmaState`]) as
+//!   `"search": {"sep_cma_es": {...}}`.
 //!
 //! docs/search.md, "Adding a search algorithm: a checklist", says how to add another.
 
 pub mod ga;
 pub mod pgpe;
+pub mod sep_cma_es;
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
@@ -49,6 +53,8 @@ use serde::{Deserialize, Serialize};
 pub enum SearchState {
     /// PGPE's centre, standard deviations and ClipUp velocity.
     Pgpe(pgpe::PgpeState),
+    /// sep-CMA-ES's mean, step size, variances and evolution paths.
+    SepCmaEs(sep_cma_es::SepCmaState),
 }
 
 impl SearchState {
@@ -56,6 +62,7 @@ impl SearchState {
     pub fn algorithm(&self) -> &'static str {
         match self {
             SearchState::Pgpe(_) => "pgpe",
+            SearchState::SepCmaEs(_) => "sep-cma-es",
         }
     }
 }
@@ -149,5 +156,45 @@ pub fn of(experiment: &Experiment, topology: &Topology) -> Box<dyn Search> {
     match experiment.evolution.algorithm {
         Algorithm::Ga => Box::new(ga::Ga::new(experiment, parameters)),
         Algorithm::Pgpe => Box::new(pgpe::Pgpe::new(experiment, parameters)),
+        Algorithm::SepCmaEs => Box::new(sep_cma_es::SepCmaEs::new(experiment, parameters)),
     }
+}
+
+/// The new champion of a distribution search whose solution is its centre (PGPE's centre,
+/// sep-CMA-ES's mean), evaluated as the generation's last individual: only that individual,
+/// and only when it beats `previous` strictly.
+pub(crate) fn improved_centre(
+    previous: Option<&Champion>,
+    generation: &EvaluatedGeneration,
+) -> Option<Champion> {
+    let c = generation.individuals.len().checked_sub(1)?;
+    let centre = &generation.individuals[c];
+    let fitness = centre.evaluation.fitness?;
+    if previous.is_some_and(|p| fitness <= p.fitness) {
+        return None;
+    }
+    Some(Champion {
+        genome: centre.genome.clone(),
+        fitness,
+        metabolism: centre.evaluation.metabolism,
+        generation: generation.generation,
+        individual: c as u64,
+    })
+}
+
+/// The centre of a distribution search (the generation's last individual) as a validation
+/// candidate: validation always considers it, after the top individuals, also when its
+/// training score does not rank it among them.
+pub(crate) fn centre_candidate(evaluated: &EvaluatedGeneration) -> Vec<Candidate> {
+    let Some(last) = evaluated.individuals.len().checked_sub(1) else {
+        return Vec::new();
+    };
+    let centre = &evaluated.individuals[last];
+    vec![Candidate {
+        genome: centre.genome.clone(),
+        generation: evaluated.generation,
+        individual: Some(last as u64),
+        training_fitness: centre.evaluation.fitness,
+        training_metabolism: Some(centre.evaluation.metabolism),
+    }]
 }

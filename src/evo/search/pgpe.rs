@@ -54,7 +54,7 @@
 //! fitness, the checkpoint holds θ_g as `"search": {"pgpe": {...}}`, the champion is always
 //! the centre, and validation always considers the centre too.
 
-use super::{Search, SearchState, Unevaluated};
+use super::{centre_candidate, improved_centre, Search, SearchState, Unevaluated};
 use crate::brain::genome::Genome;
 use crate::evo::lineage::{Birth, Lineage};
 use crate::evo::state::{Champion, EvaluatedGeneration, GenerationSummary};
@@ -465,9 +465,11 @@ impl Search for Pgpe {
 
     fn restore(&mut self, state: Option<&SearchState>, generation: u64) {
         self.generation = generation;
-        // Another algorithm's state is set aside (`tell` then centres on the best individual);
-        // with a second `SearchState` variant this closure stops compiling until it says so.
-        self.state = state.map(|SearchState::Pgpe(state)| state.clone());
+        self.state = match state {
+            Some(SearchState::Pgpe(state)) => Some(state.clone()),
+            // Another algorithm's state, or none: `tell` centres on the best individual.
+            _ => None,
+        };
         // Only the centre's lineage depends on it, and it is set by the next `tell`.
         self.centre_parent = None;
     }
@@ -475,6 +477,10 @@ impl Search for Pgpe {
     fn state_problem(&self, state: Option<&SearchState>) -> Option<String> {
         match state {
             Some(SearchState::Pgpe(state)) => state.problem(self.parameters),
+            Some(other) => Some(format!(
+                "it holds a {} state, but its experiment uses pgpe",
+                other.algorithm()
+            )),
             None => Some("its experiment uses pgpe, but it holds no pgpe state".into()),
         }
     }
@@ -501,36 +507,14 @@ impl Search for Pgpe {
         generation: &EvaluatedGeneration,
         _summary: &GenerationSummary,
     ) -> Option<Champion> {
-        let c = generation.individuals.len().checked_sub(1)?;
-        let centre = &generation.individuals[c];
-        let fitness = centre.evaluation.fitness?;
-        if previous.is_some_and(|p| fitness <= p.fitness) {
-            return None;
-        }
-        Some(Champion {
-            genome: centre.genome.clone(),
-            fitness,
-            metabolism: centre.evaluation.metabolism,
-            generation: generation.generation,
-            individual: c as u64,
-        })
+        improved_centre(previous, generation)
     }
 
     /// The centre, evaluated as the generation's last individual: validation always
     /// considers it (after the top individuals), also when its training score does not rank
     /// it among them.
     fn champion_candidates(&self, evaluated: &EvaluatedGeneration) -> Vec<Candidate> {
-        let Some(last) = evaluated.individuals.len().checked_sub(1) else {
-            return Vec::new();
-        };
-        let centre = &evaluated.individuals[last];
-        vec![Candidate {
-            genome: centre.genome.clone(),
-            generation: evaluated.generation,
-            individual: Some(last as u64),
-            training_fitness: centre.evaluation.fitness,
-            training_metabolism: Some(centre.evaluation.metabolism),
-        }]
+        centre_candidate(evaluated)
     }
 
     fn champion_candidates_per_generation(&self) -> usize {
