@@ -114,7 +114,11 @@ fn base_table(path: &str) -> toml::Table {
     }
     // `[evolution.cma_es]` only by sep-CMA-ES.
     if path.starts_with("evolution.cma_es.") {
-        set_path(&mut t, "evolution.algorithm", toml::Value::from("sep-cma-es"));
+        set_path(
+            &mut t,
+            "evolution.algorithm",
+            toml::Value::from("sep-cma-es"),
+        );
     }
     t
 }
