@@ -5,7 +5,8 @@ use crate::cli::console::{errln, outln};
 
 use berry_evolve::brain::{Brain, BrainController};
 use berry_evolve::evo::lockstep::{self, Lockstep};
-use berry_evolve::evo::state::{evaluate, first_population, offspring};
+use berry_evolve::evo::search;
+use berry_evolve::evo::state::evaluate;
 use berry_evolve::experiment::templates::{Template, BENCH_WORLDS};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
@@ -170,8 +171,11 @@ struct ScalingFigures {
 struct EvolutionFigures {
     experiment: String,
     built_in: bool,
+    /// The experiment's search algorithm as `[evolution] algorithm` names it (`ga`, `pgpe`):
+    /// the one timed.
+    algorithm: &'static str,
     generations: u64,
-    /// population × trials × ticks.
+    /// Individuals evaluated per generation × trials × ticks.
     creature_ticks_per_generation: f64,
     threads: Vec<EvolutionRate>,
     /// Median of each round's own 2-thread / 1-thread ratio.
@@ -187,7 +191,9 @@ struct EvolutionRate {
     threads: usize,
     generations_per_second: f64,
     creature_ticks_per_second: f64,
-    ga_share_percent: f64,
+    /// The search's share of a generation's wall time (its ask and tell, and the
+    /// generation's summary), in percent.
+    search_share_percent: f64,
 }
 
 fn pool(threads: usize) -> anyhow::Result<rayon::ThreadPool> {
@@ -454,7 +460,8 @@ fn median_of(repeat: u32, mut measure: impl FnMut() -> anyhow::Result<f64>) -> a
 /// One timed evolution: `generations` generations of `experiment` on `threads` threads.
 struct EvolutionTiming {
     eval_seconds: f64,
-    ga_seconds: f64,
+    /// The search's ask and tell, and the generation's summary.
+    search_seconds: f64,
     /// Best fitness of each generation, as bits (to compare thread counts).
     bests: Vec<u64>,
 }
@@ -466,21 +473,27 @@ fn time_evolution(
 ) -> anyhow::Result<EvolutionTiming> {
     let topology = experiment.topology();
     let pool = pool(threads)?;
-    let mut population = first_population(experiment, &topology);
+    // The experiment's own search, as a run drives it: ask, evaluate, tell.
+    let t = Instant::now();
+    let mut search = search::of(experiment, &topology);
+    let mut population = pool.install(|| search.ask());
     let mut timing = EvolutionTiming {
         eval_seconds: 0.0,
-        ga_seconds: 0.0,
+        search_seconds: t.elapsed().as_secs_f64(),
         bests: Vec::new(),
     };
     for g in 0..generations {
         let t = Instant::now();
-        let evaluated = pool.install(|| evaluate(experiment, &topology, g, population))?;
+        let evaluated = pool.install(|| evaluate(experiment, &topology, g, population.genomes))?;
         timing.eval_seconds += t.elapsed().as_secs_f64();
         let t = Instant::now();
         let summary = evaluated.summary();
         timing.bests.push(summary.stats.best.to_bits());
-        population = offspring(experiment, &evaluated);
-        timing.ga_seconds += t.elapsed().as_secs_f64();
+        population = pool.install(|| {
+            search.tell(&evaluated);
+            search.ask()
+        });
+        timing.search_seconds += t.elapsed().as_secs_f64();
     }
     Ok(timing)
 }
@@ -594,12 +607,13 @@ pub fn run(args: BenchArgs) -> anyhow::Result<()> {
         let figures = evolution(&source, args.generations, repeat)?;
         for rate in &figures.threads {
             say(json, format_args!(
-                "evolution {} on {} thread(s): {:.3} generations/s, {:.0} creature-ticks/s (agent-steps/s), GA share {:.2}%",
+                "evolution {} (algorithm {}) on {} thread(s): {:.3} generations/s, {:.0} creature-ticks/s (agent-steps/s), search share {:.2}% (ask, tell and the generation's summary)",
                 figures.experiment,
+                figures.algorithm,
                 rate.threads,
                 rate.generations_per_second,
                 rate.creature_ticks_per_second,
-                rate.ga_share_percent
+                rate.search_share_percent
             ));
         }
         say(json, format_args!(
@@ -666,7 +680,8 @@ fn simulator(source: &Source, args: &BenchArgs, repeat: u32) -> anyhow::Result<S
 /// The evolution figures: `repeat` rounds of `generations` generations on 1 then 2 threads.
 fn evolution(source: &Source, generations: u64, repeat: u32) -> anyhow::Result<EvolutionFigures> {
     let experiment = &source.experiment;
-    let per_generation = experiment.evolution.population as f64
+    let search = search::of(experiment, &experiment.topology());
+    let per_generation = search.evaluated_per_generation() as f64
         * experiment.evaluation.trials as f64
         * experiment.evaluation.ticks as f64;
     let gens = generations as f64;
@@ -677,7 +692,7 @@ fn evolution(source: &Source, generations: u64, repeat: u32) -> anyhow::Result<E
             runs.push(time_evolution(experiment, generations, threads)?);
         }
     }
-    let rate = |t: &EvolutionTiming| gens / (t.eval_seconds + t.ga_seconds);
+    let rate = |t: &EvolutionTiming| gens / (t.eval_seconds + t.search_seconds);
     let threads = [1usize, 2]
         .into_iter()
         .zip(&timings)
@@ -687,9 +702,9 @@ fn evolution(source: &Source, generations: u64, repeat: u32) -> anyhow::Result<E
                 threads,
                 generations_per_second,
                 creature_ticks_per_second: per_generation * generations_per_second,
-                ga_share_percent: median(
+                search_share_percent: median(
                     runs.iter()
-                        .map(|t| 100.0 * t.ga_seconds / (t.eval_seconds + t.ga_seconds))
+                        .map(|t| 100.0 * t.search_seconds / (t.eval_seconds + t.search_seconds))
                         .collect(),
                 ),
             }
@@ -707,6 +722,7 @@ fn evolution(source: &Source, generations: u64, repeat: u32) -> anyhow::Result<E
     Ok(EvolutionFigures {
         experiment: source.label.clone(),
         built_in: source.built_in,
+        algorithm: search.name(),
         generations,
         creature_ticks_per_generation: per_generation,
         threads,

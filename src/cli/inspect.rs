@@ -5,6 +5,7 @@
 use crate::cli::estimate::{self, count};
 use anyhow::Context;
 use berry_evolve::brain::summary::BrainSummary;
+use berry_evolve::evo::search;
 use berry_evolve::experiment::tables::{Balance, FitnessMode, FitnessSpec, GoalAt};
 use berry_evolve::experiment::{Experiment, ExperimentError};
 use berry_evolve::run::estimate::{Estimate, Workload};
@@ -130,11 +131,7 @@ pub fn run(args: InspectArgs) -> anyhow::Result<()> {
 
 /// The algorithm in words.
 fn algorithm(experiment: &Experiment) -> &'static str {
-    if experiment.evolution.algorithm.is_ga() {
-        "genetic algorithm"
-    } else {
-        "PGPE"
-    }
+    search::of(experiment, &experiment.topology()).describe()
 }
 
 /// The text output.
@@ -227,11 +224,7 @@ fn report<'a>(
         experiment: &experiment.name,
         seed: experiment.seed,
         config_hash: experiment.config_hash(),
-        algorithm: if experiment.evolution.algorithm.is_ga() {
-            "ga"
-        } else {
-            "pgpe"
-        },
+        algorithm: search::of(experiment, &experiment.topology()).name(),
         observation: layout
             .groups()
             .iter()

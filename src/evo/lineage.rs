@@ -26,11 +26,17 @@ pub enum Birth {
     /// switched from the GA, the previous generation's best individual it was centred on. The
     /// first generation's centre has no parent.
     PgpeCentre,
+    /// sep-CMA-ES: a sample, its generation's mean plus noise shaped by the step size and
+    /// the diagonal covariance. Like a PGPE sample it lists no parent index.
+    CmaSample,
+    /// sep-CMA-ES: the mean itself, with the previous generation's mean (or, when the search
+    /// was restarted there, its best individual) as parent; the first generation's has none.
+    CmaMean,
 }
 
 impl Birth {
     /// The name used in checkpoints and CSV (`random`, `elite`, `mutated`, `crossover`,
-    /// `pgpe_sample`, `pgpe_centre`).
+    /// `pgpe_sample`, `pgpe_centre`, `cma_sample`, `cma_mean`).
     pub fn name(self) -> &'static str {
         match self {
             Birth::Random => "random",
@@ -39,6 +45,8 @@ impl Birth {
             Birth::Crossover => "crossover",
             Birth::PgpeSample => "pgpe_sample",
             Birth::PgpeCentre => "pgpe_centre",
+            Birth::CmaSample => "cma_sample",
+            Birth::CmaMean => "cma_mean",
         }
     }
 }

@@ -1,19 +1,18 @@
 //! The state of an evolution between generations: the last evaluated generation, the best
-//! individual ever seen, the search distribution (PGPE only, [`SearchState`]), and how to make
-//! the next generation from them. Pure: no files, no clocks; the run module saves and restores
-//! this state.
+//! individual ever seen, and how a generation is evaluated and summarised. How the next
+//! generation is made is the search's ([`crate::evo::search`], whose state, [`SearchState`], a
+//! checkpoint also holds). Pure: no files, no clocks; the run module saves and restores this
+//! state.
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
 use crate::evo::evaluate::{evaluate_population_on, Evaluation, Evaluator, JobDone, ThisProcess};
-use crate::evo::init::initial_population;
 use crate::evo::life::EvaluationError;
-use crate::evo::lineage::{Birth, Lineage};
-use crate::evo::pgpe::{self, PgpeState};
+use crate::evo::lineage::Lineage;
+use crate::evo::search;
 use crate::evo::stats::FitnessStats;
-use crate::evo::vary::next_generation_with_lineage;
 use crate::experiment::Experiment;
-use crate::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
+use crate::seed::Generation;
 use crate::sim::metabolism::Metabolism;
 use serde::{Deserialize, Serialize};
 
@@ -122,197 +121,18 @@ impl EvaluatedGeneration {
     }
 }
 
-/// What an algorithm carries from one generation to the next besides the evaluated
-/// generation itself: nothing for the GA (its state is its population), the search
-/// distribution that sampled the generation for PGPE. Saved in checkpoints.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum SearchState {
-    /// PGPE's centre, standard deviations and ClipUp velocity.
-    Pgpe(PgpeState),
-}
+pub use crate::evo::search::ga::{first_population, offspring, offspring_with_lineage};
+pub use crate::evo::search::{SearchState, Unevaluated};
 
-/// A generation before its evaluation: its genomes in population order, where each came
-/// from, and the search state that sampled it (PGPE).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Unevaluated {
-    /// The genomes.
-    pub genomes: Vec<Genome>,
-    /// One lineage per genome, in the same order.
-    pub lineage: Vec<Lineage>,
-    /// The search distribution that sampled it (PGPE only).
-    pub search: Option<SearchState>,
-}
-
-/// The lineage of a PGPE generation of `population` samples and the centre: the samples
-/// have no parent index (see [`Birth::PgpeSample`]); the centre's parent is `centre_parent`.
-fn pgpe_lineage(population: usize, centre_parent: Option<usize>) -> Vec<Lineage> {
-    let mut lineage = vec![Lineage::orphan(Birth::PgpeSample); population];
-    lineage.push(match centre_parent {
-        Some(p) => Lineage::of(Birth::PgpeCentre, &[p]),
-        None => Lineage::orphan(Birth::PgpeCentre),
-    });
-    lineage
-}
-
-/// Generation 0 of the experiment's algorithm and the search state that sampled it: the
-/// GA's random population ([`first_population`]), or PGPE's samples around its initial
-/// centre followed by the centre.
+/// Generation 0 of the experiment's search ([`crate::evo::search::of`]'s first ask).
 pub fn first_generation(experiment: &Experiment, topology: &Topology) -> Unevaluated {
-    match experiment.evolution.pgpe_settings() {
-        None => {
-            let genomes = first_population(experiment, topology);
-            Unevaluated {
-                lineage: vec![Lineage::orphan(Birth::Random); genomes.len()],
-                genomes,
-                search: None,
-            }
-        }
-        Some(spec) => {
-            let state = PgpeState::initial(&spec, topology.parameter_count());
-            let population = experiment.evolution.population;
-            let genomes = pgpe::sample(experiment.seed(), Generation(0), &state, population);
-            Unevaluated {
-                lineage: pgpe_lineage(population, None),
-                genomes,
-                search: Some(SearchState::Pgpe(state)),
-            }
-        }
-    }
+    search::of(experiment, topology).ask()
 }
 
-/// Generation g + 1 of the experiment's algorithm from evaluated generation g and the search
-/// state that sampled it: the GA's [`offspring`], or PGPE's update (on the samples' fitness,
-/// the centre's left out) and new samples. A PGPE experiment without a state (a run switched
-/// from the GA with `--allow-config-change`) starts its centre at generation g's best
-/// individual.
-pub fn next_generation_of(
-    experiment: &Experiment,
-    parents: &EvaluatedGeneration,
-    search: Option<&SearchState>,
-) -> Unevaluated {
-    let Some(spec) = experiment.evolution.pgpe_settings() else {
-        let (genomes, lineage) = offspring_with_lineage(experiment, parents);
-        return Unevaluated {
-            genomes,
-            lineage,
-            search: None,
-        };
-    };
-    let population = experiment.evolution.population;
-    let fitness = parents.selection_fitness();
-    let (next, centre_parent) = match search {
-        Some(SearchState::Pgpe(state)) if fitness.len() == population + 1 => (
-            pgpe::step(
-                experiment.seed(),
-                &spec,
-                state,
-                Generation(parents.generation),
-                &fitness[..population],
-            ),
-            population,
-        ),
-        _ => {
-            let best = parents.summary().best_individual.unwrap_or(0);
-            (
-                PgpeState::centred_on(&spec, &parents.individuals[best].genome.parameters),
-                best,
-            )
-        }
-    };
-    let genomes = pgpe::sample(
-        experiment.seed(),
-        Generation(parents.generation + 1),
-        &next,
-        population,
-    );
-    Unevaluated {
-        genomes,
-        lineage: pgpe_lineage(population, Some(centre_parent)),
-        search: Some(SearchState::Pgpe(next)),
-    }
-}
-
-/// The first `n` genomes of generation 0 (at most the generation's size), drawn as
-/// [`first_generation`] draws them but without the rest: what a timing calibration lives
-/// with, so that it meets the brains a run starts from at the cost of a few.
+/// The first `n` genomes of generation 0 of the experiment's search (see
+/// [`crate::evo::search::Search::first_genomes`]).
 pub fn first_genomes(experiment: &Experiment, topology: &Topology, n: usize) -> Vec<Genome> {
-    let n = n.min(experiment.evolution.evaluated_per_generation());
-    let mut genomes = match experiment.evolution.pgpe_settings() {
-        // The GA draws individual after individual from one stream, so a smaller population
-        // is the first individuals of the full one.
-        None => {
-            let mut spec = experiment.evolution.clone();
-            spec.population = n;
-            initial_population(
-                &spec,
-                topology.parameter_count(),
-                &mut initialisation(experiment),
-            )
-        }
-        // The whole generation (PGPE's ends with its centre).
-        Some(_) if n == experiment.evolution.evaluated_per_generation() => {
-            first_generation(experiment, topology).genomes
-        }
-        // PGPE's samples come in mirrored pairs from one noise stream, then the centre: the
-        // pairs of a smaller sample are the first pairs of the full one.
-        Some(spec) => {
-            let state = PgpeState::initial(&spec, topology.parameter_count());
-            pgpe::sample(experiment.seed(), Generation(0), &state, n + 1)
-        }
-    };
-    genomes.truncate(n);
-    genomes
-}
-
-/// The seed's initialisation stream, which generation 0 is drawn from.
-fn initialisation(experiment: &Experiment) -> crate::seed::Rng {
-    stream(
-        experiment.seed(),
-        Purpose::Initialisation,
-        Generation(0),
-        IndividualId(0),
-        TrialIndex(0),
-    )
-}
-
-/// Generation 0: drawn from the seed's initialisation stream.
-pub fn first_population(experiment: &Experiment, topology: &Topology) -> Vec<Genome> {
-    initial_population(
-        &experiment.evolution,
-        topology.parameter_count(),
-        &mut initialisation(experiment),
-    )
-}
-
-/// Generation g + 1 from evaluated generation g, drawn from the variation stream of g.
-pub fn offspring(experiment: &Experiment, parents: &EvaluatedGeneration) -> Vec<Genome> {
-    offspring_with_lineage(experiment, parents).0
-}
-
-/// [`offspring`] with each one's lineage.
-pub fn offspring_with_lineage(
-    experiment: &Experiment,
-    parents: &EvaluatedGeneration,
-) -> (Vec<Genome>, Vec<Lineage>) {
-    let mut rng = stream(
-        experiment.seed(),
-        Purpose::Variation,
-        Generation(parents.generation),
-        IndividualId(0),
-        TrialIndex(0),
-    );
-    let genomes: Vec<Genome> = parents
-        .individuals
-        .iter()
-        .map(|i| i.genome.clone())
-        .collect();
-    next_generation_with_lineage(
-        &experiment.evolution,
-        &genomes,
-        &parents.selection_fitness(),
-        &mut rng,
-    )
+    search::of(experiment, topology).first_genomes(n)
 }
 
 /// Evaluates `population` as generation `generation` (in parallel on the current rayon pool).
@@ -392,33 +212,6 @@ impl EvaluatedGeneration {
         }
         self
     }
-}
-
-/// The new champion under the experiment's algorithm: for the GA any individual
-/// ([`improved_champion`]); for PGPE only the centre, the last individual, since the centre is
-/// the solution the search converges to and a sample is the centre plus noise.
-pub fn improved_champion_for(
-    experiment: &Experiment,
-    previous: Option<&Champion>,
-    generation: &EvaluatedGeneration,
-    summary: &GenerationSummary,
-) -> Option<Champion> {
-    if experiment.evolution.pgpe_settings().is_none() {
-        return improved_champion(previous, generation, summary);
-    }
-    let c = generation.individuals.len().checked_sub(1)?;
-    let centre = &generation.individuals[c];
-    let fitness = centre.evaluation.fitness?;
-    if previous.is_some_and(|p| fitness <= p.fitness) {
-        return None;
-    }
-    Some(Champion {
-        genome: centre.genome.clone(),
-        fitness,
-        metabolism: centre.evaluation.metabolism,
-        generation: generation.generation,
-        individual: c as u64,
-    })
 }
 
 /// The new best-ever individual if `generation` beats `previous` (strictly; an equal

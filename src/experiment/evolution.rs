@@ -24,7 +24,8 @@
 //!
 //! `algorithm = "pgpe"` replaces the genetic algorithm by PGPE with ClipUp (see
 //! `evo::pgpe` and [`PgpeSpec`]): then only `population` (even), `generations` and the
-//! `[evolution.pgpe]` table apply, and the GA's keys must be left out.
+//! `[evolution.pgpe]` table apply, and the GA's keys must be left out. `algorithm =
+//! "sep-cma-es"` likewise, with the `[evolution.cma_es]` table ([`CmaEsSpec`]).
 //!
 //! Every key has a default. A key that only matters for a setting the table did not choose
 //! (`rank_pressure` with `kind = "tournament"`, `probability` with crossover `kind = "none"`,
@@ -53,9 +54,10 @@ pub const MAX_MAGNITUDE: f64 = 1.0e6;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct EvolutionSpec {
-    /// `algorithm`: `"ga"` (the generational genetic algorithm, default) or `"pgpe"`
-    /// (Sehnke et al.'s PGPE with ClipUp, `evo::pgpe`). Not written back when "ga",
-    /// so GA experiments keep their bytes and config hash.
+    /// `algorithm`: `"ga"` (the generational genetic algorithm, default), `"pgpe"`
+    /// (Sehnke et al.'s PGPE with ClipUp, `evo::pgpe`) or `"sep-cma-es"` (Ros & Hansen's
+    /// diagonal CMA-ES, `evo::search::sep_cma_es`). Not written back when "ga", so GA
+    /// experiments keep their bytes and config hash.
     #[serde(skip_serializing_if = "Algorithm::is_ga")]
     pub algorithm: Algorithm,
     /// Individuals per generation (default: 64; 2 to 1 000 000).
@@ -81,6 +83,10 @@ pub struct EvolutionSpec {
     /// table means every default of [`PgpeSpec`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pgpe: Option<PgpeSpec>,
+    /// sep-CMA-ES's settings (`[evolution.cma_es]`; only with `algorithm = "sep-cma-es"`,
+    /// where a missing table means every default of [`CmaEsSpec`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cma_es: Option<CmaEsSpec>,
 }
 
 /// The search algorithms `[evolution] algorithm` chooses from.
@@ -92,6 +98,10 @@ pub enum Algorithm {
     Ga,
     /// PGPE with symmetric sampling, centred-rank fitness shaping and ClipUp.
     Pgpe,
+    /// sep-CMA-ES: CMA-ES with a diagonal covariance matrix (Ros & Hansen 2008), linear in
+    /// the number of parameters.
+    #[serde(rename = "sep-cma-es")]
+    SepCmaEs,
 }
 
 impl Algorithm {
@@ -113,6 +123,7 @@ impl Default for EvolutionSpec {
             crossover: CrossoverSpec::default(),
             mutation: MutationSpec::default(),
             pgpe: None,
+            cma_es: None,
         }
     }
 }
@@ -121,18 +132,40 @@ impl EvolutionSpec {
     /// PGPE's settings when `algorithm = "pgpe"` (the table's, or every default).
     pub fn pgpe_settings(&self) -> Option<PgpeSpec> {
         match self.algorithm {
-            Algorithm::Ga => None,
+            Algorithm::Ga | Algorithm::SepCmaEs => None,
             Algorithm::Pgpe => Some(self.pgpe.unwrap_or_default()),
         }
     }
 
-    /// Individuals evaluated per generation: the population, plus PGPE's centre, which is
-    /// evaluated as one more individual (the last) so that it can become the champion.
+    /// Individuals evaluated per generation: the population, plus PGPE's centre or
+    /// sep-CMA-ES's mean, which is evaluated as one more individual (the last) so that it can
+    /// become the champion.
     pub fn evaluated_per_generation(&self) -> usize {
         match self.algorithm {
             Algorithm::Ga => self.population,
-            Algorithm::Pgpe => self.population + 1,
+            Algorithm::Pgpe | Algorithm::SepCmaEs => self.population + 1,
         }
+    }
+
+    /// The GA's keys would be silently ignored by `algorithm`: refuse them (a key written
+    /// with its default value cannot be told apart and is accepted).
+    fn refuse_ga_keys(&self, algorithm: &str) -> Valid {
+        let ga = EvolutionSpec::default();
+        for (differs, key) in [
+            (self.elitism != ga.elitism, "elitism"),
+            (self.init_range != ga.init_range, "init_range"),
+            (self.selection != ga.selection, "selection"),
+            (self.crossover != ga.crossover, "crossover"),
+            (self.mutation != ga.mutation, "mutation"),
+        ] {
+            if differs {
+                return Err(InvalidValue::new(
+                    format!("evolution.{key}"),
+                    format!("is only used with algorithm = \"ga\", but this table has algorithm = \"{algorithm}\"; remove it"),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Checks every value; keys start with `evolution.`.
@@ -179,7 +212,23 @@ impl EvolutionSpec {
         self.selection.validate(self.population)?;
         self.crossover.validate()?;
         self.mutation.validate()?;
+        if self.cma_es.is_some() && self.algorithm != Algorithm::SepCmaEs {
+            return Err(InvalidValue::new(
+                "evolution.cma_es",
+                "is only used with algorithm = \"sep-cma-es\"; remove it or set algorithm = \"sep-cma-es\"",
+            ));
+        }
         match self.algorithm {
+            Algorithm::SepCmaEs => {
+                if self.pgpe.is_some() {
+                    return Err(InvalidValue::new(
+                        "evolution.pgpe",
+                        "is only used with algorithm = \"pgpe\", but this table has algorithm = \"sep-cma-es\"; remove it",
+                    ));
+                }
+                self.refuse_ga_keys("sep-cma-es")?;
+                self.cma_es.unwrap_or_default().validate()
+            }
             Algorithm::Ga => {
                 if self.pgpe.is_some() {
                     return Err(InvalidValue::new(
@@ -199,23 +248,7 @@ impl EvolutionSpec {
                         ),
                     ));
                 }
-                // The GA's keys would be silently ignored: refuse them (a key written with
-                // its default value cannot be told apart and is accepted).
-                let ga = EvolutionSpec::default();
-                for (differs, key) in [
-                    (self.elitism != ga.elitism, "elitism"),
-                    (self.init_range != ga.init_range, "init_range"),
-                    (self.selection != ga.selection, "selection"),
-                    (self.crossover != ga.crossover, "crossover"),
-                    (self.mutation != ga.mutation, "mutation"),
-                ] {
-                    if differs {
-                        return Err(InvalidValue::new(
-                            format!("evolution.{key}"),
-                            "is only used with algorithm = \"ga\", but this table has algorithm = \"pgpe\"; remove it",
-                        ));
-                    }
-                }
+                self.refuse_ga_keys("pgpe")?;
                 self.pgpe_settings().unwrap_or_default().validate()
             }
         }
@@ -303,6 +336,49 @@ impl PgpeSpec {
             if value == 1.0 {
                 return Err(InvalidValue::new(key, "must be below 1, got 1"));
             }
+        }
+        Ok(())
+    }
+}
+
+/// `[evolution.cma_es]`: sep-CMA-ES (Ros & Hansen 2008), CMA-ES with a diagonal covariance
+/// matrix. `population` is λ, the samples per generation (Hansen's default for n parameters
+/// is 4 + ⌊3 ln n⌋, e.g. 24 for 1,000; more helps on noisy and multimodal problems); μ = ⌊λ/2⌋,
+/// the recombination weights and every learning rate follow Hansen's tutorial (see
+/// `evo::search::sep_cma_es`), so the table only sets where the search starts.
+///
+/// ```toml
+/// [evolution]
+/// algorithm = "sep-cma-es"
+/// population = 32                # λ samples; the mean is evaluated too, as a 33rd
+///
+/// [evolution.cma_es]
+/// sigma_init = 0.5               # the initial step size σ
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct CmaEsSpec {
+    /// `sigma_init`: the initial step size σ, the standard deviation of every parameter at the
+    /// start, in parameter units (the mean starts at 0) (default: 0.5; greater than 0, at most
+    /// 10^6).
+    pub sigma_init: f64,
+}
+
+impl Default for CmaEsSpec {
+    fn default() -> Self {
+        CmaEsSpec { sigma_init: 0.5 }
+    }
+}
+
+impl CmaEsSpec {
+    /// Checks the table; keys start with `evolution.cma_es.`.
+    pub fn validate(&self) -> Valid {
+        magnitude("evolution.cma_es.sigma_init", self.sigma_init)?;
+        if self.sigma_init == 0.0 {
+            return Err(InvalidValue::new(
+                "evolution.cma_es.sigma_init",
+                "must be greater than 0, got 0",
+            ));
         }
         Ok(())
     }

@@ -18,7 +18,8 @@ pub mod tables;
 pub mod templates;
 
 pub use evolution::{
-    Algorithm, CrossoverSpec, EvolutionSpec, MutationSpec, PgpeSpec, SelectionSpec, SelfAdaptation,
+    Algorithm, CmaEsSpec, CrossoverSpec, EvolutionSpec, MutationSpec, PgpeSpec, SelectionSpec,
+    SelfAdaptation,
 };
 
 pub use tables::{

@@ -13,7 +13,7 @@
 use crate::evo::evaluate::{evaluate_population, shared_worlds};
 use crate::evo::life::EvaluationError;
 use crate::evo::lockstep;
-use crate::evo::state::first_genomes;
+use crate::evo::search;
 use crate::experiment::Experiment;
 use crate::seed::Generation;
 use serde::Serialize;
@@ -28,7 +28,7 @@ use thiserror::Error;
 pub struct Workload {
     /// Generations to evaluate.
     pub generations: u64,
-    /// Individuals evaluated per generation (PGPE also evaluates its centre).
+    /// Individuals evaluated per generation (the search's; PGPE also evaluates its centre).
     pub individuals: u64,
     /// Trials per individual.
     pub trials: u64,
@@ -40,8 +40,8 @@ pub struct Workload {
     pub creature_ticks_per_generation: u64,
     /// Validation rounds among the generations (`[validation]`; 0 when off).
     pub validations: u64,
-    /// Candidates evaluated per validation round, at most (the top individuals, and PGPE's
-    /// centre).
+    /// Candidates evaluated per validation round, at most (the top individuals, and the
+    /// search's own candidates, e.g. PGPE's centre).
     pub validation_candidates: u64,
     /// Validation worlds per candidate.
     pub validation_trials: u64,
@@ -58,7 +58,8 @@ impl Workload {
         let total = experiment.evolution.generations;
         let count = generations.end.saturating_sub(generations.start);
         let e = &experiment.evaluation;
-        let individuals = experiment.evolution.evaluated_per_generation() as u64;
+        let search = search::of(experiment, &experiment.topology());
+        let individuals = search.evaluated_per_generation() as u64;
         let per_generation = individuals.saturating_mul(e.trials).saturating_mul(e.ticks);
         let v = &experiment.validation;
         let validations = if v.enabled() && count > 0 {
@@ -69,8 +70,11 @@ impl Workload {
         } else {
             0
         };
-        let pgpe_centre = u64::from(experiment.evolution.pgpe_settings().is_some());
-        let candidates = if v.enabled() { v.top + pgpe_centre } else { 0 };
+        let candidates = if v.enabled() {
+            v.top + search.champion_candidates_per_generation() as u64
+        } else {
+            0
+        };
         let validation_ticks = validations
             .saturating_mul(candidates)
             .saturating_mul(v.trials)
@@ -223,9 +227,10 @@ fn measure(
 ) -> Result<Calibration, CalibrationError> {
     let topology = experiment.topology();
     let k = experiment.evaluation.group_size.max(1) as usize;
-    let all = experiment.evolution.evaluated_per_generation();
+    let search = search::of(experiment, &topology);
+    let all = search.evaluated_per_generation();
     let groups = (all / k).max(1);
-    let genomes = first_genomes(experiment, &topology, groups * k);
+    let genomes = search.first_genomes(groups * k);
     let (trials, ticks) = (experiment.evaluation.trials, experiment.evaluation.ticks);
     // The probe: one group, one trial, a few ticks, to see whether one group's full lives
     // fit in the target.

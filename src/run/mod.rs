@@ -12,9 +12,10 @@ mod champions;
 use crate::brain::spec::Topology;
 use crate::evo::evaluate::{evaluation_jobs, Evaluator};
 use crate::evo::life::EvaluationError;
+use crate::evo::search::{self, Search};
 use crate::evo::state::{
-    evaluate_on, evaluate_watched, first_generation, improved_champion_for, next_generation_of,
-    Champion, EvaluatedGeneration, GenerationSummary, SearchState, Unevaluated,
+    evaluate_on, evaluate_watched, Champion, EvaluatedGeneration, GenerationSummary, SearchState,
+    Unevaluated,
 };
 use crate::evo::validation::{self, ValidatedChampion};
 use crate::experiment::diff::changed_keys;
@@ -508,8 +509,8 @@ pub fn start(
     let champions = ChampionsLog::create(&dir.join(CHAMPIONS_FILE))
         .map_err(|e| output_failed(dir, e.into()))?;
     let topology = experiment.topology();
-    let mut population = first_generation(&experiment, &topology);
-    let search = population.search.take();
+    let search = search::of(&experiment, &topology);
+    let population = search.ask();
     drive(
         Loop {
             experiment,
@@ -927,6 +928,8 @@ pub fn resume_with(
         progress,
     )?;
     let topology = experiment.topology();
+    let mut search = search::of(&experiment, &topology);
+    search.restore(payload.search.as_ref(), payload.last.generation);
     let mut state = Loop {
         topology,
         dir: dir.clone(),
@@ -941,7 +944,7 @@ pub fn resume_with(
         end_of_run_validation: payload.end_of_run_validation.clone(),
         experiment,
         _lock: lock,
-        search: payload.search.clone(),
+        search,
     };
     if state.next_generation >= state.experiment.evolution.generations {
         // Nothing left to evaluate: make sure the final files match the finished run.
@@ -967,9 +970,8 @@ pub fn resume_with(
         // written if the schedule would not have it.
         state.write_checkpoint(&payload.last)?;
     }
-    let mut population =
-        next_generation_of(&state.experiment, &payload.last, payload.search.as_ref());
-    state.search = population.search.take();
+    state.search.tell(&payload.last);
+    let population = state.search.ask();
     drive(state, population, options, progress)
 }
 
@@ -1123,19 +1125,10 @@ fn check_payload_shape(path: &Path, payload: &CheckpointPayload) -> Result<(), R
         ));
     }
     let parameters = experiment.topology().parameter_count();
-    match (&payload.search, experiment.evolution.pgpe_settings()) {
-        (None, None) => {}
-        (Some(SearchState::Pgpe(state)), Some(_)) => {
-            if let Some(problem) = state.problem(parameters) {
-                return refuse(problem);
-            }
-        }
-        (Some(_), None) => {
-            return refuse("it holds a pgpe state, but its experiment uses the ga".into())
-        }
-        (None, Some(_)) => {
-            return refuse("its experiment uses pgpe, but it holds no pgpe state".into())
-        }
+    if let Some(problem) =
+        search::of(&experiment, &experiment.topology()).state_problem(payload.search.as_ref())
+    {
+        return refuse(problem);
     }
     let genomes = payload
         .last
@@ -1215,8 +1208,8 @@ struct Loop {
     next_generation: u64,
     /// Held for the whole run: no other process writes this folder meanwhile.
     _lock: RunLock,
-    /// The search distribution that sampled the generation being evaluated (PGPE).
-    search: Option<SearchState>,
+    /// The search, as it was when it asked for the generation being evaluated.
+    search: Box<dyn Search>,
     history_extra: Vec<Vec<Option<f64>>>,
     validated_best: Option<ValidatedChampion>,
     /// The validation worlds, built at the first validation of this process.
@@ -1280,7 +1273,7 @@ impl Loop {
             last: last.clone(),
             best_ever: self.best_ever.clone(),
             history: self.history.clone(),
-            search: self.search.clone(),
+            search: self.search.state(),
             history_extra: self.history_extra.clone(),
             validated_best: self.validated_best.clone(),
             end_of_run_validation: self.end_of_run_validation.clone(),
@@ -1412,18 +1405,17 @@ fn drive(
         }
         .with_lineage(population.lineage);
         let summary = evaluated.summary();
-        let improved = improved_champion_for(
-            &state.experiment,
-            state.best_ever.as_ref(),
-            &evaluated,
-            &summary,
-        );
+        let improved =
+            state
+                .search
+                .improved_champion(state.best_ever.as_ref(), &evaluated, &summary);
         if let Some(champion) = improved {
             state.best_ever = Some(champion);
             state
                 .write_best()
                 .map_err(|e| output_failed(&state.dir, e))?;
         }
+        let candidates = state.search.champion_candidates(&evaluated);
         let (extras, validated) = pool.install(|| {
             validation::after_generation(
                 &state.experiment,
@@ -1431,7 +1423,7 @@ fn drive(
                 &evaluated,
                 &summary,
                 total,
-                centre_candidate(&state.experiment, &evaluated),
+                candidates,
                 &mut state.validation_worlds,
             )
         })?;
@@ -1500,32 +1492,10 @@ fn drive(
                 });
             }
         }
-        population = pool
-            .install(|| next_generation_of(&state.experiment, &evaluated, state.search.as_ref()));
-        state.search = population.search.take();
+        population = pool.install(|| {
+            state.search.tell(&evaluated);
+            state.search.ask()
+        });
         generation += 1;
     }
-}
-
-/// PGPE's champion is its distribution's centre, evaluated as the generation's last
-/// individual: validation always considers it (after the top individuals), also when its
-/// training score does not rank it among them. The GA has no centre.
-fn centre_candidate(
-    experiment: &Experiment,
-    evaluated: &EvaluatedGeneration,
-) -> Vec<validation::Candidate> {
-    if experiment.evolution.algorithm != crate::experiment::evolution::Algorithm::Pgpe {
-        return Vec::new();
-    }
-    let Some(last) = evaluated.individuals.len().checked_sub(1) else {
-        return Vec::new();
-    };
-    let centre = &evaluated.individuals[last];
-    vec![validation::Candidate {
-        genome: centre.genome.clone(),
-        generation: evaluated.generation,
-        individual: Some(last as u64),
-        training_fitness: centre.evaluation.fitness,
-        training_metabolism: Some(centre.evaluation.metabolism),
-    }]
 }

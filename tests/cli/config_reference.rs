@@ -112,6 +112,14 @@ fn base_table(path: &str) -> toml::Table {
     if path.starts_with("evolution.pgpe.") {
         set_path(&mut t, "evolution.algorithm", toml::Value::from("pgpe"));
     }
+    // `[evolution.cma_es]` only by sep-CMA-ES.
+    if path.starts_with("evolution.cma_es.") {
+        set_path(
+            &mut t,
+            "evolution.algorithm",
+            toml::Value::from("sep-cma-es"),
+        );
+    }
     t
 }
 

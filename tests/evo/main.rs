@@ -1,4 +1,4 @@
-//! Evolution and evaluation (`berry_evolve::evo`, `berry_evolve::experiment`): the GA and PGPE,
+//! Evolution and evaluation (`berry_evolve::evo`, `berry_evolve::experiment`): the search seam, the GA and PGPE,
 //! trials, lockstep, fitness terms and measures, validation, and experiment files.
 
 #[path = "../cli_common/mod.rs"]
@@ -13,5 +13,7 @@ mod lockstep_vs_single_trials;
 mod overflowing_brains;
 mod pgpe;
 mod predator_ends_life;
+mod search_trait;
+mod sep_cma_es;
 mod trial_path_observer;
 mod validation_champions;

@@ -46,9 +46,21 @@
 //! and each parameter j in order, one `gaussian()` z and ε_kj = σ_j · z. The update of step 4
 //! draws nothing: it regenerates ε from the same stream, so a checkpoint needs only θ_g and the
 //! evaluated generation, and a resumed run continues with the same bits.
+//!
+//! # Behind the search trait
+//!
+//! [`Pgpe`] is this algorithm as a [`Search`]: `ask` samples generation g from θ_g (N
+//! samples, then the centre; individual N), `tell` steps θ_g to θ_{g+1} on the samples'
+//! fitness, the checkpoint holds θ_g as `"search": {"pgpe": {...}}`, the champion is always
+//! the centre, and validation always considers the centre too.
 
+use super::{centre_candidate, improved_centre, Search, SearchState, Unevaluated};
 use crate::brain::genome::Genome;
+use crate::evo::lineage::{Birth, Lineage};
+use crate::evo::state::{Champion, EvaluatedGeneration, GenerationSummary};
+use crate::evo::validation::Candidate;
 use crate::experiment::evolution::{PgpeSpec, MAX_MAGNITUDE};
+use crate::experiment::Experiment;
 use crate::seed::{gaussian, stream, Generation, IndividualId, Purpose, Rng, Seed, TrialIndex};
 use serde::{Deserialize, Serialize};
 
@@ -320,6 +332,194 @@ pub fn step(
 ) -> PgpeState {
     let noises = noises(seed, generation, state, fitness.len());
     update(spec, state, &noises, fitness)
+}
+
+/// PGPE as a [`Search`]: θ_g, the generation it samples, and where its centre came from.
+#[derive(Debug, Clone)]
+pub struct Pgpe {
+    seed: Seed,
+    spec: PgpeSpec,
+    /// N, the samples per generation (the centre comes on top).
+    population: usize,
+    parameters: usize,
+    /// The generation `state` samples.
+    generation: u64,
+    /// θ_g; `None` after a restore without a PGPE state (a run switched from the GA), until
+    /// [`Search::tell`] centres a new distribution on the best individual it is told of.
+    state: Option<PgpeState>,
+    /// The individual of generation g − 1 the centre came from: that generation's centre
+    /// (index N), or its best individual when the search was (re)started there; `None` for
+    /// generation 0.
+    centre_parent: Option<usize>,
+}
+
+impl Pgpe {
+    /// A new search for `experiment` (`[evolution.pgpe]`'s settings, or every default) with
+    /// genomes of `parameters` parameters: θ_0 is [`PgpeState::initial`].
+    pub fn new(experiment: &Experiment, parameters: usize) -> Pgpe {
+        let spec = experiment.evolution.pgpe.unwrap_or_default();
+        Pgpe {
+            seed: experiment.seed(),
+            spec,
+            population: experiment.evolution.population,
+            parameters,
+            generation: 0,
+            state: Some(PgpeState::initial(&spec, parameters)),
+            centre_parent: None,
+        }
+    }
+
+    /// θ_g, or θ_0 when a restore left none (never asked for in a run: it tells first).
+    fn current(&self) -> PgpeState {
+        self.state
+            .clone()
+            .unwrap_or_else(|| PgpeState::initial(&self.spec, self.parameters))
+    }
+}
+
+/// The lineage of a PGPE generation of `population` samples and the centre: the samples
+/// have no parent index (see [`Birth::PgpeSample`]); the centre's parent is `centre_parent`.
+fn lineage(population: usize, centre_parent: Option<usize>) -> Vec<Lineage> {
+    let mut lineage = vec![Lineage::orphan(Birth::PgpeSample); population];
+    lineage.push(match centre_parent {
+        Some(p) => Lineage::of(Birth::PgpeCentre, &[p]),
+        None => Lineage::orphan(Birth::PgpeCentre),
+    });
+    lineage
+}
+
+impl Search for Pgpe {
+    fn name(&self) -> &'static str {
+        "pgpe"
+    }
+
+    fn describe(&self) -> &'static str {
+        "PGPE"
+    }
+
+    fn evaluated_per_generation(&self) -> usize {
+        self.population + 1
+    }
+
+    fn generation(&self) -> u64 {
+        self.generation
+    }
+
+    fn ask(&self) -> Unevaluated {
+        let genomes = match &self.state {
+            Some(state) => sample(
+                self.seed,
+                Generation(self.generation),
+                state,
+                self.population,
+            ),
+            None => sample(
+                self.seed,
+                Generation(self.generation),
+                &self.current(),
+                self.population,
+            ),
+        };
+        Unevaluated {
+            genomes,
+            lineage: lineage(self.population, self.centre_parent),
+        }
+    }
+
+    /// θ_{g+1} from the samples' fitness (the centre's left out). Without θ_g, or when the
+    /// generation does not hold N samples and the centre (a run that changed its algorithm or
+    /// population), the new distribution is centred on the generation's best individual.
+    fn tell(&mut self, evaluated: &EvaluatedGeneration) {
+        let fitness = evaluated.selection_fitness();
+        let population = self.population;
+        let (next, centre_parent) = match &self.state {
+            Some(state) if fitness.len() == population + 1 => (
+                step(
+                    self.seed,
+                    &self.spec,
+                    state,
+                    Generation(evaluated.generation),
+                    &fitness[..population],
+                ),
+                population,
+            ),
+            _ => {
+                let best = evaluated.summary().best_individual.unwrap_or(0);
+                (
+                    PgpeState::centred_on(
+                        &self.spec,
+                        &evaluated.individuals[best].genome.parameters,
+                    ),
+                    best,
+                )
+            }
+        };
+        self.state = Some(next);
+        self.generation = evaluated.generation + 1;
+        self.centre_parent = Some(centre_parent);
+    }
+
+    fn state(&self) -> Option<SearchState> {
+        self.state.clone().map(SearchState::Pgpe)
+    }
+
+    fn restore(&mut self, state: Option<&SearchState>, generation: u64) {
+        self.generation = generation;
+        self.state = match state {
+            Some(SearchState::Pgpe(state)) => Some(state.clone()),
+            // Another algorithm's state, or none: `tell` centres on the best individual.
+            _ => None,
+        };
+        // Only the centre's lineage depends on it, and it is set by the next `tell`.
+        self.centre_parent = None;
+    }
+
+    fn state_problem(&self, state: Option<&SearchState>) -> Option<String> {
+        match state {
+            Some(SearchState::Pgpe(state)) => state.problem(self.parameters),
+            Some(other) => Some(format!(
+                "it holds a {} state, but its experiment uses pgpe",
+                other.algorithm()
+            )),
+            None => Some("its experiment uses pgpe, but it holds no pgpe state".into()),
+        }
+    }
+
+    fn first_genomes(&self, n: usize) -> Vec<Genome> {
+        let n = n.min(self.evaluated_per_generation());
+        let mut genomes = if n == self.evaluated_per_generation() {
+            // The whole generation (it ends with the centre).
+            self.ask().genomes
+        } else {
+            // The samples come in mirrored pairs from one noise stream, then the centre: the
+            // pairs of a smaller sample are the first pairs of the full one.
+            sample(self.seed, Generation(0), &self.current(), n + 1)
+        };
+        genomes.truncate(n);
+        genomes
+    }
+
+    /// Only the centre, the last individual, can become the champion: it is the solution
+    /// the search converges to, and a sample is the centre plus noise.
+    fn improved_champion(
+        &self,
+        previous: Option<&Champion>,
+        generation: &EvaluatedGeneration,
+        _summary: &GenerationSummary,
+    ) -> Option<Champion> {
+        improved_centre(previous, generation)
+    }
+
+    /// The centre, evaluated as the generation's last individual: validation always
+    /// considers it (after the top individuals), also when its training score does not rank
+    /// it among them.
+    fn champion_candidates(&self, evaluated: &EvaluatedGeneration) -> Vec<Candidate> {
+        centre_candidate(evaluated)
+    }
+
+    fn champion_candidates_per_generation(&self) -> usize {
+        1
+    }
 }
 
 #[cfg(test)]

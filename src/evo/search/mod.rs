@@ -1,0 +1,200 @@
+//! Search, ask/tell: the one seam between an evolution algorithm and everything around it.
+//!
+//! A [`Search`] owns its state and says three things: which genomes to evaluate next, with
+//! their lineage ([`Search::ask`]); what it learns from their evaluation ([`Search::tell`]);
+//! and what of its state a checkpoint must hold ([`Search::state`], as [`SearchState`]). It
+//! also names its champions: which individual may become the best ever
+//! ([`Search::improved_champion`]) and which extra candidates validation must consider
+//! ([`Search::champion_candidates`]). The generation loop, `bench`, `inspect` and the
+//! estimate only talk to this trait; [`of`] is the one place that matches on
+//! `[evolution] algorithm` (as pycma's `ask`/`tell`, EvoJAX's `NEAlgorithm` and pyribs'
+//! scheduler keep the task apart from the algorithm).
+//!
+//! # The contract, generation by generation
+//!
+//! A new run: `of(experiment)`, then `ask()` gives generation 0. After generation g is
+//! evaluated, the loop checkpoints `state()` (the state that sampled g), then `tell(g)` and
+//! `ask()` gives g + 1. A resumed run: `of(experiment)`, `restore(checkpoint's state, g)`,
+//! `tell(checkpoint's generation g)`, `ask()`: the same generation g + 1 as a run never
+//! stopped, bit for bit, because every random draw comes from a stream derived from the seed
+//! and the generation (never from a generator kept in the search).
+//!
+//! # Algorithms
+//!
+//! - [`ga::Ga`], the generational genetic algorithm (`algorithm = "ga"`, the default): its
+//!   state is its last evaluated generation, which the checkpoint holds anyway, so it
+//!   saves no [`SearchState`] and GA checkpoints have no `search` field.
+//! - [`pgpe::Pgpe`], PGPE with ClipUp (`algorithm = "pgpe"`): saves its distribution
+//!   ([`pgpe::PgpeState`]) as `"search": {"pgpe": {...}}`.
+//! - [`sep_cma_es::SepCmaEs`], CMA-ES with a diagonal covariance (`algorithm =
+//!   "sep-cma-es"`): saves its distribution ([`sep_cma_es::SepCmaState`]) as
+//!   `"search": {"sep_cma_es": {...}}`.
+//!
+//! docs/search.md, "Adding a search algorithm: a checklist", says how to add another.
+
+pub mod ga;
+pub mod pgpe;
+pub mod sep_cma_es;
+
+use crate::brain::genome::Genome;
+use crate::brain::spec::Topology;
+use crate::evo::lineage::Lineage;
+use crate::evo::state::{improved_champion, Champion, EvaluatedGeneration, GenerationSummary};
+use crate::evo::validation::Candidate;
+use crate::experiment::evolution::Algorithm;
+use crate::experiment::Experiment;
+use serde::{Deserialize, Serialize};
+
+/// What a search carries from one generation to the next besides the evaluated generation
+/// itself, as a checkpoint's `search` field holds it: one variant per algorithm that has
+/// such a state, named by the algorithm (`{"pgpe": {...}}`). The GA has none.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SearchState {
+    /// PGPE's centre, standard deviations and ClipUp velocity.
+    Pgpe(pgpe::PgpeState),
+    /// sep-CMA-ES's mean, step size, variances and evolution paths.
+    SepCmaEs(sep_cma_es::SepCmaState),
+}
+
+impl SearchState {
+    /// The algorithm whose state this is, as `[evolution] algorithm` names it.
+    pub fn algorithm(&self) -> &'static str {
+        match self {
+            SearchState::Pgpe(_) => "pgpe",
+            SearchState::SepCmaEs(_) => "sep-cma-es",
+        }
+    }
+}
+
+/// A generation before its evaluation: its genomes in population order and where each came
+/// from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Unevaluated {
+    /// The genomes.
+    pub genomes: Vec<Genome>,
+    /// One lineage per genome, in the same order.
+    pub lineage: Vec<Lineage>,
+}
+
+/// An evolution algorithm behind the ask/tell seam (see the module documentation for the
+/// order of calls). `Send + Sync` so that the generation loop can run it on its thread pool.
+pub trait Search: Send + Sync {
+    /// The algorithm's name as `[evolution] algorithm` writes it (`ga`, `pgpe`).
+    fn name(&self) -> &'static str;
+
+    /// The algorithm in words, for `inspect` and `bench` (`genetic algorithm`, `PGPE`).
+    fn describe(&self) -> &'static str;
+
+    /// Individuals evaluated per generation: what [`Search::ask`] gives.
+    fn evaluated_per_generation(&self) -> usize;
+
+    /// The number of the generation [`Search::ask`] gives.
+    fn generation(&self) -> u64;
+
+    /// The next generation to evaluate, with each individual's lineage. Pure: asking twice
+    /// gives the same genomes.
+    fn ask(&self) -> Unevaluated;
+
+    /// Learns from the evaluated generation that [`Search::ask`] gave (scores and behaviour
+    /// measures, in population order); the next `ask` gives the generation after it.
+    fn tell(&mut self, evaluated: &EvaluatedGeneration);
+
+    /// What a checkpoint must hold to continue this search: the state that sampled the
+    /// generation [`Search::ask`] gives (`None` for a search whose state is its last
+    /// evaluated generation, as the GA's).
+    fn state(&self) -> Option<SearchState>;
+
+    /// Continues from a checkpoint: the search as it was when it had sampled generation
+    /// `generation` with `state` (what [`Search::state`] returned then). Lenient, for a run
+    /// resumed with a changed algorithm (`resume --allow-config-change`): a state of another
+    /// algorithm, or none, is set aside and the search starts from the evaluated generation
+    /// it is told next. [`Search::state_problem`] is the strict check.
+    fn restore(&mut self, state: Option<&SearchState>, generation: u64);
+
+    /// Why `state`, read from a checkpoint of this experiment, cannot continue this search
+    /// (another algorithm's state, a missing one, wrong lengths, non-finite values), or
+    /// `None` if it can.
+    fn state_problem(&self, state: Option<&SearchState>) -> Option<String>;
+
+    /// The first `n` genomes of generation 0 (at most the generation's size), drawn as
+    /// [`Search::ask`] draws them on a new search but without the rest: what a timing
+    /// calibration lives with, so that it meets the brains a run starts from at the cost of
+    /// a few.
+    fn first_genomes(&self, n: usize) -> Vec<Genome>;
+
+    /// The new best-ever individual if `generation` beats `previous` (strictly). By default
+    /// any individual ([`improved_champion`]).
+    fn improved_champion(
+        &self,
+        previous: Option<&Champion>,
+        generation: &EvaluatedGeneration,
+        summary: &GenerationSummary,
+    ) -> Option<Champion> {
+        improved_champion(previous, generation, summary)
+    }
+
+    /// Candidates validation must consider besides the generation's top individuals (e.g. a
+    /// search distribution's centre, also when its training score does not rank it among
+    /// them). By default none.
+    fn champion_candidates(&self, evaluated: &EvaluatedGeneration) -> Vec<Candidate> {
+        let _ = evaluated;
+        Vec::new()
+    }
+
+    /// How many candidates [`Search::champion_candidates`] gives per generation, at most
+    /// (for the estimate). By default 0.
+    fn champion_candidates_per_generation(&self) -> usize {
+        0
+    }
+}
+
+/// The experiment's search, new: [`Search::ask`] gives generation 0. The one place that
+/// matches on `[evolution] algorithm`.
+pub fn of(experiment: &Experiment, topology: &Topology) -> Box<dyn Search> {
+    let parameters = topology.parameter_count();
+    match experiment.evolution.algorithm {
+        Algorithm::Ga => Box::new(ga::Ga::new(experiment, parameters)),
+        Algorithm::Pgpe => Box::new(pgpe::Pgpe::new(experiment, parameters)),
+        Algorithm::SepCmaEs => Box::new(sep_cma_es::SepCmaEs::new(experiment, parameters)),
+    }
+}
+
+/// The new champion of a distribution search whose solution is its centre (PGPE's centre,
+/// sep-CMA-ES's mean), evaluated as the generation's last individual: only that individual,
+/// and only when it beats `previous` strictly.
+pub(crate) fn improved_centre(
+    previous: Option<&Champion>,
+    generation: &EvaluatedGeneration,
+) -> Option<Champion> {
+    let c = generation.individuals.len().checked_sub(1)?;
+    let centre = &generation.individuals[c];
+    let fitness = centre.evaluation.fitness?;
+    if previous.is_some_and(|p| fitness <= p.fitness) {
+        return None;
+    }
+    Some(Champion {
+        genome: centre.genome.clone(),
+        fitness,
+        metabolism: centre.evaluation.metabolism,
+        generation: generation.generation,
+        individual: c as u64,
+    })
+}
+
+/// The centre of a distribution search (the generation's last individual) as a validation
+/// candidate: validation always considers it, after the top individuals, also when its
+/// training score does not rank it among them.
+pub(crate) fn centre_candidate(evaluated: &EvaluatedGeneration) -> Vec<Candidate> {
+    let Some(last) = evaluated.individuals.len().checked_sub(1) else {
+        return Vec::new();
+    };
+    let centre = &evaluated.individuals[last];
+    vec![Candidate {
+        genome: centre.genome.clone(),
+        generation: evaluated.generation,
+        individual: Some(last as u64),
+        training_fitness: centre.evaluation.fitness,
+        training_metabolism: Some(centre.evaluation.metabolism),
+    }]
+}
