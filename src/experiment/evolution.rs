@@ -173,12 +173,11 @@ impl EvolutionSpec {
         if self.population < 2 {
             // The real minimum, and, for the GA, what else a population of 2 needs (the
             // default tournament of 3 is larger).
-            let ga = match self.algorithm {
-                Algorithm::Ga => {
-                    " (with [evolution.selection] tournament_size = 2 or less: the default \
-                     tournament of 3 needs a population of 3)"
-                }
-                Algorithm::Pgpe => "",
+            let ga = if self.algorithm == Algorithm::Ga {
+                " (with [evolution.selection] tournament_size = 2 or less: the default \
+                 tournament of 3 needs a population of 3)"
+            } else {
+                ""
             };
             return Err(InvalidValue::new(
                 "evolution.population",
