@@ -240,13 +240,22 @@ pub fn held_out_check(
     let worlds = world_count(&experiment, summary.generations);
     let mut genomes = vec![best.clone()];
     let mut baseline_left_out = None;
-    if let Some(path) = baseline_for(&experiment, dir, source_baseline) {
-        match GenomeFile::load(&path)
+    match baseline_for(&experiment, dir, source_baseline) {
+        Some(path) => match GenomeFile::load(&path)
             .map_err(anyhow::Error::from)
             .and_then(|g| Ok(g.topology_for(&experiment, &path)?))
         {
             Ok(_) => genomes.push(path),
             Err(e) => baseline_left_out = Some(format!("{e:#}")),
+        },
+        None => {
+            if let Some(key) = &experiment.output.baseline {
+                baseline_left_out = Some(format!(
+                    "{key} ([output] baseline) is not there, relative to the experiment \
+                     file, and {} holds no {BASELINE_FILE}",
+                    dir.display()
+                ));
+            }
         }
     }
     let has_baseline = genomes.len() == 2;

@@ -617,9 +617,10 @@ pub struct OutputSpec {
     pub keep_checkpoints: u64,
     /// A hand-designed genome file to compare the champion with at the end of a run (the
     /// held-out check), e.g. `"../genomes/foraging-baseline.json"`: a path relative to the
-    /// folder of the experiment file (default: none). A run stores it resolved (absolute) in
-    /// its folder's experiment.toml, so that `resume` finds the same file; a file that is not
-    /// there is left out of the check with a note, never an error.
+    /// folder of the experiment file (default: none). A run's experiment.toml keeps it as
+    /// written (the same bytes on any machine) and the check keeps a copy of the genome in the
+    /// run folder (`baseline.json`), which a later `resume` uses; a file that is not there is
+    /// left out of the check with a note, never an error.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub baseline: Option<String>,
 }

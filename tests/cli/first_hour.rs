@@ -85,10 +85,17 @@ fn a_run_ends_with_a_held_out_check_against_random_genomes_and_the_baseline_and_
         check.contains(": the champion "),
         "a verdict in words: {check}"
     );
-    // The run folder's experiment.toml names the baseline resolved, so it is found from there.
+    // The run folder's experiment.toml names the baseline as written (the same bytes on any
+    // machine), and the folder keeps a copy for a later resume.
     let stored = Experiment::load(&dir.join("experiment.toml")).unwrap();
-    let baseline = PathBuf::from(stored.output.baseline.clone().unwrap());
-    assert!(baseline.is_absolute() && baseline.is_file(), "{baseline:?}");
+    assert_eq!(
+        stored.output.baseline.as_deref(),
+        Some("../genomes/base.json")
+    );
+    assert_eq!(
+        std::fs::read(dir.join("baseline.json")).unwrap(),
+        std::fs::read(tmp.path().join("genomes/base.json")).unwrap()
+    );
     // Then the commands to look at the champion, with the real paths; both work.
     let render = line(&err, "look at the champion: ");
     let replay = line(&err, "or watch it move: ");
