@@ -209,16 +209,14 @@ pub enum RunError {
         message: String,
     },
     /// The experiment file in the folder differs from the checkpoint's experiment.
-    #[error("{path} differs from the experiment in checkpoint {checkpoint} (config hash {found} vs {expected}; {changes}); the run would no longer be the one its seed describes. Restore the file, or continue anyway (the change is recorded in the run folder): {command}")]
+    #[error("{path} differs from the experiment in checkpoint {checkpoint} (config hash {hashes}; {changes}); the run would no longer be the one its seed describes. Restore the file, or continue anyway (the change is recorded in the run folder): {command}")]
     ConfigChanged {
         /// The experiment file.
         path: PathBuf,
         /// The checkpoint.
         checkpoint: PathBuf,
-        /// Hash of the file's experiment (short).
-        found: String,
-        /// Hash in the checkpoint (short).
-        expected: String,
+        /// The file's experiment's hash vs the checkpoint's (short), `found vs expected`.
+        hashes: String,
         /// The changed keys, `key: checkpoint's -> file's`, separated by "; ".
         changes: String,
         /// The command that continues anyway.
@@ -813,8 +811,11 @@ pub fn resume_with(
             return Err(RunError::ConfigChanged {
                 path: experiment_path,
                 checkpoint: loaded_path,
-                found: on_disk.config_hash()[..12].to_string(),
-                expected: checkpointed.config_hash()[..12].to_string(),
+                hashes: format!(
+                    "{} vs {}",
+                    &on_disk.config_hash()[..12],
+                    &checkpointed.config_hash()[..12]
+                ),
                 changes: changed_keys(&checkpointed, on_disk).join("; "),
                 command,
             });
