@@ -340,9 +340,12 @@ fn cma_es_cost_per_generation() {
                 let _ = decompose(&state.covariance);
                 let one = start.elapsed();
                 let CmaState { decomposed_at, .. } = state;
+                let bytes = serde_json::to_string(&search.state()).unwrap().len();
                 line += &format!(
-                    " (one eigendecomposition {:.1} ms; last at update {decomposed_at} of {generations})",
-                    one.as_secs_f64() * 1e3
+                    " (one eigendecomposition {:.1} ms; last at update {decomposed_at} of \
+                     {generations}; state {:.1} MB of JSON)",
+                    one.as_secs_f64() * 1e3,
+                    bytes as f64 / 1e6
                 );
             }
             eprintln!("{line}");
