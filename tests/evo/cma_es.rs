@@ -194,6 +194,30 @@ fn cma_es_state_round_trips_and_a_restored_search_continues_exactly() {
         g += 1;
         asked = whole.ask();
     };
+    // Pinned (computed by this code at its first commit): generation 2's genomes and θ_2 of
+    // tiny-cma-es.toml. A change here is a change of every cma-es run's bytes (the
+    // arithmetic, the draw order, or the solver's output after sorting and signing).
+    let genomes: Vec<f64> = second
+        .individuals
+        .iter()
+        .flat_map(|i| i.genome.parameters.clone())
+        .collect();
+    let Some(SearchState::CmaEs(theta)) = whole.state() else {
+        panic!("a cma-es state");
+    };
+    let numbers: Vec<f64> = [
+        theta.mean.clone(),
+        theta.covariance.concat(),
+        theta.eigenvectors.concat(),
+        theta.axes.clone(),
+        vec![theta.sigma],
+    ]
+    .concat();
+    assert_eq!(
+        (fnv(&genomes), fnv(&numbers)),
+        (0x4ab2_7f72_c988_0fd6, 0x83ce_f64d_52cb_fe78),
+        "generation 2 and θ_2 of tiny-cma-es.toml"
+    );
     let json = serde_json::to_string(&whole.state()).unwrap();
     assert!(json.starts_with("{\"cma_es\":{"), "{json:.80}");
     let read: Option<SearchState> = serde_json::from_str(&json).unwrap();
@@ -220,6 +244,18 @@ fn cma_es_state_round_trips_and_a_restored_search_continues_exactly() {
         .unwrap();
     assert!(problem.contains("covariance"), "{problem}");
     assert!(resumed.state_problem(None).unwrap().contains("cma-es"));
+}
+
+/// FNV-1a over the little-endian bytes of `values`.
+fn fnv(values: &[f64]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for x in values {
+        for b in x.to_le_bytes() {
+            h ^= u64::from(b);
+            h = h.wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+    h
 }
 
 fn run(file: &Path, out: &Path, generations: &str, jobs: &str) {
