@@ -25,7 +25,7 @@
 //! `algorithm = "pgpe"` replaces the genetic algorithm by PGPE with ClipUp (see
 //! `evo::pgpe` and [`PgpeSpec`]): then only `population` (even), `generations` and the
 //! `[evolution.pgpe]` table apply, and the GA's keys must be left out. `algorithm =
-//! "sep-cma-es"` likewise, with the `[evolution.cma_es]` table ([`CmaEsSpec`]).
+//! "sep-cma-es"` and `"cma-es"` likewise, with the `[evolution.cma_es]` table ([`CmaEsSpec`]).
 //!
 //! Every key has a default. A key that only matters for a setting the table did not choose
 //! (`rank_pressure` with `kind = "tournament"`, `probability` with crossover `kind = "none"`,
@@ -50,13 +50,19 @@ pub const MAX_GENERATIONS: u64 = 1_000_000_000;
 /// self-adapted step size, finite.
 pub const MAX_MAGNITUDE: f64 = 1.0e6;
 
+/// The most parameters full CMA-ES accepts: its covariance matrix and eigenvectors hold
+/// 2 n² numbers (in memory and in every checkpoint) and each eigendecomposition costs O(n³);
+/// beyond this, sep-CMA-ES (linear in n) is the one to use.
+pub const MAX_CMA_ES_PARAMETERS: usize = 2_000;
+
 /// `[evolution]`: the search algorithm (the generational genetic algorithm by default).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct EvolutionSpec {
     /// `algorithm`: `"ga"` (the generational genetic algorithm, default), `"pgpe"`
-    /// (Sehnke et al.'s PGPE with ClipUp, `evo::pgpe`) or `"sep-cma-es"` (Ros & Hansen's
-    /// diagonal CMA-ES, `evo::search::sep_cma_es`). Not written back when "ga", so GA
+    /// (Sehnke et al.'s PGPE with ClipUp, `evo::pgpe`), `"sep-cma-es"` (Ros & Hansen's
+    /// diagonal CMA-ES, `evo::search::sep_cma_es`) or `"cma-es"` (Hansen's CMA-ES with a full
+    /// covariance matrix, `evo::search::cma_es`; at most 2,000 brain parameters). Not written back when "ga", so GA
     /// experiments keep their bytes and config hash.
     #[serde(skip_serializing_if = "Algorithm::is_ga")]
     pub algorithm: Algorithm,
@@ -83,8 +89,8 @@ pub struct EvolutionSpec {
     /// table means every default of [`PgpeSpec`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pgpe: Option<PgpeSpec>,
-    /// sep-CMA-ES's settings (`[evolution.cma_es]`; only with `algorithm = "sep-cma-es"`,
-    /// where a missing table means every default of [`CmaEsSpec`]).
+    /// sep-CMA-ES's and CMA-ES's settings (`[evolution.cma_es]`; only with `algorithm =
+    /// "sep-cma-es"` or `"cma-es"`, where a missing table means every default of [`CmaEsSpec`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cma_es: Option<CmaEsSpec>,
 }
@@ -102,6 +108,10 @@ pub enum Algorithm {
     /// the number of parameters.
     #[serde(rename = "sep-cma-es")]
     SepCmaEs,
+    /// CMA-ES with a full covariance matrix (Hansen's tutorial), quadratic in memory and
+    /// cubic per eigendecomposition in the number of parameters (at most 2,000).
+    #[serde(rename = "cma-es")]
+    CmaEs,
 }
 
 impl Algorithm {
@@ -132,7 +142,7 @@ impl EvolutionSpec {
     /// PGPE's settings when `algorithm = "pgpe"` (the table's, or every default).
     pub fn pgpe_settings(&self) -> Option<PgpeSpec> {
         match self.algorithm {
-            Algorithm::Ga | Algorithm::SepCmaEs => None,
+            Algorithm::Ga | Algorithm::SepCmaEs | Algorithm::CmaEs => None,
             Algorithm::Pgpe => Some(self.pgpe.unwrap_or_default()),
         }
     }
@@ -143,8 +153,25 @@ impl EvolutionSpec {
     pub fn evaluated_per_generation(&self) -> usize {
         match self.algorithm {
             Algorithm::Ga => self.population,
-            Algorithm::Pgpe | Algorithm::SepCmaEs => self.population + 1,
+            Algorithm::Pgpe | Algorithm::SepCmaEs | Algorithm::CmaEs => self.population + 1,
         }
+    }
+
+    /// Checks the algorithm against the brain's parameter count: full CMA-ES is refused
+    /// beyond [`MAX_CMA_ES_PARAMETERS`].
+    pub fn validate_against_parameters(&self, parameters: u64) -> Valid {
+        if self.algorithm == Algorithm::CmaEs && parameters > MAX_CMA_ES_PARAMETERS as u64 {
+            return Err(InvalidValue::new(
+                "evolution.algorithm",
+                format!(
+                    "\"cma-es\" keeps a full covariance matrix, so it takes brains of at most \
+                     {MAX_CMA_ES_PARAMETERS} parameters (limit: n² memory and an n³ \
+                     eigendecomposition), but this brain has {parameters}; use algorithm = \
+                     \"sep-cma-es\" (diagonal, linear in n) or a smaller brain"
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// The GA's keys would be silently ignored by `algorithm`: refuse them (a key written
@@ -211,21 +238,27 @@ impl EvolutionSpec {
         self.selection.validate(self.population)?;
         self.crossover.validate()?;
         self.mutation.validate()?;
-        if self.cma_es.is_some() && self.algorithm != Algorithm::SepCmaEs {
+        let cma = matches!(self.algorithm, Algorithm::SepCmaEs | Algorithm::CmaEs);
+        if self.cma_es.is_some() && !cma {
             return Err(InvalidValue::new(
                 "evolution.cma_es",
-                "is only used with algorithm = \"sep-cma-es\"; remove it or set algorithm = \"sep-cma-es\"",
+                "is only used with algorithm = \"sep-cma-es\" or \"cma-es\"; remove it or set one of them",
             ));
         }
         match self.algorithm {
-            Algorithm::SepCmaEs => {
+            Algorithm::SepCmaEs | Algorithm::CmaEs => {
+                let name = if self.algorithm == Algorithm::CmaEs {
+                    "cma-es"
+                } else {
+                    "sep-cma-es"
+                };
                 if self.pgpe.is_some() {
                     return Err(InvalidValue::new(
                         "evolution.pgpe",
-                        "is only used with algorithm = \"pgpe\", but this table has algorithm = \"sep-cma-es\"; remove it",
+                        format!("is only used with algorithm = \"pgpe\", but this table has algorithm = \"{name}\"; remove it"),
                     ));
                 }
-                self.refuse_ga_keys("sep-cma-es")?;
+                self.refuse_ga_keys(name)?;
                 self.cma_es.unwrap_or_default().validate()
             }
             Algorithm::Ga => {
@@ -341,7 +374,7 @@ impl PgpeSpec {
 }
 
 /// `[evolution.cma_es]`: sep-CMA-ES (Ros & Hansen 2008), CMA-ES with a diagonal covariance
-/// matrix. `population` is λ, the samples per generation (Hansen's default for n parameters
+/// matrix, and full CMA-ES (`algorithm = "cma-es"`, `evo::search::cma_es`), which share it. `population` is λ, the samples per generation (Hansen's default for n parameters
 /// is 4 + ⌊3 ln n⌋, e.g. 24 for 1,000; more helps on noisy and multimodal problems); μ = ⌊λ/2⌋,
 /// the recombination weights and every learning rate follow Hansen's tutorial (see
 /// `evo::search::sep_cma_es`), so the table only sets where the search starts.

@@ -362,6 +362,7 @@ impl ExperimentConfig {
         self.evaluation
             .validate_against_population(self.evolution.evaluated_per_generation())?;
         let parameters = self.topology().parameter_count() as u64;
+        self.evolution.validate_against_parameters(parameters)?;
         let total = parameters.saturating_mul(self.evolution.population as u64);
         if total > MAX_GENERATION_PARAMETERS {
             return Err(InvalidValue::new(

@@ -4,6 +4,7 @@
 #[path = "../cli_common/mod.rs"]
 mod cli_common;
 
+mod cma_es;
 mod experiment_files;
 mod experiment_limits;
 mod fitness_terms_and_measures;

@@ -29,9 +29,12 @@
 //! - [`sep_cma_es::SepCmaEs`], CMA-ES with a diagonal covariance (`algorithm =
 //!   "sep-cma-es"`): saves its distribution ([`sep_cma_es::SepCmaState`]) as
 //!   `"search": {"sep_cma_es": {...}}`.
+//! - [`cma_es::CmaEs`], CMA-ES with a full covariance (`algorithm = "cma-es"`): saves
+//!   [`cma_es::CmaState`] as `"search": {"cma_es": {...}}`.
 //!
 //! docs/search.md, "Adding a search algorithm: a checklist", says how to add another.
 
+pub mod cma_es;
 pub mod ga;
 pub mod pgpe;
 pub mod sep_cma_es;
@@ -55,6 +58,8 @@ pub enum SearchState {
     Pgpe(pgpe::PgpeState),
     /// sep-CMA-ES's mean, step size, variances and evolution paths.
     SepCmaEs(sep_cma_es::SepCmaState),
+    /// CMA-ES's mean, step size, covariance, paths and last eigendecomposition.
+    CmaEs(cma_es::CmaState),
 }
 
 impl SearchState {
@@ -63,6 +68,7 @@ impl SearchState {
         match self {
             SearchState::Pgpe(_) => "pgpe",
             SearchState::SepCmaEs(_) => "sep-cma-es",
+            SearchState::CmaEs(_) => "cma-es",
         }
     }
 }
@@ -157,6 +163,7 @@ pub fn of(experiment: &Experiment, topology: &Topology) -> Box<dyn Search> {
         Algorithm::Ga => Box::new(ga::Ga::new(experiment, parameters)),
         Algorithm::Pgpe => Box::new(pgpe::Pgpe::new(experiment, parameters)),
         Algorithm::SepCmaEs => Box::new(sep_cma_es::SepCmaEs::new(experiment, parameters)),
+        Algorithm::CmaEs => Box::new(cma_es::CmaEs::new(experiment, parameters)),
     }
 }
 

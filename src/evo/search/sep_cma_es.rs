@@ -43,8 +43,7 @@
 //! generation, and a resumed run continues with the same bits. The mean starts at 0, σ at
 //! `[evolution.cma_es] sigma_init`, c at 1, the paths at 0.
 //!
-//! Full CMA-ES (a covariance matrix and its eigendecomposition) is not here: it needs a
-//! linear-algebra dependency chosen for determinism across platforms.
+//! Full CMA-ES (a covariance matrix and its eigendecomposition) is `super::cma_es`.
 
 use super::{centre_candidate, improved_centre, Search, SearchState, Unevaluated};
 use crate::brain::genome::Genome;

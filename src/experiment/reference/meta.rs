@@ -355,7 +355,7 @@ pub fn keys() -> Vec<KeyMeta> {
         k("MutationSpec.self_adaptive", "", any(), GA),
         k("MutationSpec.tau", "", ge0(), GA),
         k("MutationSpec.min_sigma", "parameter units", ge0().note("at most sigma"), GA),
-        k("EvolutionSpec.cma_es", "", any().note("only with algorithm = \"sep-cma-es\""), GA),
+        k("EvolutionSpec.cma_es", "", any().note("only with algorithm = \"sep-cma-es\" or \"cma-es\""), GA),
         k("CmaEsSpec.sigma_init", "parameter units", Range::gt(0.0).le(MAX_MAGNITUDE), GA),
         k("PgpeSpec.center_learning_rate", "parameter units", Range::gt(0.0).le(MAX_MAGNITUDE), GA),
         k("PgpeSpec.max_speed", "parameter units", Range::gt(0.0).le(MAX_MAGNITUDE), GA),
