@@ -29,10 +29,15 @@
 //! - [`sep_cma_es::SepCmaEs`], CMA-ES with a diagonal covariance (`algorithm =
 //!   "sep-cma-es"`): saves its distribution ([`sep_cma_es::SepCmaState`]) as
 //!   `"search": {"sep_cma_es": {...}}`.
+//! - [`novelty::Novelty`], novelty search, the GA ranking by novelty in behaviour space
+//!   ([`descriptors`]; `algorithm = "novelty"`): saves its archive as `"search":
+//!   {"novelty": {...}}`.
 //!
 //! docs/search.md, "Adding a search algorithm: a checklist", says how to add another.
 
+pub mod descriptors;
 pub mod ga;
+pub mod novelty;
 pub mod pgpe;
 pub mod sep_cma_es;
 
@@ -55,6 +60,8 @@ pub enum SearchState {
     Pgpe(pgpe::PgpeState),
     /// sep-CMA-ES's mean, step size, variances and evolution paths.
     SepCmaEs(sep_cma_es::SepCmaState),
+    /// Novelty search's archive.
+    Novelty(novelty::NoveltyState),
 }
 
 impl SearchState {
@@ -63,6 +70,7 @@ impl SearchState {
         match self {
             SearchState::Pgpe(_) => "pgpe",
             SearchState::SepCmaEs(_) => "sep-cma-es",
+            SearchState::Novelty(_) => "novelty",
         }
     }
 }
@@ -157,6 +165,7 @@ pub fn of(experiment: &Experiment, topology: &Topology) -> Box<dyn Search> {
         Algorithm::Ga => Box::new(ga::Ga::new(experiment, parameters)),
         Algorithm::Pgpe => Box::new(pgpe::Pgpe::new(experiment, parameters)),
         Algorithm::SepCmaEs => Box::new(sep_cma_es::SepCmaEs::new(experiment, parameters)),
+        Algorithm::Novelty => Box::new(novelty::Novelty::new(experiment, parameters)),
     }
 }
 
