@@ -57,8 +57,9 @@ pub const MAX_MAGNITUDE: f64 = 1.0e6;
 #[serde(deny_unknown_fields, default)]
 pub struct EvolutionSpec {
     /// `algorithm`: `"ga"` (the generational genetic algorithm, default), `"pgpe"`
-    /// (Sehnke et al.'s PGPE with ClipUp, `evo::pgpe`) or `"sep-cma-es"` (Ros & Hansen's
-    /// diagonal CMA-ES, `evo::search::sep_cma_es`). Not written back when "ga", so GA
+    /// (Sehnke et al.'s PGPE with ClipUp, `evo::pgpe`), `"sep-cma-es"` (Ros & Hansen's
+    /// diagonal CMA-ES, `evo::search::sep_cma_es`) or `"novelty"` (the GA selecting by
+    /// novelty, `[evolution.novelty]`). Not written back when "ga", so GA
     /// experiments keep their bytes and config hash.
     #[serde(skip_serializing_if = "Algorithm::is_ga")]
     pub algorithm: Algorithm,
