@@ -67,6 +67,9 @@ pub enum Purpose {
     /// worlds and from `compare`'s held-out worlds, which are both [`Purpose::TrialWorld`]
     /// streams.
     ValidationWorld = 8,
+    /// Novelty search's probabilistic archive addition: one draw per individual of
+    /// generation g, in index order (`[evolution.novelty] archive_probability`).
+    Novelty = 9,
 }
 
 /// SplitMix64's output function: a bijective 64-bit mixer with full avalanche.

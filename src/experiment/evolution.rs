@@ -26,6 +26,8 @@
 //! `evo::pgpe` and [`PgpeSpec`]): then only `population` (even), `generations` and the
 //! `[evolution.pgpe]` table apply, and the GA's keys must be left out. `algorithm =
 //! "sep-cma-es"` and `"cma-es"` likewise, with the `[evolution.cma_es]` table ([`CmaEsSpec`]).
+//! `algorithm = "novelty"` keeps the GA's keys and selects by novelty ([`NoveltySpec`],
+//! `[evolution.novelty]`).
 //!
 //! Every key has a default. A key that only matters for a setting the table did not choose
 //! (`rank_pressure` with `kind = "tournament"`, `probability` with crossover `kind = "none"`,
@@ -34,6 +36,7 @@
 //! Written back (e.g. to a run folder), each sub-table shows its kind and exactly the values
 //! that kind uses, defaults included.
 
+use crate::experiment::tables::Measure;
 use crate::validate::{count_within, non_negative, within, InvalidValue, Valid};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -61,8 +64,9 @@ pub const MAX_CMA_ES_PARAMETERS: usize = 2_000;
 pub struct EvolutionSpec {
     /// `algorithm`: `"ga"` (the generational genetic algorithm, default), `"pgpe"`
     /// (Sehnke et al.'s PGPE with ClipUp, `evo::pgpe`), `"sep-cma-es"` (Ros & Hansen's
-    /// diagonal CMA-ES, `evo::search::sep_cma_es`) or `"cma-es"` (Hansen's CMA-ES with a full
-    /// covariance matrix, `evo::search::cma_es`; at most 2,000 brain parameters). Not written back when "ga", so GA
+    /// diagonal CMA-ES, `evo::search::sep_cma_es`), `"cma-es"` (Hansen's CMA-ES with a full
+    /// covariance matrix, `evo::search::cma_es`; at most 2,000 brain parameters) or
+    /// `"novelty"` (the GA selecting by novelty, `[evolution.novelty]`). Not written back when "ga", so GA
     /// experiments keep their bytes and config hash.
     #[serde(skip_serializing_if = "Algorithm::is_ga")]
     pub algorithm: Algorithm,
@@ -93,6 +97,10 @@ pub struct EvolutionSpec {
     /// "sep-cma-es"` or `"cma-es"`, where a missing table means every default of [`CmaEsSpec`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cma_es: Option<CmaEsSpec>,
+    /// Novelty search's settings (`[evolution.novelty]`; only with `algorithm = "novelty"`,
+    /// which needs its `descriptors`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub novelty: Option<NoveltySpec>,
 }
 
 /// The search algorithms `[evolution] algorithm` chooses from.
@@ -112,6 +120,9 @@ pub enum Algorithm {
     /// cubic per eigendecomposition in the number of parameters (at most 2,000).
     #[serde(rename = "cma-es")]
     CmaEs,
+    /// Novelty search (Lehman & Stanley 2011): the GA selecting by novelty in behaviour
+    /// space (`[evolution.novelty]`).
+    Novelty,
 }
 
 impl Algorithm {
@@ -134,6 +145,7 @@ impl Default for EvolutionSpec {
             mutation: MutationSpec::default(),
             pgpe: None,
             cma_es: None,
+            novelty: None,
         }
     }
 }
@@ -142,9 +154,37 @@ impl EvolutionSpec {
     /// PGPE's settings when `algorithm = "pgpe"` (the table's, or every default).
     pub fn pgpe_settings(&self) -> Option<PgpeSpec> {
         match self.algorithm {
-            Algorithm::Ga | Algorithm::SepCmaEs | Algorithm::CmaEs => None,
+            Algorithm::Ga | Algorithm::SepCmaEs | Algorithm::CmaEs | Algorithm::Novelty => None,
             Algorithm::Pgpe => Some(self.pgpe.unwrap_or_default()),
         }
+    }
+
+    /// Novelty search's settings when `algorithm = "novelty"` (the table's, or every default).
+    pub fn novelty_settings(&self) -> Option<NoveltySpec> {
+        (self.algorithm == Algorithm::Novelty).then(|| self.novelty.clone().unwrap_or_default())
+    }
+
+    /// Novelty's descriptors must be measures `[behaviour] measures` computes (each
+    /// individual's evaluation carries them in that order).
+    pub fn validate_descriptors(&self, measures: &[Measure]) -> Valid {
+        let Some(novelty) = self.novelty_settings() else {
+            return Ok(());
+        };
+        let computed: Vec<&str> = measures.iter().map(|m| m.name()).collect();
+        for d in &novelty.descriptors {
+            if !measures.contains(&d.measure) {
+                return Err(InvalidValue::new(
+                    "evolution.novelty.descriptors",
+                    format!(
+                        "`{}` is not computed by this experiment: [behaviour] measures = [{}]; \
+                         add it to [behaviour] measures or describe behaviour by one of those",
+                        d.measure.name(),
+                        computed.join(", ")
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Individuals evaluated per generation: the population, plus PGPE's centre or
@@ -152,7 +192,7 @@ impl EvolutionSpec {
     /// become the champion.
     pub fn evaluated_per_generation(&self) -> usize {
         match self.algorithm {
-            Algorithm::Ga => self.population,
+            Algorithm::Ga | Algorithm::Novelty => self.population,
             Algorithm::Pgpe | Algorithm::SepCmaEs | Algorithm::CmaEs => self.population + 1,
         }
     }
@@ -245,7 +285,24 @@ impl EvolutionSpec {
                 "is only used with algorithm = \"sep-cma-es\" or \"cma-es\"; remove it or set one of them",
             ));
         }
+        if self.novelty.is_some() && self.algorithm != Algorithm::Novelty {
+            return Err(InvalidValue::new(
+                "evolution.novelty",
+                "is only used with algorithm = \"novelty\"; remove it or set algorithm = \"novelty\"",
+            ));
+        }
         match self.algorithm {
+            Algorithm::Novelty => {
+                if self.pgpe.is_some() {
+                    return Err(InvalidValue::new(
+                        "evolution.pgpe",
+                        "is only used with algorithm = \"pgpe\", but this table has algorithm = \"novelty\"; remove it",
+                    ));
+                }
+                self.novelty_settings()
+                    .unwrap_or_default()
+                    .validate(self.population)
+            }
             Algorithm::SepCmaEs | Algorithm::CmaEs => {
                 let name = if self.algorithm == Algorithm::CmaEs {
                     "cma-es"
@@ -910,5 +967,155 @@ impl From<MutationSpec> for RawMutation {
             tau: spec.self_adaptive.and_then(|a| a.tau),
             min_sigma: spec.self_adaptive.map(|a| a.min_sigma),
         }
+    }
+}
+
+/// `[evolution.novelty]`: novelty search (Lehman & Stanley 2011). The GA's selection,
+/// crossover, mutation and elitism (the `[evolution]` keys) act on a score instead of the
+/// fitness: novelty, the mean Euclidean distance of an individual's behaviour to its `k`
+/// nearest neighbours among the rest of its generation and an archive of past behaviours.
+/// A behaviour is the individual's `[behaviour]` measures named by `descriptors`, each scaled
+/// from [min, max] to [0, 1] (values outside are clamped). With `fitness_weight` w the score
+/// is (1 − w) · novelty's rank + w · fitness's rank, each rank scaled to [0, 1].
+///
+/// ```toml
+/// [behaviour]
+/// measures = ["distinct_food", "food_types"]
+///
+/// [evolution]
+/// algorithm = "novelty"
+///
+/// [evolution.novelty]
+/// descriptors = [
+///     { measure = "distinct_food", min = 0, max = 20 },
+///     { measure = "food_types", min = 0, max = 4 },
+/// ]
+/// k = 15                        # neighbours
+/// archive_probability = 0.1     # or archive_threshold = 0.05
+/// archive_size = 500            # the oldest entry leaves when full
+/// fitness_weight = 0.0
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct NoveltySpec {
+    /// `descriptors`: the behaviour space, one `{ measure, min, max }` per dimension
+    /// (required with novelty; each a `[behaviour]` measure, at most once).
+    pub descriptors: Vec<DescriptorSpec>,
+    /// `k`: how many nearest neighbours novelty averages over (default: 15; at least 1, at
+    /// most population − 1 + archive_size, the most neighbours an individual can have).
+    pub k: usize,
+    /// `archive_threshold`: an individual enters the archive when its novelty is above this
+    /// distance (in scaled descriptor units); not with `archive_probability` (default: absent).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub archive_threshold: Option<f64>,
+    /// `archive_probability`: each individual enters the archive with this chance (drawn from
+    /// the novelty stream of its generation, in index order; default: 0.1 when no
+    /// `archive_threshold` is given; 0 to 1).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub archive_probability: Option<f64>,
+    /// `archive_size`: the archive's capacity; when full, the oldest entry leaves for each
+    /// new one (default: 500; 0 to 100 000).
+    pub archive_size: usize,
+    /// `fitness_weight`: w in score = (1 − w) · novelty rank + w · fitness rank, ranks
+    /// scaled to [0, 1] (default: 0, pure novelty; 0 to 1).
+    pub fitness_weight: f64,
+}
+
+/// The largest novelty archive accepted (every individual is compared with every entry).
+pub const MAX_NOVELTY_ARCHIVE: usize = 100_000;
+
+/// `archive_probability` when neither it nor `archive_threshold` is given.
+pub const DEFAULT_ARCHIVE_PROBABILITY: f64 = 0.1;
+
+/// One dimension of a behaviour space: a `[behaviour]` measure and the range mapped to [0, 1].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct DescriptorSpec {
+    /// `measure`: the `[behaviour]` measure, by name (e.g. `"distinct_food"`).
+    pub measure: Measure,
+    /// `min`: the measure's value mapped to 0 (below: clamped).
+    pub min: f64,
+    /// `max`: the measure's value mapped to 1 (above: clamped); greater than `min`.
+    pub max: f64,
+}
+
+impl Default for NoveltySpec {
+    fn default() -> Self {
+        NoveltySpec {
+            descriptors: Vec::new(),
+            k: 15,
+            archive_threshold: None,
+            archive_probability: None,
+            archive_size: 500,
+            fitness_weight: 0.0,
+        }
+    }
+}
+
+impl NoveltySpec {
+    /// Checks the table for a population of `population`; keys start with
+    /// `evolution.novelty.` (the descriptors' measures are checked against `[behaviour]` by
+    /// [`EvolutionSpec::validate_descriptors`]).
+    pub fn validate(&self, population: usize) -> Valid {
+        let key = "evolution.novelty.descriptors";
+        if self.descriptors.is_empty() {
+            return Err(InvalidValue::new(
+                key,
+                "novelty search needs at least one descriptor, e.g. \
+                 descriptors = [{ measure = \"distinct_food\", min = 0, max = 20 }] \
+                 (a measure of [behaviour] measures)",
+            ));
+        }
+        for (i, d) in self.descriptors.iter().enumerate() {
+            let name = d.measure.name();
+            if !(d.min.is_finite() && d.max.is_finite()) || d.min >= d.max {
+                return Err(InvalidValue::new(
+                    key,
+                    format!(
+                        "the range of `{name}` must have min < max (both finite), got min = {} and max = {}",
+                        d.min, d.max
+                    ),
+                ));
+            }
+            if self.descriptors[..i].iter().any(|e| e.measure == d.measure) {
+                return Err(InvalidValue::new(key, format!("names `{name}` twice")));
+            }
+        }
+        count_within(
+            "evolution.novelty.archive_size",
+            self.archive_size as u64,
+            0,
+            MAX_NOVELTY_ARCHIVE as u64,
+            "limit: every individual is compared with every entry",
+        )?;
+        let pool = population - 1 + self.archive_size;
+        if self.k == 0 || self.k > pool {
+            return Err(InvalidValue::new(
+                "evolution.novelty.k",
+                format!(
+                    "must be from 1 to the most neighbours an individual can have, population − 1 + \
+                     archive_size = {} − 1 + {} = {pool}, got {}",
+                    population, self.archive_size, self.k
+                ),
+            ));
+        }
+        match (self.archive_threshold, self.archive_probability) {
+            (Some(_), Some(_)) => {
+                return Err(InvalidValue::new(
+                    "evolution.novelty.archive_probability",
+                    "cannot be given with archive_threshold: an individual enters the archive \
+                     either by chance or by its novelty; remove one",
+                ))
+            }
+            (Some(t), None) => non_negative("evolution.novelty.archive_threshold", t)?,
+            (None, Some(p)) => probability("evolution.novelty.archive_probability", p)?,
+            (None, None) => {}
+        }
+        within(
+            "evolution.novelty.fitness_weight",
+            self.fitness_weight,
+            0.0,
+            1.0,
+        )
     }
 }

@@ -120,6 +120,24 @@ fn base_table(path: &str) -> toml::Table {
             toml::Value::from("sep-cma-es"),
         );
     }
+    // `[evolution.novelty]` only by novelty search, which needs a descriptor.
+    if path.starts_with("evolution.novelty.") {
+        set_path(&mut t, "evolution.algorithm", toml::Value::from("novelty"));
+        set_path(
+            &mut t,
+            "behaviour.measures",
+            toml::Value::try_from(["ticks_alive"]).unwrap(),
+        );
+        let descriptor: toml::Value =
+            toml::from_str::<toml::Table>("measure = \"ticks_alive\"\nmin = 0.0\nmax = 100.0")
+                .unwrap()
+                .into();
+        set_path(
+            &mut t,
+            "evolution.novelty.descriptors",
+            toml::Value::Array(vec![descriptor]),
+        );
+    }
     t
 }
 

@@ -11,6 +11,7 @@ mod fitness_terms_and_measures;
 mod genetic_algorithm;
 mod jobs_counted_within_a_generation;
 mod lockstep_vs_single_trials;
+mod novelty;
 mod overflowing_brains;
 mod pgpe;
 mod predator_ends_life;

@@ -118,11 +118,45 @@ fn ask_and_tell_give_the_genomes_the_ga_and_pgpe_gave_before_the_trait() {
     );
 }
 
+/// Novelty search's generation 3 of tiny-novelty.toml and its archive then, pinned (values
+/// from this test's first run, on the commit that added novelty search), so that a change to
+/// the draws, the scores or the archive shows.
+#[test]
+fn novelty_search_gives_its_pinned_genomes_and_archive() {
+    let e = load("tiny-novelty.toml");
+    let mut search = search::of(&e, &e.topology());
+    let third = drive(&e, search.as_mut(), 3);
+    let Some(SearchState::Novelty(state)) = search.state() else {
+        panic!("novelty saves its archive");
+    };
+    let behaviours: Vec<f64> = state
+        .archive
+        .iter()
+        .flat_map(|a| a.behaviour.clone())
+        .collect();
+    let got = (
+        hash(third.individuals.iter().map(|i| i.genome.clone())),
+        state.archive.len(),
+        hash_values(&behaviours),
+    );
+    assert_eq!(
+        got,
+        (0x762e_5a7b_6a59_8e19, 10, 0xcbac_e1f1_5d63_212e),
+        "{got:x?}"
+    );
+    assert_eq!(births(&third)[0].0, "elite");
+}
+
 /// A checkpoint holds the state that sampled the last generation; restoring it into a new
 /// search and telling it that generation gives the next one, as a run never stopped.
 #[test]
 fn the_state_round_trips_through_checkpoint_json_and_resumes_exactly() {
-    for name in ["tiny.toml", "tiny-pgpe.toml", "tiny-sep-cma-es.toml"] {
+    for name in [
+        "tiny.toml",
+        "tiny-pgpe.toml",
+        "tiny-sep-cma-es.toml",
+        "tiny-novelty.toml",
+    ] {
         let experiment = load(name);
         let topology = experiment.topology();
         let mut whole = search::of(&experiment, &topology);
@@ -178,6 +212,7 @@ fn pgpe_names_its_centre_as_champion_candidate_and_the_ga_none() {
         ("tiny-pgpe.toml", true),
         ("tiny-sep-cma-es.toml", true),
         ("tiny.toml", false),
+        ("tiny-novelty.toml", false),
     ] {
         let experiment = load(name);
         let search = search::of(&experiment, &experiment.topology());
@@ -234,6 +269,7 @@ fn each_search_describes_itself_and_its_first_genomes_are_its_first_ask() {
         ("tiny.toml", "genetic algorithm"),
         ("tiny-pgpe.toml", "PGPE"),
         ("tiny-sep-cma-es.toml", "sep-CMA-ES"),
+        ("tiny-novelty.toml", "novelty search"),
     ] {
         let experiment = load(name);
         let search = search::of(&experiment, &experiment.topology());

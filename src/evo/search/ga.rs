@@ -38,6 +38,23 @@ impl Ga {
     }
 }
 
+impl Ga {
+    /// Tells the GA the evaluated generation with `scores` (one per individual, higher is
+    /// better) in place of its fitness: what selection and elitism then rank by. Novelty
+    /// search tells its novelty scores this way.
+    pub(super) fn tell_scores(&mut self, evaluated: &EvaluatedGeneration, scores: Vec<f64>) {
+        self.parents = Some((
+            evaluated.generation,
+            evaluated
+                .individuals
+                .iter()
+                .map(|i| i.genome.clone())
+                .collect(),
+            scores,
+        ));
+    }
+}
+
 impl Search for Ga {
     fn name(&self) -> &'static str {
         "ga"
@@ -78,15 +95,7 @@ impl Search for Ga {
     }
 
     fn tell(&mut self, evaluated: &EvaluatedGeneration) {
-        self.parents = Some((
-            evaluated.generation,
-            evaluated
-                .individuals
-                .iter()
-                .map(|i| i.genome.clone())
-                .collect(),
-            evaluated.selection_fitness(),
-        ));
+        self.tell_scores(evaluated, evaluated.selection_fitness());
     }
 
     fn state(&self) -> Option<SearchState> {

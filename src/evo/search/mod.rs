@@ -31,11 +31,16 @@
 //!   `"search": {"sep_cma_es": {...}}`.
 //! - [`cma_es::CmaEs`], CMA-ES with a full covariance (`algorithm = "cma-es"`): saves
 //!   [`cma_es::CmaState`] as `"search": {"cma_es": {...}}`.
+//! - [`novelty::Novelty`], novelty search, the GA ranking by novelty in behaviour space
+//!   ([`descriptors`]; `algorithm = "novelty"`): saves its archive as `"search":
+//!   {"novelty": {...}}`.
 //!
 //! docs/search.md, "Adding a search algorithm: a checklist", says how to add another.
 
 pub mod cma_es;
+pub mod descriptors;
 pub mod ga;
+pub mod novelty;
 pub mod pgpe;
 pub mod sep_cma_es;
 
@@ -60,6 +65,8 @@ pub enum SearchState {
     SepCmaEs(sep_cma_es::SepCmaState),
     /// CMA-ES's mean, step size, covariance, paths and last eigendecomposition.
     CmaEs(cma_es::CmaState),
+    /// Novelty search's archive.
+    Novelty(novelty::NoveltyState),
 }
 
 impl SearchState {
@@ -69,6 +76,7 @@ impl SearchState {
             SearchState::Pgpe(_) => "pgpe",
             SearchState::SepCmaEs(_) => "sep-cma-es",
             SearchState::CmaEs(_) => "cma-es",
+            SearchState::Novelty(_) => "novelty",
         }
     }
 }
@@ -164,6 +172,7 @@ pub fn of(experiment: &Experiment, topology: &Topology) -> Box<dyn Search> {
         Algorithm::Pgpe => Box::new(pgpe::Pgpe::new(experiment, parameters)),
         Algorithm::SepCmaEs => Box::new(sep_cma_es::SepCmaEs::new(experiment, parameters)),
         Algorithm::CmaEs => Box::new(cma_es::CmaEs::new(experiment, parameters)),
+        Algorithm::Novelty => Box::new(novelty::Novelty::new(experiment, parameters)),
     }
 }
 

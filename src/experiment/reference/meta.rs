@@ -6,7 +6,10 @@
 //! Limits are the code's own constants, so a changed limit changes the page.
 
 use crate::brain::spec::{MAX_HIDDEN_LAYERS, MAX_SUBSTEPS, MAX_UNITS};
-use crate::experiment::evolution::{MAX_GENERATIONS, MAX_MAGNITUDE, MAX_POPULATION};
+use crate::experiment::evolution::{
+    DEFAULT_ARCHIVE_PROBABILITY, MAX_GENERATIONS, MAX_MAGNITUDE, MAX_NOVELTY_ARCHIVE,
+    MAX_POPULATION,
+};
 use crate::experiment::tables::{MAX_CREATURE_TICKS_PER_GENERATION, MAX_TICKS, MAX_TRIALS};
 use crate::experiment::MAX_GENERATION_PARAMETERS;
 use crate::experiment::{Algorithm, Balance, GoalAt};
@@ -356,6 +359,16 @@ pub fn keys() -> Vec<KeyMeta> {
         k("MutationSpec.tau", "", ge0(), GA),
         k("MutationSpec.min_sigma", "parameter units", ge0().note("at most sigma"), GA),
         k("EvolutionSpec.cma_es", "", any().note("only with algorithm = \"sep-cma-es\" or \"cma-es\""), GA),
+        k("EvolutionSpec.novelty", "", any().note("only with algorithm = \"novelty\""), GA),
+        k("NoveltySpec.descriptors", "", any().note("at least one; each a [behaviour] measure, at most once"), GA),
+        k("NoveltySpec.k", "individuals", Range::ge(1.0).note("at most population − 1 + archive_size"), GA),
+        k("NoveltySpec.archive_threshold", "scaled descriptor units", ge0().note("not with archive_probability"), GA),
+        kd("NoveltySpec.archive_probability", "", unit01(), GA, DEFAULT_ARCHIVE_PROBABILITY),
+        k("NoveltySpec.archive_size", "entries", Range::between(0.0, MAX_NOVELTY_ARCHIVE as f64), GA),
+        k("NoveltySpec.fitness_weight", "", unit01(), GA),
+        k("DescriptorSpec.measure", "", any().note("one of [behaviour] measures"), GA),
+        k("DescriptorSpec.min", "the measure's unit", any().note("below max"), GA),
+        k("DescriptorSpec.max", "the measure's unit", any().note("above min"), GA),
         k("CmaEsSpec.sigma_init", "parameter units", Range::gt(0.0).le(MAX_MAGNITUDE), GA),
         k("PgpeSpec.center_learning_rate", "parameter units", Range::gt(0.0).le(MAX_MAGNITUDE), GA),
         k("PgpeSpec.max_speed", "parameter units", Range::gt(0.0).le(MAX_MAGNITUDE), GA),

@@ -1,0 +1,72 @@
+//! Behaviour descriptors: an individual's `[behaviour]` measures, as named by a search's
+//! `descriptors`, each scaled from its [min, max] to [0, 1], so that distances in behaviour
+//! space weigh every dimension alike (novelty search; a grid archive would bin the same
+//! vector).
+
+use crate::evo::evaluate::Evaluation;
+use crate::experiment::evolution::DescriptorSpec;
+use crate::experiment::tables::Measure;
+
+/// A behaviour space: where each descriptor's measure sits in an evaluation's `measures`
+/// and the range that maps to [0, 1].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Descriptors {
+    /// Per dimension: (index into `Evaluation::measures`, min, max).
+    dimensions: Vec<(usize, f64, f64)>,
+}
+
+impl Descriptors {
+    /// The space of `descriptors` over an experiment computing `measures` (its
+    /// `[behaviour] measures`, in order). A descriptor whose measure is not computed reads 0
+    /// (validation refuses such a file, so only a checkpoint of another experiment meets it).
+    pub fn new(descriptors: &[DescriptorSpec], measures: &[Measure]) -> Descriptors {
+        Descriptors {
+            dimensions: descriptors
+                .iter()
+                .map(|d| {
+                    let at = measures
+                        .iter()
+                        .position(|m| *m == d.measure)
+                        .unwrap_or(usize::MAX);
+                    (at, d.min, d.max)
+                })
+                .collect(),
+        }
+    }
+
+    /// How many dimensions.
+    pub fn len(&self) -> usize {
+        self.dimensions.len()
+    }
+
+    /// True without dimensions.
+    pub fn is_empty(&self) -> bool {
+        self.dimensions.is_empty()
+    }
+
+    /// The behaviour of `evaluation`: each measure scaled to [0, 1] by its range and clamped
+    /// there (a missing or non-finite value reads as the range's low end, 0).
+    pub fn of(&self, evaluation: &Evaluation) -> Vec<f64> {
+        self.dimensions
+            .iter()
+            .map(|&(at, min, max)| {
+                let x = evaluation.measures.get(at).copied().unwrap_or(min);
+                let scaled = (x - min) / (max - min);
+                if scaled.is_finite() {
+                    scaled.clamp(0.0, 1.0)
+                } else {
+                    0.0
+                }
+            })
+            .collect()
+    }
+}
+
+/// Euclidean distance between two behaviours of the same length, summed in dimension order.
+pub fn distance(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
+}
