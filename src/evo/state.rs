@@ -1,6 +1,6 @@
 //! The state of an evolution between generations: the last evaluated generation, the best
 //! individual ever seen, and how a generation is evaluated and summarised. How the next
-//! generation is made is the search's ([`crate::evo::search`], whose state, [`SearchState`], a
+//! generation is made is the search's ([`crate::evo::search`], whose state, [`crate::evo::search::SearchState`], a
 //! checkpoint also holds). Pure: no files, no clocks; the run module saves and restores this
 //! state.
 
@@ -9,7 +9,6 @@ use crate::brain::spec::Topology;
 use crate::evo::evaluate::{evaluate_population_on, Evaluation, Evaluator, JobDone, ThisProcess};
 use crate::evo::life::EvaluationError;
 use crate::evo::lineage::Lineage;
-use crate::evo::search;
 use crate::evo::stats::FitnessStats;
 use crate::experiment::Experiment;
 use crate::seed::Generation;
@@ -119,20 +118,6 @@ impl EvaluatedGeneration {
             .map(|i| i.evaluation.selection_fitness())
             .collect()
     }
-}
-
-pub use crate::evo::search::ga::{first_population, offspring, offspring_with_lineage};
-pub use crate::evo::search::{SearchState, Unevaluated};
-
-/// Generation 0 of the experiment's search ([`crate::evo::search::of`]'s first ask).
-pub fn first_generation(experiment: &Experiment, topology: &Topology) -> Unevaluated {
-    search::of(experiment, topology).ask()
-}
-
-/// The first `n` genomes of generation 0 of the experiment's search (see
-/// [`crate::evo::search::Search::first_genomes`]).
-pub fn first_genomes(experiment: &Experiment, topology: &Topology, n: usize) -> Vec<Genome> {
-    search::of(experiment, topology).first_genomes(n)
 }
 
 /// Evaluates `population` as generation `generation` (in parallel on the current rayon pool).

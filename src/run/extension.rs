@@ -10,12 +10,9 @@
 //! what the final checkpoint records ([`EndOfRunValidation`]); the second by removing such a
 //! checkpoint once the next checkpoint is written ([`superseded_checkpoint`]).
 
-use super::{CheckpointPayload, RunError};
 use crate::evo::validation::{validation_columns, ValidatedChampion};
 use crate::experiment::Experiment;
-use crate::record::checkpoint;
 use serde::{Deserialize, Serialize};
-use std::path::Path;
 
 /// What a run's end-of-run validation changed: recorded in the final checkpoint when the last
 /// generation was validated only because it was the last (not on `[validation] every`'s
@@ -59,36 +56,6 @@ pub fn rewind(
         validated_best,
         last_extra: extra,
     }
-}
-
-/// Rewrites the checkpoints in `dir` older than generation `last` that were written for the
-/// same experiment with another planned length, with `experiment`'s length: a checkpoint
-/// records the run's plan, and a run planned this long from the start wrote them with it.
-/// A checkpoint that does not read back, or belongs to another configuration (before a
-/// `--allow-config-change`), is left as it is.
-pub fn replan_older_checkpoints(
-    dir: &Path,
-    last: u64,
-    experiment: &Experiment,
-) -> Result<(), RunError> {
-    let generations = experiment.evolution.generations;
-    let hash = experiment.config_hash();
-    let listed = checkpoint::list_checkpoints(dir).map_err(|error| RunError::Io {
-        path: dir.to_path_buf(),
-        error,
-    })?;
-    for (g, path) in listed.into_iter().filter(|(g, _)| *g < last) {
-        let Ok(mut old) = checkpoint::load::<CheckpointPayload>(&path, Some(&hash)) else {
-            continue;
-        };
-        if old.payload.experiment.evolution.generations == generations {
-            continue;
-        }
-        old.payload.experiment.evolution.generations = generations;
-        // `keep` as large as can be: this rewrite prunes nothing.
-        checkpoint::write_checkpoint(dir, &hash, g, &old.payload, usize::MAX)?;
-    }
-    Ok(())
 }
 
 /// Is the checkpoint of generation `older`, found when the checkpoint of `generation` is

@@ -12,10 +12,9 @@ mod champions;
 use crate::brain::spec::Topology;
 use crate::evo::evaluate::{evaluation_jobs, Evaluator};
 use crate::evo::life::EvaluationError;
-use crate::evo::search::{self, Search};
+use crate::evo::search::{self, Search, SearchState, Unevaluated};
 use crate::evo::state::{
-    evaluate_on, evaluate_watched, Champion, EvaluatedGeneration, GenerationSummary, SearchState,
-    Unevaluated,
+    evaluate_on, evaluate_watched, Champion, EvaluatedGeneration, GenerationSummary,
 };
 use crate::evo::validation::{self, ValidatedChampion};
 use crate::experiment::diff::changed_keys;
@@ -870,7 +869,7 @@ pub fn resume_with(
     let extending = experiment.evolution.generations > last_generation + 1;
     let replanned = payload.experiment.evolution.generations != experiment.evolution.generations;
     if replanned {
-        extension::replan_older_checkpoints(&cdir, last_generation, &experiment)?;
+        replan_older_checkpoints(&cdir, last_generation, &experiment)?;
     }
     let rewound = match &payload.end_of_run_validation {
         Some(end) if extending => {
@@ -1295,6 +1294,36 @@ impl Loop {
         self.write_best()?;
         self.write_checkpoint(last)
     }
+}
+
+/// Rewrites the checkpoints in `dir` older than generation `last` that were written for the
+/// same experiment with another planned length, with `experiment`'s length: a checkpoint
+/// records the run's plan, and a run planned this long from the start wrote them with it.
+/// A checkpoint that does not read back, or belongs to another configuration (before a
+/// `--allow-config-change`), is left as it is.
+pub fn replan_older_checkpoints(
+    dir: &Path,
+    last: u64,
+    experiment: &Experiment,
+) -> Result<(), RunError> {
+    let generations = experiment.evolution.generations;
+    let hash = experiment.config_hash();
+    let listed = checkpoint::list_checkpoints(dir).map_err(|error| RunError::Io {
+        path: dir.to_path_buf(),
+        error,
+    })?;
+    for (g, path) in listed.into_iter().filter(|(g, _)| *g < last) {
+        let Ok(mut old) = checkpoint::load::<CheckpointPayload>(&path, Some(&hash)) else {
+            continue;
+        };
+        if old.payload.experiment.evolution.generations == generations {
+            continue;
+        }
+        old.payload.experiment.evolution.generations = generations;
+        // `keep` as large as can be: this rewrite prunes nothing.
+        checkpoint::write_checkpoint(dir, &hash, g, &old.payload, usize::MAX)?;
+    }
+    Ok(())
 }
 
 /// Removes `path`; a file already gone is fine.

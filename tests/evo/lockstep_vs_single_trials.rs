@@ -8,7 +8,7 @@
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::evaluate::{evaluate_group, evaluate_population, run_trial, Evaluation};
 use berry_evolve::evo::lockstep::{self, CHUNK_TRIALS};
-use berry_evolve::evo::state::first_population;
+use berry_evolve::evo::search::ga::first_population;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::{Generation, TrialIndex};
 use std::path::Path;

@@ -8,7 +8,8 @@
 //! genomes also breed without producing an infinite parameter.
 
 use berry_evolve::brain::Brain;
-use berry_evolve::evo::state::{evaluate, first_population};
+use berry_evolve::evo::search::ga::first_population;
+use berry_evolve::evo::state::evaluate;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::checkpoint;
 use berry_evolve::run::{self, CheckpointPayload, RunOptions, Silent};

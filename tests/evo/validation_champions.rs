@@ -5,7 +5,8 @@
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::evaluate::{evaluate_in_worlds, Evaluation};
 use berry_evolve::evo::life::trial_stream;
-use berry_evolve::evo::state::{first_population, EvaluatedGeneration, Individual};
+use berry_evolve::evo::search::ga::first_population;
+use berry_evolve::evo::state::{EvaluatedGeneration, Individual};
 use berry_evolve::evo::validation::{
     is_due, top_candidates, top_individuals, validate, validation_worlds,
 };

@@ -214,3 +214,14 @@ pub(crate) fn centre_candidate(evaluated: &EvaluatedGeneration) -> Vec<Candidate
         training_metabolism: Some(centre.evaluation.metabolism),
     }]
 }
+
+/// Generation 0 of the experiment's search ([`of`]'s first ask).
+pub fn first_generation(experiment: &Experiment, topology: &Topology) -> Unevaluated {
+    of(experiment, topology).ask()
+}
+
+/// The first `n` genomes of generation 0 of the experiment's search (see
+/// [`Search::first_genomes`]).
+pub fn first_genomes(experiment: &Experiment, topology: &Topology, n: usize) -> Vec<Genome> {
+    of(experiment, topology).first_genomes(n)
+}
