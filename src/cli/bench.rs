@@ -475,7 +475,7 @@ fn time_evolution(
     let pool = pool(threads)?;
     // The experiment's own search, as a run drives it: ask, evaluate, tell.
     let t = Instant::now();
-    let mut search = search::of(experiment, &topology);
+    let mut search = search::factory::of(experiment, &topology);
     let mut population = pool.install(|| search.ask());
     let mut timing = EvolutionTiming {
         eval_seconds: 0.0,
@@ -680,7 +680,7 @@ fn simulator(source: &Source, args: &BenchArgs, repeat: u32) -> anyhow::Result<S
 /// The evolution figures: `repeat` rounds of `generations` generations on 1 then 2 threads.
 fn evolution(source: &Source, generations: u64, repeat: u32) -> anyhow::Result<EvolutionFigures> {
     let experiment = &source.experiment;
-    let search = search::of(experiment, &experiment.topology());
+    let search = search::factory::of(experiment, &experiment.topology());
     let per_generation = search.evaluated_per_generation() as f64
         * experiment.evaluation.trials as f64
         * experiment.evaluation.ticks as f64;

@@ -131,7 +131,7 @@ pub fn run(args: InspectArgs) -> anyhow::Result<()> {
 
 /// The algorithm in words.
 fn algorithm(experiment: &Experiment) -> &'static str {
-    search::of(experiment, &experiment.topology()).describe()
+    search::factory::of(experiment, &experiment.topology()).describe()
 }
 
 /// The text output.
@@ -224,7 +224,7 @@ fn report<'a>(
         experiment: &experiment.name,
         seed: experiment.seed,
         config_hash: experiment.config_hash(),
-        algorithm: search::of(experiment, &experiment.topology()).name(),
+        algorithm: search::factory::of(experiment, &experiment.topology()).name(),
         observation: layout
             .groups()
             .iter()

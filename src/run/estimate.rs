@@ -58,7 +58,7 @@ impl Workload {
         let total = experiment.evolution.generations;
         let count = generations.end.saturating_sub(generations.start);
         let e = &experiment.evaluation;
-        let search = search::of(experiment, &experiment.topology());
+        let search = search::factory::of(experiment, &experiment.topology());
         let individuals = search.evaluated_per_generation() as u64;
         let per_generation = individuals.saturating_mul(e.trials).saturating_mul(e.ticks);
         let v = &experiment.validation;
@@ -227,7 +227,7 @@ fn measure(
 ) -> Result<Calibration, CalibrationError> {
     let topology = experiment.topology();
     let k = experiment.evaluation.group_size.max(1) as usize;
-    let search = search::of(experiment, &topology);
+    let search = search::factory::of(experiment, &topology);
     let all = search.evaluated_per_generation();
     let groups = (all / k).max(1);
     let genomes = search.first_genomes(groups * k);

@@ -506,7 +506,7 @@ pub fn start(
     let champions = ChampionsLog::create(&dir.join(CHAMPIONS_FILE))
         .map_err(|e| output_failed(dir, e.into()))?;
     let topology = experiment.topology();
-    let search = search::of(&experiment, &topology);
+    let search = search::factory::of(&experiment, &topology);
     let population = search.ask();
     drive(
         Loop {
@@ -928,7 +928,7 @@ pub fn resume_with(
         progress,
     )?;
     let topology = experiment.topology();
-    let mut search = search::of(&experiment, &topology);
+    let mut search = search::factory::of(&experiment, &topology);
     search.restore(payload.search.as_ref(), payload.last.generation);
     let mut state = Loop {
         topology,
@@ -1125,8 +1125,8 @@ fn check_payload_shape(path: &Path, payload: &CheckpointPayload) -> Result<(), R
         ));
     }
     let parameters = experiment.topology().parameter_count();
-    if let Some(problem) =
-        search::of(&experiment, &experiment.topology()).state_problem(payload.search.as_ref())
+    if let Some(problem) = search::factory::of(&experiment, &experiment.topology())
+        .state_problem(payload.search.as_ref())
     {
         return refuse(problem);
     }

@@ -5,7 +5,7 @@
 
 use berry_evolve::brain::{Brain, BrainController};
 use berry_evolve::evo::lockstep::{Lockstep, CHUNK_TRIALS};
-use berry_evolve::evo::state::first_population;
+use berry_evolve::evo::search::ga::first_population;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
 use berry_evolve::sim::world::World;

@@ -2,7 +2,7 @@
 //! and object of the world and the creature's path; the same for every shipped experiment;
 //! bad input refused naming the file.
 
-use berry_evolve::evo::state::first_population;
+use berry_evolve::evo::search::ga::first_population;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::genome_file::{GenomeFile, Origin};
 use std::path::{Path, PathBuf};

@@ -9,7 +9,7 @@
 //! Without Chromium the test says so and passes, unless `BERRY_REQUIRE_CHROMIUM=1` (set by
 //! `.ci/run`), when it fails.
 
-use berry_evolve::evo::state::first_population;
+use berry_evolve::evo::search::ga::first_population;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::genome_file::{GenomeFile, Origin};
 use std::path::{Path, PathBuf};

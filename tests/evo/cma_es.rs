@@ -7,7 +7,7 @@
 use crate::cli_common::{fixture, read, run_ok};
 
 use berry_evolve::evo::evaluate::Evaluation;
-use berry_evolve::evo::search::cma_es::CmaEs;
+use berry_evolve::evo::search::cma_es::{CmaEs, CmaState};
 use berry_evolve::evo::search::{self, Search, SearchState};
 use berry_evolve::evo::state::{evaluate, EvaluatedGeneration, Individual};
 use berry_evolve::experiment::Experiment;
@@ -176,7 +176,7 @@ fn cma_es_refuses_brains_it_cannot_afford_and_names_sep_cma_es() {
 fn cma_es_state_round_trips_and_a_restored_search_continues_exactly() {
     let experiment = Experiment::load(&fixture("tiny-cma-es.toml")).unwrap();
     let topology = experiment.topology();
-    let mut whole = search::of(&experiment, &topology);
+    let mut whole = search::factory::of(&experiment, &topology);
     assert_eq!((whole.name(), whole.describe()), ("cma-es", "CMA-ES"));
     let mut asked = whole.ask();
     for n in [1, 5, asked.genomes.len()] {
@@ -202,7 +202,7 @@ fn cma_es_state_round_trips_and_a_restored_search_continues_exactly() {
         .iter()
         .flat_map(|i| i.genome.parameters.clone())
         .collect();
-    let Some(SearchState::CmaEs(theta)) = whole.state() else {
+    let Some(Ok(theta)) = whole.state().and_then(|s| s.read::<CmaState>("cma_es")) else {
         panic!("a cma-es state");
     };
     let numbers: Vec<f64> = [
@@ -224,7 +224,7 @@ fn cma_es_state_round_trips_and_a_restored_search_continues_exactly() {
     assert_eq!(read, whole.state());
     whole.tell(&second);
     let expected = whole.ask();
-    let mut resumed = search::of(&experiment, &topology);
+    let mut resumed = search::factory::of(&experiment, &topology);
     assert_eq!(resumed.state_problem(read.as_ref()), None);
     resumed.restore(read.as_ref(), 2);
     resumed.tell(&second);
@@ -235,12 +235,12 @@ fn cma_es_state_round_trips_and_a_restored_search_continues_exactly() {
     assert_eq!(candidates.len(), 1);
     assert_eq!(candidates[0].individual, Some(12), "the mean, individual λ");
 
-    let Some(SearchState::CmaEs(mut state)) = read else {
+    let Some(Ok(mut state)) = read.and_then(|s| s.read::<CmaState>("cma_es")) else {
         panic!("a cma-es state");
     };
     state.covariance[3].pop();
     let problem = resumed
-        .state_problem(Some(&SearchState::CmaEs(state)))
+        .state_problem(Some(&SearchState::of("cma_es", &state)))
         .unwrap();
     assert!(problem.contains("covariance"), "{problem}");
     assert!(resumed.state_problem(None).unwrap().contains("cma-es"));
@@ -371,7 +371,7 @@ fn cma_es_cost_per_generation() {
                 "{name} n = {n}, λ = {lambda}: {:.2} ms per generation over {generations}",
                 spent.as_secs_f64() * 1e3 / generations as f64
             );
-            if let Some(SearchState::CmaEs(state)) = search.state() {
+            if let Some(Ok(state)) = search.state().and_then(|s| s.read::<CmaState>("cma_es")) {
                 let start = Instant::now();
                 let _ = decompose(&state.covariance);
                 let one = start.elapsed();

@@ -471,7 +471,7 @@ threat_radius = 60.0
     );
     let topology = e.topology();
     assert!(lockstep::stateless(&topology));
-    let population = berry_evolve::evo::state::first_population(&e, &topology);
+    let population = berry_evolve::evo::search::ga::first_population(&e, &topology);
     let together = evaluate_population(&e, &topology, &population, Generation(1)).unwrap();
     let mut alone = Vec::new();
     for (g, genome) in population.iter().enumerate() {

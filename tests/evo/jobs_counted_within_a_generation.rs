@@ -6,7 +6,7 @@
 use berry_evolve::evo::evaluate::{
     evaluate_population, evaluate_population_watched, evaluation_jobs,
 };
-use berry_evolve::evo::search::{first_generation, first_genomes};
+use berry_evolve::evo::search::factory::{first_generation, first_genomes};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::Generation;
 use std::path::Path;

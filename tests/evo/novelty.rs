@@ -121,16 +121,19 @@ fn the_search_scales_descriptors_scores_by_novelty_and_keeps_a_bounded_archive()
          { measure = \"food_types\", min = 0, max = 2 }]\n\
          k = 2\narchive_threshold = 0.7\narchive_size = 2",
     ));
-    let mut s = search::of(&e, &e.topology());
+    let mut s = search::factory::of(&e, &e.topology());
     assert_eq!(s.name(), "novelty");
     let d = |generation, individual, behaviour: Vec<f64>| ArchiveEntry {
         generation,
         individual,
         behaviour,
     };
-    let before = SearchState::Novelty(NoveltyState {
-        archive: vec![d(3, 1, vec![0.0, 1.0])],
-    });
+    let before = SearchState::of(
+        "novelty",
+        &NoveltyState {
+            archive: vec![d(3, 1, vec![0.0, 1.0])],
+        },
+    );
     assert_eq!(s.state_problem(Some(&before)), None);
     s.restore(Some(&before), 4);
     // Scaled: A (0/10, 0/2), B (3/10, 0.8/2), C (10/10, 0/2); a value beyond max clamps.
@@ -145,9 +148,12 @@ fn the_search_scales_descriptors_scores_by_novelty_and_keeps_a_bounded_archive()
     s.tell(&generation);
     assert_eq!(
         s.state(),
-        Some(SearchState::Novelty(NoveltyState {
-            archive: vec![d(4, 0, vec![0.0, 0.0]), d(4, 2, vec![1.0, 0.0])],
-        }))
+        Some(SearchState::of(
+            "novelty",
+            &NoveltyState {
+                archive: vec![d(4, 0, vec![0.0, 0.0]), d(4, 2, vec![1.0, 0.0])],
+            },
+        ))
     );
     let next = s.ask();
     assert_eq!(
@@ -163,7 +169,7 @@ fn the_search_scales_descriptors_scores_by_novelty_and_keeps_a_bounded_archive()
         "descriptors = [{ measure = \"distinct_food\", min = 0, max = 10 }]\n\
          k = 2\narchive_probability = 0.5\narchive_size = 10",
     ));
-    let mut s = search::of(&e, &e.topology());
+    let mut s = search::factory::of(&e, &e.topology());
     s.tell(&generation);
     let mut rng = stream(
         e.seed(),
@@ -173,14 +179,17 @@ fn the_search_scales_descriptors_scores_by_novelty_and_keeps_a_bounded_archive()
         TrialIndex(0),
     );
     let expected: Vec<u64> = (0..3).filter(|_| unit(&mut rng) < 0.5).collect();
-    let Some(SearchState::Novelty(state)) = s.state() else {
+    let Some(Ok(state)) = s.state().and_then(|s| s.read::<NoveltyState>("novelty")) else {
         panic!("novelty saves its archive")
     };
     let got: Vec<u64> = state.archive.iter().map(|e| e.individual).collect();
     assert_eq!(got, expected);
-    let wrong = SearchState::Novelty(NoveltyState {
-        archive: vec![d(0, 0, vec![0.5, 0.5])],
-    });
+    let wrong = SearchState::of(
+        "novelty",
+        &NoveltyState {
+            archive: vec![d(0, 0, vec![0.5, 0.5])],
+        },
+    );
     let problem = s.state_problem(Some(&wrong)).unwrap();
     assert!(
         problem.contains("has 2 descriptors") && problem.contains("has 1"),

@@ -8,6 +8,8 @@ use crate::cli_common::{fixture, run_ok};
 
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::evaluate::Evaluation;
+use berry_evolve::evo::search::novelty::NoveltyState;
+use berry_evolve::evo::search::pgpe::PgpeState;
 use berry_evolve::evo::search::{self, Search, SearchState};
 use berry_evolve::evo::state::{evaluate, EvaluatedGeneration, Individual};
 use berry_evolve::experiment::Experiment;
@@ -81,7 +83,7 @@ fn births(generation: &EvaluatedGeneration) -> Vec<(String, Vec<u64>)> {
 #[test]
 fn ask_and_tell_give_the_genomes_the_ga_and_pgpe_gave_before_the_trait() {
     let ga = load("tiny.toml");
-    let mut search = search::of(&ga, &ga.topology());
+    let mut search = search::factory::of(&ga, &ga.topology());
     assert_eq!(search.name(), "ga");
     let third = drive(&ga, search.as_mut(), 3);
     assert_eq!(
@@ -96,7 +98,7 @@ fn ask_and_tell_give_the_genomes_the_ga_and_pgpe_gave_before_the_trait() {
     assert_eq!(search.state(), None, "the GA keeps no state of its own");
 
     let pgpe = load("tiny-pgpe.toml");
-    let mut search = search::of(&pgpe, &pgpe.topology());
+    let mut search = search::factory::of(&pgpe, &pgpe.topology());
     assert_eq!(search.name(), "pgpe");
     let third = drive(&pgpe, search.as_mut(), 3);
     assert_eq!(
@@ -107,7 +109,7 @@ fn ask_and_tell_give_the_genomes_the_ga_and_pgpe_gave_before_the_trait() {
     let lineage = births(&third);
     assert_eq!(lineage[0], ("pgpe_sample".to_string(), vec![]));
     assert_eq!(lineage[12], ("pgpe_centre".to_string(), vec![12]));
-    let Some(SearchState::Pgpe(state)) = search.state() else {
+    let Some(Ok(state)) = search.state().and_then(|s| s.read::<PgpeState>("pgpe")) else {
         panic!("PGPE saves its distribution");
     };
     let all: Vec<f64> = [state.centre, state.stdev, state.velocity].concat();
@@ -124,9 +126,12 @@ fn ask_and_tell_give_the_genomes_the_ga_and_pgpe_gave_before_the_trait() {
 #[test]
 fn novelty_search_gives_its_pinned_genomes_and_archive() {
     let e = load("tiny-novelty.toml");
-    let mut search = search::of(&e, &e.topology());
+    let mut search = search::factory::of(&e, &e.topology());
     let third = drive(&e, search.as_mut(), 3);
-    let Some(SearchState::Novelty(state)) = search.state() else {
+    let Some(Ok(state)) = search
+        .state()
+        .and_then(|s| s.read::<NoveltyState>("novelty"))
+    else {
         panic!("novelty saves its archive");
     };
     let behaviours: Vec<f64> = state
@@ -159,7 +164,7 @@ fn the_state_round_trips_through_checkpoint_json_and_resumes_exactly() {
     ] {
         let experiment = load(name);
         let topology = experiment.topology();
-        let mut whole = search::of(&experiment, &topology);
+        let mut whole = search::factory::of(&experiment, &topology);
         let second = drive(&experiment, whole.as_mut(), 2);
         // As the run loop writes it, then reads it back.
         let json = serde_json::to_string(&whole.state()).unwrap();
@@ -170,13 +175,16 @@ fn the_state_round_trips_through_checkpoint_json_and_resumes_exactly() {
             Some(state) => {
                 let key = state.algorithm().replace('-', "_");
                 assert!(json.starts_with(&format!("{{\"{key}\":{{")), "{json:.80}");
-                assert_eq!(state.algorithm(), search::of(&experiment, &topology).name());
+                assert_eq!(
+                    state.algorithm(),
+                    search::factory::of(&experiment, &topology).name()
+                );
             }
         }
         whole.tell(&second);
         let expected = whole.ask();
 
-        let mut resumed = search::of(&experiment, &topology);
+        let mut resumed = search::factory::of(&experiment, &topology);
         assert_eq!(resumed.state_problem(read.as_ref()), None, "{name}");
         resumed.restore(read.as_ref(), 2);
         assert_eq!(resumed.state(), read, "{name}: restored as saved");
@@ -215,7 +223,7 @@ fn pgpe_names_its_centre_as_champion_candidate_and_the_ga_none() {
         ("tiny-novelty.toml", false),
     ] {
         let experiment = load(name);
-        let search = search::of(&experiment, &experiment.topology());
+        let search = search::factory::of(&experiment, &experiment.topology());
         let asked = search.ask();
         let n = asked.genomes.len();
         // The first individual scores best; the last (PGPE's centre) second best.
@@ -272,7 +280,7 @@ fn each_search_describes_itself_and_its_first_genomes_are_its_first_ask() {
         ("tiny-novelty.toml", "novelty search"),
     ] {
         let experiment = load(name);
-        let search = search::of(&experiment, &experiment.topology());
+        let search = search::factory::of(&experiment, &experiment.topology());
         assert_eq!(search.describe(), words);
         assert_eq!(
             search.evaluated_per_generation(),
@@ -296,9 +304,9 @@ fn each_search_describes_itself_and_its_first_genomes_are_its_first_ask() {
 fn a_checkpoint_state_of_another_algorithm_or_shape_is_named() {
     let ga = load("tiny.toml");
     let pgpe = load("tiny-pgpe.toml");
-    let pgpe_search = search::of(&pgpe, &pgpe.topology());
+    let pgpe_search = search::factory::of(&pgpe, &pgpe.topology());
     let state = pgpe_search.state();
-    let ga_search = search::of(&ga, &ga.topology());
+    let ga_search = search::factory::of(&ga, &ga.topology());
     assert_eq!(
         ga_search.state_problem(state.as_ref()).as_deref(),
         Some("it holds a pgpe state, but its experiment uses the ga")
@@ -307,12 +315,12 @@ fn a_checkpoint_state_of_another_algorithm_or_shape_is_named() {
         pgpe_search.state_problem(None).as_deref(),
         Some("its experiment uses pgpe, but it holds no pgpe state")
     );
-    let Some(SearchState::Pgpe(mut short)) = state else {
+    let Some(Ok(mut short)) = state.and_then(|s| s.read::<PgpeState>("pgpe")) else {
         unreachable!()
     };
     short.centre.pop();
     let problem = pgpe_search
-        .state_problem(Some(&SearchState::Pgpe(short)))
+        .state_problem(Some(&SearchState::of("pgpe", &short)))
         .unwrap();
     assert!(problem.contains("the pgpe centre has"), "{problem}");
 }

@@ -7,7 +7,7 @@
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::evaluate::{aggregate, evaluate_group, evaluate_population};
 use berry_evolve::evo::life::TrialOutcome;
-use berry_evolve::evo::state::first_population;
+use berry_evolve::evo::search::ga::first_population;
 use berry_evolve::evo::trial::{run_trial, TickObserver, TrialId};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::{Generation, TrialIndex};

@@ -312,7 +312,7 @@ fn genome_loader_never_panics_on_random_or_mutated_json() {
     let mut rng = rng(0x9e);
     let experiment = Experiment::from_toml(&tiny(), Path::new("tiny.toml")).unwrap();
     let topology = experiment.topology();
-    let genome = berry_evolve::evo::state::first_population(&experiment, &topology).remove(0);
+    let genome = berry_evolve::evo::search::ga::first_population(&experiment, &topology).remove(0);
     let good = GenomeFile::new(&experiment, &genome, Default::default()).to_json();
     let origin = Path::new("fuzz.json");
     let load = |bytes: &[u8]| {

@@ -4,7 +4,7 @@
 //! trace written to CSV and JSON lines is the scored life.
 
 use crate::sim_common::{put, rng, Still};
-use berry_evolve::evo::state::first_population;
+use berry_evolve::evo::search::ga::first_population;
 use berry_evolve::evo::trial::{run_trial, TickObserver, TrialId};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::trace::files::{csv_paths, write_csv_files, write_jsonl};

@@ -64,7 +64,7 @@
 //! and d_j at the identity, the paths at 0.
 
 use super::sep_cma_es::{noises, MAX_VARIANCE, MIN_SIGMA};
-use super::{centre_candidate, improved_centre, Search, SearchState, Unevaluated};
+use super::{centre_candidate, improved_centre, own_state, Search, SearchState, Unevaluated};
 use crate::brain::genome::Genome;
 use crate::evo::lineage::{Birth, Lineage};
 use crate::evo::select::ranking;
@@ -573,27 +573,20 @@ impl Search for CmaEs {
     }
 
     fn state(&self) -> Option<SearchState> {
-        self.state.clone().map(SearchState::CmaEs)
+        self.state.as_ref().map(|s| SearchState::of("cma_es", s))
     }
 
     fn restore(&mut self, state: Option<&SearchState>, generation: u64) {
         self.generation = generation;
-        self.state = match state {
-            Some(SearchState::CmaEs(state)) => Some(state.clone()),
-            // Another algorithm's state, or none: `tell` centres on the best individual.
-            _ => None,
-        };
+        // Another algorithm's state, or none: `tell` centres on the best individual.
+        self.state = own_state::<CmaState>(state, "cma_es", "cma-es").ok();
         self.mean_parent = None;
     }
 
     fn state_problem(&self, state: Option<&SearchState>) -> Option<String> {
-        match state {
-            Some(SearchState::CmaEs(state)) => state.problem(self.parameters),
-            Some(other) => Some(format!(
-                "it holds a {} state, but its experiment uses cma-es",
-                other.algorithm()
-            )),
-            None => Some("its experiment uses cma-es, but it holds no cma-es state".into()),
+        match own_state::<CmaState>(state, "cma_es", "cma-es") {
+            Ok(state) => state.problem(self.parameters),
+            Err(why) => Some(why),
         }
     }
 

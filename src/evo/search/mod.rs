@@ -39,44 +39,95 @@
 
 pub mod cma_es;
 pub mod descriptors;
+pub mod factory;
 pub mod ga;
 pub mod novelty;
 pub mod pgpe;
 pub mod sep_cma_es;
 
 use crate::brain::genome::Genome;
-use crate::brain::spec::Topology;
 use crate::evo::lineage::Lineage;
 use crate::evo::state::{improved_champion, Champion, EvaluatedGeneration, GenerationSummary};
 use crate::evo::validation::Candidate;
-use crate::experiment::evolution::Algorithm;
-use crate::experiment::Experiment;
+use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
 /// What a search carries from one generation to the next besides the evaluated generation
-/// itself, as a checkpoint's `search` field holds it: one variant per algorithm that has
-/// such a state, named by the algorithm (`{"pgpe": {...}}`). The GA has none.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum SearchState {
-    /// PGPE's centre, standard deviations and ClipUp velocity.
-    Pgpe(pgpe::PgpeState),
-    /// sep-CMA-ES's mean, step size, variances and evolution paths.
-    SepCmaEs(sep_cma_es::SepCmaState),
-    /// CMA-ES's mean, step size, covariance, paths and last eigendecomposition.
-    CmaEs(cma_es::CmaState),
-    /// Novelty search's archive.
-    Novelty(novelty::NoveltyState),
+/// itself, as a checkpoint's `search` field holds it: the algorithm's own state under its
+/// tag (`{"pgpe": {...}}`, `{"sep_cma_es": {...}}`). Each search writes and reads its own
+/// state ([`SearchState::of`], [`SearchState::read`]), so this module names no algorithm and
+/// a new one needs no change here. The GA has none.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SearchState {
+    tag: String,
+    state: serde_json::Value,
 }
 
 impl SearchState {
-    /// The algorithm whose state this is, as `[evolution] algorithm` names it.
-    pub fn algorithm(&self) -> &'static str {
-        match self {
-            SearchState::Pgpe(_) => "pgpe",
-            SearchState::SepCmaEs(_) => "sep-cma-es",
-            SearchState::CmaEs(_) => "cma-es",
-            SearchState::Novelty(_) => "novelty",
+    /// `state` under `tag` (the algorithm's name in snake case, as the checkpoint shows it).
+    pub fn of<T: Serialize>(tag: &str, state: &T) -> SearchState {
+        SearchState {
+            tag: tag.to_string(),
+            // A state of plain numbers and vectors always converts; a failure would be a bug
+            // in the state type, so it shows as a state that does not read back.
+            state: serde_json::to_value(state).unwrap_or(serde_json::Value::Null),
+        }
+    }
+
+    /// The state under `tag`: `None` when this is another algorithm's state, `Err` when it is
+    /// this algorithm's but does not read as `T`.
+    pub fn read<T: DeserializeOwned>(&self, tag: &str) -> Option<Result<T, String>> {
+        (self.tag == tag).then(|| T::deserialize(&self.state).map_err(|e| e.to_string()))
+    }
+
+    /// The algorithm whose state this is, as `[evolution] algorithm` names it (`pgpe`,
+    /// `sep-cma-es`, ...).
+    pub fn algorithm(&self) -> String {
+        self.tag.replace('_', "-")
+    }
+}
+
+/// `state` as the search `tag`'s own state `T` (`name`: the algorithm as `[evolution]
+/// algorithm` names it), or why it is not: none, another algorithm's, or one that does not
+/// read as `T`. For the searches' `restore` and `state_problem`.
+pub fn own_state<T: DeserializeOwned>(
+    state: Option<&SearchState>,
+    tag: &str,
+    name: &str,
+) -> Result<T, String> {
+    let Some(state) = state else {
+        return Err(format!(
+            "its experiment uses {name}, but it holds no {name} state"
+        ));
+    };
+    match state.read::<T>(tag) {
+        None => Err(format!(
+            "it holds a {} state, but its experiment uses {name}",
+            state.algorithm()
+        )),
+        Some(Err(e)) => Err(format!("its {name} state does not read back: {e}")),
+        Some(Ok(t)) => Ok(t),
+    }
+}
+
+impl Serialize for SearchState {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = serializer.serialize_map(Some(1))?;
+        map.serialize_entry(&self.tag, &self.state)?;
+        map.end()
+    }
+}
+
+impl<'de> Deserialize<'de> for SearchState {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let map = serde_json::Map::<String, serde_json::Value>::deserialize(deserializer)?;
+        let mut entries = map.into_iter();
+        match (entries.next(), entries.next()) {
+            (Some((tag, state)), None) => Ok(SearchState { tag, state }),
+            _ => Err(serde::de::Error::custom(
+                "a search state is one algorithm's name with its state, e.g. {\"pgpe\": {...}}",
+            )),
         }
     }
 }
@@ -163,19 +214,6 @@ pub trait Search: Send + Sync {
     }
 }
 
-/// The experiment's search, new: [`Search::ask`] gives generation 0. The one place that
-/// matches on `[evolution] algorithm`.
-pub fn of(experiment: &Experiment, topology: &Topology) -> Box<dyn Search> {
-    let parameters = topology.parameter_count();
-    match experiment.evolution.algorithm {
-        Algorithm::Ga => Box::new(ga::Ga::new(experiment, parameters)),
-        Algorithm::Pgpe => Box::new(pgpe::Pgpe::new(experiment, parameters)),
-        Algorithm::SepCmaEs => Box::new(sep_cma_es::SepCmaEs::new(experiment, parameters)),
-        Algorithm::CmaEs => Box::new(cma_es::CmaEs::new(experiment, parameters)),
-        Algorithm::Novelty => Box::new(novelty::Novelty::new(experiment, parameters)),
-    }
-}
-
 /// The new champion of a distribution search whose solution is its centre (PGPE's centre,
 /// sep-CMA-ES's mean), evaluated as the generation's last individual: only that individual,
 /// and only when it beats `previous` strictly.
@@ -213,15 +251,4 @@ pub(crate) fn centre_candidate(evaluated: &EvaluatedGeneration) -> Vec<Candidate
         training_fitness: centre.evaluation.fitness,
         training_metabolism: Some(centre.evaluation.metabolism),
     }]
-}
-
-/// Generation 0 of the experiment's search ([`of`]'s first ask).
-pub fn first_generation(experiment: &Experiment, topology: &Topology) -> Unevaluated {
-    of(experiment, topology).ask()
-}
-
-/// The first `n` genomes of generation 0 of the experiment's search (see
-/// [`Search::first_genomes`]).
-pub fn first_genomes(experiment: &Experiment, topology: &Topology, n: usize) -> Vec<Genome> {
-    of(experiment, topology).first_genomes(n)
 }

@@ -29,7 +29,7 @@
 
 use super::descriptors::{distance, Descriptors};
 use super::ga::Ga;
-use super::{Search, SearchState, Unevaluated};
+use super::{own_state, Search, SearchState, Unevaluated};
 use crate::brain::genome::Genome;
 use crate::evo::state::EvaluatedGeneration;
 use crate::experiment::evolution::{NoveltySpec, DEFAULT_ARCHIVE_PROBABILITY};
@@ -294,46 +294,42 @@ impl Search for Novelty {
     }
 
     fn state(&self) -> Option<SearchState> {
-        Some(SearchState::Novelty(NoveltyState {
-            archive: self.archive.clone(),
-        }))
+        Some(SearchState::of(
+            "novelty",
+            &NoveltyState {
+                archive: self.archive.clone(),
+            },
+        ))
     }
 
     fn restore(&mut self, state: Option<&SearchState>, _generation: u64) {
         // Lenient (a changed experiment): keep the entries that fit, the newest within the
         // capacity; another algorithm's state starts an empty archive.
-        self.archive = match state {
-            Some(SearchState::Novelty(s)) => s
+        self.archive = match own_state::<NoveltyState>(state, "novelty", "novelty") {
+            Ok(s) => s
                 .archive
                 .iter()
                 .filter(|e| self.entry_problem(e).is_none())
                 .cloned()
                 .collect(),
-            _ => Vec::new(),
+            Err(_) => Vec::new(),
         };
         add_to_archive(&mut self.archive, Vec::new(), self.settings.archive_size);
     }
 
     fn state_problem(&self, state: Option<&SearchState>) -> Option<String> {
-        match state {
-            None => Some(
-                "it holds no novelty archive, but its experiment uses novelty search".to_string(),
-            ),
-            Some(SearchState::Novelty(s)) => {
-                if s.archive.len() > self.settings.archive_size {
-                    return Some(format!(
-                        "its novelty archive holds {} entries, more than [evolution.novelty] archive_size = {}",
-                        s.archive.len(),
-                        self.settings.archive_size
-                    ));
-                }
-                s.archive.iter().find_map(|e| self.entry_problem(e))
-            }
-            Some(other) => Some(format!(
-                "it holds a {} state, but its experiment uses novelty",
-                other.algorithm()
-            )),
+        let s = match own_state::<NoveltyState>(state, "novelty", "novelty") {
+            Ok(s) => s,
+            Err(why) => return Some(why),
+        };
+        if s.archive.len() > self.settings.archive_size {
+            return Some(format!(
+                "its novelty archive holds {} entries, more than [evolution.novelty] archive_size = {}",
+                s.archive.len(),
+                self.settings.archive_size
+            ));
         }
+        s.archive.iter().find_map(|e| self.entry_problem(e))
     }
 
     fn first_genomes(&self, n: usize) -> Vec<Genome> {

@@ -54,7 +54,7 @@
 //! fitness, the checkpoint holds θ_g as `"search": {"pgpe": {...}}`, the champion is always
 //! the centre, and validation always considers the centre too.
 
-use super::{centre_candidate, improved_centre, Search, SearchState, Unevaluated};
+use super::{centre_candidate, improved_centre, own_state, Search, SearchState, Unevaluated};
 use crate::brain::genome::Genome;
 use crate::evo::lineage::{Birth, Lineage};
 use crate::evo::state::{Champion, EvaluatedGeneration, GenerationSummary};
@@ -460,28 +460,21 @@ impl Search for Pgpe {
     }
 
     fn state(&self) -> Option<SearchState> {
-        self.state.clone().map(SearchState::Pgpe)
+        self.state.as_ref().map(|s| SearchState::of("pgpe", s))
     }
 
     fn restore(&mut self, state: Option<&SearchState>, generation: u64) {
         self.generation = generation;
-        self.state = match state {
-            Some(SearchState::Pgpe(state)) => Some(state.clone()),
-            // Another algorithm's state, or none: `tell` centres on the best individual.
-            _ => None,
-        };
+        // Another algorithm's state, or none: `tell` centres on the best individual.
+        self.state = own_state::<PgpeState>(state, "pgpe", "pgpe").ok();
         // Only the centre's lineage depends on it, and it is set by the next `tell`.
         self.centre_parent = None;
     }
 
     fn state_problem(&self, state: Option<&SearchState>) -> Option<String> {
-        match state {
-            Some(SearchState::Pgpe(state)) => state.problem(self.parameters),
-            Some(other) => Some(format!(
-                "it holds a {} state, but its experiment uses pgpe",
-                other.algorithm()
-            )),
-            None => Some("its experiment uses pgpe, but it holds no pgpe state".into()),
+        match own_state::<PgpeState>(state, "pgpe", "pgpe") {
+            Ok(state) => state.problem(self.parameters),
+            Err(why) => Some(why),
         }
     }
 

@@ -45,7 +45,7 @@
 //!
 //! Full CMA-ES (a covariance matrix and its eigendecomposition) is `super::cma_es`.
 
-use super::{centre_candidate, improved_centre, Search, SearchState, Unevaluated};
+use super::{centre_candidate, improved_centre, own_state, Search, SearchState, Unevaluated};
 use crate::brain::genome::Genome;
 use crate::evo::lineage::{Birth, Lineage};
 use crate::evo::select::ranking;
@@ -454,27 +454,22 @@ impl Search for SepCmaEs {
     }
 
     fn state(&self) -> Option<SearchState> {
-        self.state.clone().map(SearchState::SepCmaEs)
+        self.state
+            .as_ref()
+            .map(|s| SearchState::of("sep_cma_es", s))
     }
 
     fn restore(&mut self, state: Option<&SearchState>, generation: u64) {
         self.generation = generation;
-        self.state = match state {
-            Some(SearchState::SepCmaEs(state)) => Some(state.clone()),
-            // Another algorithm's state, or none: `tell` centres on the best individual.
-            _ => None,
-        };
+        // Another algorithm's state, or none: `tell` centres on the best individual.
+        self.state = own_state::<SepCmaState>(state, "sep_cma_es", "sep-cma-es").ok();
         self.mean_parent = None;
     }
 
     fn state_problem(&self, state: Option<&SearchState>) -> Option<String> {
-        match state {
-            Some(SearchState::SepCmaEs(state)) => state.problem(self.parameters),
-            Some(other) => Some(format!(
-                "it holds a {} state, but its experiment uses sep-cma-es",
-                other.algorithm()
-            )),
-            None => Some("its experiment uses sep-cma-es, but it holds no sep-cma-es state".into()),
+        match own_state::<SepCmaState>(state, "sep_cma_es", "sep-cma-es") {
+            Ok(state) => state.problem(self.parameters),
+            Err(why) => Some(why),
         }
     }
 
