@@ -318,6 +318,11 @@ impl Search for Novelty {
     }
 
     fn state_problem(&self, state: Option<&SearchState>) -> Option<String> {
+        if state.is_none() {
+            return Some(
+                "it holds no novelty archive, but its experiment uses novelty search".to_string(),
+            );
+        }
         let s = match own_state::<NoveltyState>(state, "novelty", "novelty") {
             Ok(s) => s,
             Err(why) => return Some(why),
