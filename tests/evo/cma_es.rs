@@ -5,6 +5,7 @@
 //! count, and resumed).
 
 use crate::cli_common::{fixture, read, run_ok};
+use crate::known_functions;
 
 use berry_evolve::evo::evaluate::Evaluation;
 use berry_evolve::evo::search::cma_es::{CmaEs, CmaState};
@@ -15,19 +16,10 @@ use std::path::Path;
 
 /// tiny-cma-es.toml with `population` (λ), `sigma_init` and `seed` replaced.
 fn experiment(lambda: usize, sigma: f64, seed: u64) -> Experiment {
-    let path = fixture("tiny-cma-es.toml");
-    let text = std::fs::read_to_string(&path)
-        .unwrap()
-        .replace("population = 12", &format!("population = {lambda}"))
-        .replace("sigma_init = 0.5", &format!("sigma_init = {sigma:?}"))
-        .replace("seed = 5", &format!("seed = {seed}"));
-    Experiment::from_toml(&text, &path).unwrap_or_else(|e| panic!("{e}"))
+    known_functions::experiment("tiny-cma-es.toml", lambda, sigma, seed)
 }
 
-/// Evaluations (λ = 4 + ⌊3 ln n⌋ per generation; the mean, which this search evaluates too,
-/// is not counted, as the published figures count none) until a sample of `n` parameters
-/// scores `target` or less on `f` (minimised), from the mean 0 with step size `sigma`;
-/// `None` beyond `budget` evaluations.
+/// [`known_functions::evaluations_to_reach`] for CMA-ES.
 fn evaluations_to_reach(
     f: &dyn Fn(&[f64]) -> f64,
     n: usize,
@@ -36,38 +28,8 @@ fn evaluations_to_reach(
     seed: u64,
     budget: usize,
 ) -> Option<usize> {
-    let lambda = 4 + (3.0 * libm::log(n as f64)).floor() as usize;
-    let e = experiment(lambda, sigma, seed);
-    let mut search = CmaEs::new(&e, n);
-    assert_eq!(search.evaluated_per_generation(), lambda + 1);
-    let mut evaluations = 0;
-    while evaluations < budget {
-        let asked = search.ask();
-        let values: Vec<f64> = asked.genomes.iter().map(|g| f(&g.parameters)).collect();
-        evaluations += lambda;
-        if values[..lambda].iter().any(|&v| v <= target) {
-            return Some(evaluations);
-        }
-        let individuals = asked
-            .genomes
-            .into_iter()
-            .zip(&values)
-            .map(|(genome, &v)| Individual {
-                genome,
-                evaluation: Evaluation {
-                    fitness: Some(-v),
-                    metabolism: [0.0; 4],
-                    measures: Vec::new(),
-                },
-                lineage: None,
-            })
-            .collect();
-        search.tell(&EvaluatedGeneration {
-            generation: search.generation(),
-            individuals,
-        });
-    }
-    None
+    let file = "tiny-cma-es.toml";
+    known_functions::evaluations_to_reach(CmaEs::new, file, f, n, sigma, target, seed, budget)
 }
 
 /// Seeds 1..=5 of [`evaluations_to_reach`] (10 parameters, 1e-10), sorted, a failed seed as

@@ -10,6 +10,7 @@ mod experiment_limits;
 mod fitness_terms_and_measures;
 mod genetic_algorithm;
 mod jobs_counted_within_a_generation;
+mod known_functions;
 mod lockstep_vs_single_trials;
 mod novelty;
 mod overflowing_brains;
