@@ -167,7 +167,7 @@ fn one_two_and_three_ranks_give_the_plain_bytes() {
     let tmp = tempfile::tempdir().unwrap();
     let t = tmp.path();
     // A gadget world (doors, lockstep MLP), validation with behaviour measures, a stateful
-    // brain (one job per trial) and PGPE (its centre evaluated last).
+    // brain (one job per trial), PGPE (its centre evaluated last) and novelty search.
     let cases = [
         (
             variant(
@@ -195,6 +195,12 @@ fn one_two_and_three_ranks_give_the_plain_bytes() {
         ),
         (
             variant(t, "tests/fixtures/tiny-pgpe.toml", "tiny-pgpe.toml", |s| s),
+            "4",
+        ),
+        // Archive searches: the novelty archive (and MAP-Elites' grid) is told the
+        // generation's behaviour measures, which each rank sends back with the fitness.
+        (
+            variant(t, "tests/fixtures/tiny-novelty.toml", "tiny-novelty.toml", |s| s),
             "4",
         ),
     ];
