@@ -69,7 +69,10 @@ fn live(e: &Experiment, script: Vec<(f64, f64)>) -> ([f64; 2], [f64; MEASURE_COU
     );
     let mut world = World::new(&e.world, &e.creature, 1, rng).unwrap();
     let plan = LifePlan::new(e, &world);
-    assert!(plan.needs_world_every_tick(), "the motion measures follow every tick");
+    assert!(
+        plan.needs_world_every_tick(),
+        "the motion measures follow every tick"
+    );
     plan.prepare(&mut world);
     let mut score = LifeScore::start(&plan, &world, 0);
     let start = world.creatures()[0].pose.position;
