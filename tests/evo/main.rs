@@ -12,6 +12,7 @@ mod genetic_algorithm;
 mod jobs_counted_within_a_generation;
 mod known_functions;
 mod lockstep_vs_single_trials;
+mod motion_measures;
 mod novelty;
 mod overflowing_brains;
 mod pgpe;
