@@ -47,10 +47,18 @@ run_one() {
   out=$RUNS/$name/seed-$seed
   [ -f "$exp" ] || return 0
   [ -f "$out/wall.txt" ] && [ -f "$out/best.json" ] && return 0
-  start=$(date +%s.%N)
-  "$BIN" run "$exp" --seed "$seed" --out "$out" --jobs 1 --quiet --force --no-check
-  end=$(date +%s.%N)
-  python3 -c "print(f'{$end - $start:.1f}')" > "$out/wall.txt"
+  # wall.txt: the run's wall time and its CPU time (user + system) in seconds; on a shared
+  # machine the CPU time is the fairer figure.
+  python3 - "$BIN" "$exp" "$seed" "$out" <<'TIME'
+import resource, subprocess, sys, time
+binary, exp, seed, out = sys.argv[1:]
+start = time.monotonic()
+subprocess.run([binary, "run", exp, "--seed", seed, "--out", out, "--jobs", "1", "--quiet",
+                "--force", "--no-check"], check=True)
+wall = time.monotonic() - start
+usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+open(f"{out}/wall.txt", "w").write(f"{wall:.1f} {usage.ru_utime + usage.ru_stime:.1f}\n")
+TIME
 }
 export -f run_one
 export RUNS BIN
@@ -137,7 +145,7 @@ for line in os.environ["FAMILIES_TEXT"].splitlines():
                      + ", ".join(f"{k} {meas[baseline].get(k, float('nan')):.2f}" for k in keys)
                      + ")")
     print(f"64 random genomes: median {rnd['median']:.1f}, best {rnd['best']:.1f}{base_text}.\n")
-    print("| algorithm | evaluations | wall (s, median) | held-out: median (Q1–Q3) | per seed | "
+    print("| algorithm | evaluations | wall / CPU s a run (median) | held-out: median (Q1–Q3) | per seed | "
           + " | ".join(f"{k}, median" for k in keys) + " | Mann–Whitney U vs GA (p) |")
     print("|---|---|---|---|---|" + "---|" * len(keys) + "---|")
     ga = [fit[c] for c in champs.get(files[0], [])]
@@ -147,7 +155,9 @@ for line in os.environ["FAMILIES_TEXT"].splitlines():
             continue
         held = [fit[c] for c in cs]
         m, q1, q3 = quartiles(held)
-        walls = [float(open(os.path.join(os.path.dirname(c), "wall.txt")).read()) for c in cs]
+        times = [open(os.path.join(os.path.dirname(c), "wall.txt")).read().split() for c in cs]
+        walls = [float(t[0]) for t in times]
+        cpus = [float(t[1]) for t in times if len(t) > 1]
         algorithm, evaluations = algorithm_and_evaluations(f)
         beh = " | ".join(f"{statistics.median(meas[c].get(k, float('nan')) for c in cs):.2f}"
                          for k in keys)
@@ -157,7 +167,8 @@ for line in os.environ["FAMILIES_TEXT"].splitlines():
             u, p = mann_whitney(held, ga)
             test = f"{u:.0f} ({p:.3f})"
         print(f"| {algorithm} ({os.path.basename(f)}) | {evaluations} | "
-              f"{statistics.median(walls):.0f} | {m:.1f} ({q1:.1f}–{q3:.1f}) | "
+              f"{statistics.median(walls):.0f}"
+              + (f" / {statistics.median(cpus):.0f}" if cpus else "") + f" | {m:.1f} ({q1:.1f}–{q3:.1f}) | "
               + ", ".join(f"{h:.1f}" for h in held) + f" | {beh} | {test} |")
     print()
 PY
