@@ -58,7 +58,7 @@ pub(super) fn clean_temp_files(dir: &Path) -> Result<(), RunError> {
 
 /// Is `path` an experiment.toml this program wrote: exactly the run's own serialization of
 /// the experiment it holds? A user's file (comments, another key order) is not.
-pub(super) fn is_own_experiment(path: &Path) -> bool {
+fn is_own_experiment(path: &Path) -> bool {
     read_regular_text(path, MAX_EXPERIMENT_BYTES)
         .ok()
         .and_then(|text| {
@@ -158,7 +158,7 @@ pub(super) fn remove_if_present(path: &Path) -> Result<(), RunError> {
 }
 
 /// The newest checkpoint of `dir` that loads.
-pub(super) fn newest_good_checkpoint(dir: &Path) -> Option<PathBuf> {
+fn newest_good_checkpoint(dir: &Path) -> Option<PathBuf> {
     checkpoint::load_latest_good::<CheckpointPayload>(&dir.join(CHECKPOINT_DIR), None)
         .ok()
         .map(|loaded| loaded.path)
