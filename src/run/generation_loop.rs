@@ -1,7 +1,7 @@
 //! The generation loop: evaluate a generation, write what it produced (best.json, the
 //! fitness row, the champion, a checkpoint when due), then let the search vary, until the
 //! run is done or asked to stop. [`Loop`] is the state it carries, started by
-//! [`super::start`] or by the resume's apply step.
+//! [`super::start()`] or by the resume's apply step.
 
 use super::checkpoints::CheckpointPayload;
 use super::error::RunError;
