@@ -134,9 +134,10 @@ pub fn resume_with(
             error,
         }
     })?;
-    let on_disk = match experiment_path.exists() {
-        true => Some(Experiment::load(&experiment_path)?),
-        false => None,
+    let on_disk = if experiment_path.exists() {
+        Some(Experiment::load(&experiment_path)?)
+    } else {
+        None
     };
     if plan::output_edited(&checkpointed, on_disk.as_ref()) {
         progress.note(&format!(
