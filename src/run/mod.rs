@@ -20,6 +20,7 @@ use crate::evo::validation::{self, ValidatedChampion};
 use crate::experiment::diff::changed_keys;
 use crate::experiment::{Experiment, ExperimentConfig, ExperimentError};
 use crate::input::{read_regular, read_regular_text, MAX_CSV_BYTES, MAX_EXPERIMENT_BYTES};
+use crate::record::archive::ARCHIVE_FILE;
 use crate::record::atomic::{remove_stale_temp_files, write_atomic};
 use crate::record::champions::{ChampionsError, ChampionsLog};
 use crate::record::checkpoint::{self, CheckpointError, CheckpointErrorKind, ContentError};
@@ -1446,7 +1447,7 @@ fn drive(
                 .map_err(|e| output_failed(&state.dir, e))?;
         }
         let candidates = state.search.champion_candidates(&evaluated);
-        let (extras, validated) = pool.install(|| {
+        let (mut extras, validated) = pool.install(|| {
             validation::after_generation(
                 &state.experiment,
                 &state.topology,
@@ -1457,6 +1458,12 @@ fn drive(
                 &mut state.validation_worlds,
             )
         })?;
+        if let Some(archive) = state.search.archive(&evaluated) {
+            // An archive search (MAP-Elites): its metrics end the row; archive.csv is replaced.
+            extras.extend(archive.metrics().columns());
+            crate::record::archive::write(&state.dir, &archive)
+                .map_err(|e| output_failed(&state.dir, io_err(&state.dir.join(ARCHIVE_FILE))(e)))?;
+        }
         let replaced = validation::improved(state.validated_best.as_ref(), validated.as_ref());
         if validated.is_some()
             && generation + 1 >= total
