@@ -147,12 +147,14 @@ pub fn heat_map(dimensions: &[crate::evo::search::grid::Dimension], elites: &[(V
         if let Some(d) = dimensions.get(2) {
             let w = (d.max - d.min) / d.bins as f64;
             s.push_str(&format!(
-                "<text x=\"{:.0}\" y=\"{:.0}\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"12\">{} bin {p}: [{}, {})</text>\n",
+                "<text x=\"{:.0}\" y=\"{:.0}\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"12\">{} bin {p}: [{}, {}{}</text>\n",
                 px + pw / 2.0,
                 py - 8.0,
                 escape(&d.measure),
                 short(d.min + w * p as f64),
-                short(d.min + w * (p + 1) as f64)
+                short(d.min + w * (p + 1) as f64),
+                // The last bin holds its top end (and everything clamped above it).
+                if p + 1 == d.bins { "]" } else { ")" }
             ));
         }
         for i in 0..nx {
@@ -210,12 +212,18 @@ pub fn heat_map(dimensions: &[crate::evo::search::grid::Dimension], elites: &[(V
     }
     if let Some(d) = dimensions.get(1) {
         let (x, y) = (left - 40.0, top + grid_h / 2.0);
-        s.push_str(&format!(
-            "<text x=\"{x:.0}\" y=\"{y:.0}\" transform=\"rotate(-90 {x:.0} {y:.0})\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"14\">{}: {} to {} in {} bins</text>\n",
-            escape(&d.measure),
+        let text = format!(
+            "{}: {} to {} in {} bins",
+            d.measure,
             short(d.min),
             short(d.max),
             d.bins
+        );
+        // As large as fits along the grid's side (at most 14, at least 9).
+        let size = (14.0 * (grid_h + 40.0) / super::render::text_width(&text, 14.0)).clamp(9.0, 14.0);
+        s.push_str(&format!(
+            "<text x=\"{x:.0}\" y=\"{y:.0}\" transform=\"rotate(-90 {x:.0} {y:.0})\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"{size:.1}\">{}</text>\n",
+            escape(&text)
         ));
     }
     // The colour bar.
