@@ -19,7 +19,12 @@ pub struct ExtractArgs {
     pub checkpoint: PathBuf,
     /// Which individual of the checkpoint's generation, from 0 (the `id` column of
     /// `export-csv --population`; for PGPE the last one is the centre).
-    #[arg(long, value_name = "K", required_unless_present = "cell", conflicts_with = "cell")]
+    #[arg(
+        long,
+        value_name = "K",
+        required_unless_present = "cell",
+        conflicts_with = "cell"
+    )]
     pub individual: Option<u64>,
     /// For a MAP-Elites run: the elite of this archive cell, one bin index per descriptor
     /// from 0, comma-separated (`3,1`; the `cell_*` columns of archive.csv), in the archive as
@@ -158,8 +163,15 @@ fn extract_cell(
             archive.dimensions.len()
         );
     }
-    if index.iter().zip(&archive.dimensions).any(|(&i, d)| i >= d.bins) {
-        anyhow::bail!("--cell {cell}: outside the archive of {}: {shape}", path.display());
+    if index
+        .iter()
+        .zip(&archive.dimensions)
+        .any(|(&i, d)| i >= d.bins)
+    {
+        anyhow::bail!(
+            "--cell {cell}: outside the archive of {}: {shape}",
+            path.display()
+        );
     }
     let Some(elite) = archive.get(&index) else {
         anyhow::bail!(

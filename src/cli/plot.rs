@@ -95,7 +95,10 @@ pub fn run(args: PlotArgs) -> anyhow::Result<()> {
         };
         plot_archive(dir, &title, &archive_out)?;
         refuse_overwriting_inputs("-o", &qd_out, &[csv.as_path()])?;
-        write_svg(&qd_out, &qd_plot(&table, &format!("{title}: quality diversity"))?)?;
+        write_svg(
+            &qd_out,
+            &qd_plot(&table, &format!("{title}: quality diversity"))?,
+        )?;
         errln!("QD score and coverage written to {}", qd_out.display());
     }
     Ok(())
@@ -136,7 +139,9 @@ fn plot_archive(dir: &Path, title: &str, output: &Path) -> anyhow::Result<()> {
             })
         })
         .collect::<anyhow::Result<_>>()?;
-    let (fitness, cells) = columns.split_last().expect("the fitness column is chained last");
+    let (fitness, cells) = columns
+        .split_last()
+        .expect("the fitness column is chained last");
     let elites: Vec<(Vec<usize>, f64)> = table
         .rows
         .iter()

@@ -1379,7 +1379,11 @@ impl MapElitesSpec {
         }
         let cells = self.cells();
         if cells > MAX_GRID_CELLS {
-            let bins: Vec<String> = self.descriptors.iter().map(|d| d.bins.to_string()).collect();
+            let bins: Vec<String> = self
+                .descriptors
+                .iter()
+                .map(|d| d.bins.to_string())
+                .collect();
             return Err(InvalidValue::new(
                 key,
                 format!(

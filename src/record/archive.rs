@@ -64,7 +64,11 @@ const RAMP: [(u8, u8, u8); 5] = [
 
 /// The colour of `t` in [0, 1] on [`RAMP`], as `#RRGGBB`.
 fn colour(t: f64) -> String {
-    let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 0.0 };
+    let t = if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     let x = t * (RAMP.len() - 1) as f64;
     let k = (x.floor() as usize).min(RAMP.len() - 2);
     let f = x - k as f64;
@@ -100,7 +104,11 @@ fn short(x: f64) -> String {
 /// One dimension: a strip of cells; two: a grid (first descriptor across, second up); three:
 /// one such grid per bin of the third descriptor, side by side. Cells are labelled by bin
 /// index (as `extract --cell` takes them) and the axes by each range's ends.
-pub fn heat_map(dimensions: &[crate::evo::search::grid::Dimension], elites: &[(Vec<usize>, f64)], title: &str) -> String {
+pub fn heat_map(
+    dimensions: &[crate::evo::search::grid::Dimension],
+    elites: &[(Vec<usize>, f64)],
+    title: &str,
+) -> String {
     let nx = dimensions.first().map_or(1, |d| d.bins).max(1);
     let ny = dimensions.get(1).map_or(1, |d| d.bins).max(1);
     let panels = dimensions.get(2).map_or(1, |d| d.bins).max(1);
@@ -121,9 +129,11 @@ pub fn heat_map(dimensions: &[crate::evo::search::grid::Dimension], elites: &[(V
     let grid_h = ph * rows as f64 + (gap + 20.0) * (rows - 1) as f64;
     let width = (left + grid_w + 130.0).max(520.0);
     let height = top + grid_h + 80.0;
-    let (lo, hi) = elites.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), e| {
-        (a.min(e.1), b.max(e.1))
-    });
+    let (lo, hi) = elites
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), e| {
+            (a.min(e.1), b.max(e.1))
+        });
     let scale = |f: f64| if hi > lo { (f - lo) / (hi - lo) } else { 1.0 };
     let cells: usize = dimensions.iter().map(|d| d.bins).product();
     let mut s = format!(
@@ -220,7 +230,8 @@ pub fn heat_map(dimensions: &[crate::evo::search::grid::Dimension], elites: &[(V
             d.bins
         );
         // As large as fits along the grid's side (at most 14, at least 9).
-        let size = (14.0 * (grid_h + 40.0) / super::render::text_width(&text, 14.0)).clamp(9.0, 14.0);
+        let size =
+            (14.0 * (grid_h + 40.0) / super::render::text_width(&text, 14.0)).clamp(9.0, 14.0);
         s.push_str(&format!(
             "<text x=\"{x:.0}\" y=\"{y:.0}\" transform=\"rotate(-90 {x:.0} {y:.0})\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"{size:.1}\">{}</text>\n",
             escape(&text)

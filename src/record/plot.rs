@@ -408,7 +408,8 @@ pub fn qd_plot(table: &Table, title: &str) -> Result<String, PlotError> {
     let (x0, x1) = range(&qd, |p| p.0);
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (SIZE.0, 2 * SIZE.1 - 100)).into_drawing_area();
+        let root =
+            SVGBackend::with_string(&mut svg, (SIZE.0, 2 * SIZE.1 - 100)).into_drawing_area();
         let e = |e: &dyn std::fmt::Display| PlotError::Draw(e.to_string());
         root.fill(&WHITE).map_err(|x| e(&x))?;
         let root = root.titled(title, ("sans-serif", 22)).map_err(|x| e(&x))?;

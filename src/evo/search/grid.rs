@@ -211,11 +211,7 @@ impl ArchiveView<'_> {
     /// same on every run).
     pub fn metrics(&self) -> QdMetrics {
         QdMetrics {
-            qd_score: self
-                .elites
-                .iter()
-                .map(|e| e.fitness - self.qd_offset)
-                .sum(),
+            qd_score: self.elites.iter().map(|e| e.fitness - self.qd_offset).sum(),
             coverage: self.elites.len() as f64 / self.cells() as f64,
             archive_size: self.elites.len(),
             max_fitness: self.elites.iter().map(|e| e.fitness).reduce(f64::max),

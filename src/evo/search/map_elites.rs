@@ -34,7 +34,9 @@ use crate::evo::lineage::{Birth, GenomeId, Lineage};
 use crate::evo::state::EvaluatedGeneration;
 use crate::experiment::evolution::{Emitter, EvolutionSpec, MapElitesSpec};
 use crate::experiment::Experiment;
-use crate::seed::{below, gaussian, stream, Generation, IndividualId, Purpose, Rng, Seed, TrialIndex};
+use crate::seed::{
+    below, gaussian, stream, Generation, IndividualId, Purpose, Rng, Seed, TrialIndex,
+};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -65,7 +67,13 @@ pub fn iso_line_with(
 
 /// The iso-line offspring of `xi` and `xj` (Vassiliades & Mouret 2018), drawing one
 /// `gaussian` for the line, then one per gene, from `rng`.
-pub fn iso_line(xi: &[f64], xj: &[f64], iso_sigma: f64, line_sigma: f64, rng: &mut Rng) -> Vec<f64> {
+pub fn iso_line(
+    xi: &[f64],
+    xj: &[f64],
+    iso_sigma: f64,
+    line_sigma: f64,
+    rng: &mut Rng,
+) -> Vec<f64> {
     let line = gaussian(rng);
     let isotropic: Vec<f64> = xi.iter().map(|_| gaussian(rng)).collect();
     iso_line_with(xi, xj, iso_sigma, line_sigma, line, &isotropic)
@@ -97,7 +105,11 @@ impl MapElites {
             .evolution
             .map_elites_settings()
             .unwrap_or_default();
-        let descriptors: Vec<_> = settings.descriptors.iter().map(|d| d.descriptor()).collect();
+        let descriptors: Vec<_> = settings
+            .descriptors
+            .iter()
+            .map(|d| d.descriptor())
+            .collect();
         MapElites {
             seed: experiment.seed(),
             spec: experiment.evolution.clone(),
@@ -225,7 +237,13 @@ impl Search for MapElites {
                     let a = pick(&mut rng);
                     let b = pick(&mut rng);
                     (
-                        iso_line(&a.genome.parameters, &b.genome.parameters, iso, line, &mut rng),
+                        iso_line(
+                            &a.genome.parameters,
+                            &b.genome.parameters,
+                            iso,
+                            line,
+                            &mut rng,
+                        ),
                         Lineage::of_elites(Birth::IsoLine, &[a.id, b.id]),
                     )
                 }
@@ -378,7 +396,12 @@ impl Search for MapElites {
             }
         }
         Some(ArchiveView {
-            dimensions: self.settings.descriptors.iter().map(Dimension::from).collect(),
+            dimensions: self
+                .settings
+                .descriptors
+                .iter()
+                .map(Dimension::from)
+                .collect(),
             qd_offset: self.settings.qd_offset,
             elites: cells.into_values().collect(),
         })
