@@ -1227,9 +1227,10 @@ pub struct MapElitesSpec {
     /// mutation sigma; only with `emitter = "gaussian"`; 0 to 10^6).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sigma: Option<f64>,
-    /// `iso_sigma`: the iso-line emitter's isotropic noise σ_iso in x' = x_i + σ_iso · N(0, I)
-    /// + σ_line · N(0, 1) · (x_j − x_i) (default: 0.02, the paper's 0.01 for genes in [0, 1]
-    /// scaled to genes in [−1, 1]; only with `emitter = "iso-line"`; 0 to 10^6).
+    /// `iso_sigma`: the iso-line emitter's isotropic noise σ_iso in
+    /// x' = x_i + σ_iso · N(0, I) + σ_line · N(0, 1) · (x_j − x_i) (default: 0.02, the paper's
+    /// 0.01 for genes in [0, 1] scaled to genes in [−1, 1]; only with `emitter = "iso-line"`;
+    /// 0 to 10^6).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub iso_sigma: Option<f64>,
     /// `line_sigma`: the iso-line emitter's σ_line, a fraction of the distance between the two

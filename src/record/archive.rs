@@ -119,8 +119,7 @@ pub fn heat_map(
     let room_h = if ny == 1 { 60.0 } else { 440.0 } - gap * (rows - 1) as f64;
     let cs = (room_w / (cols * nx) as f64)
         .min(room_h / (rows * ny) as f64)
-        .min(48.0)
-        .max(2.0)
+        .clamp(2.0, 48.0)
         .floor();
     let (left, top) = (90.0, if panels > 1 { 90.0 } else { 70.0 });
     let pw = cs * nx as f64;

@@ -141,7 +141,11 @@ fn base_table(path: &str) -> toml::Table {
     // `[evolution.map_elites]` only by MAP-Elites, which needs a descriptor; `sigma` only by
     // its Gaussian emitter.
     if path.starts_with("evolution.map_elites.") {
-        set_path(&mut t, "evolution.algorithm", toml::Value::from("map-elites"));
+        set_path(
+            &mut t,
+            "evolution.algorithm",
+            toml::Value::from("map-elites"),
+        );
         set_path(
             &mut t,
             "behaviour.measures",
