@@ -10,6 +10,7 @@
 #   bash scripts/search-comparison.sh                          # every family below
 #   bash scripts/search-comparison.sh --only foraging-plain    # one family
 #   bash scripts/search-comparison.sh --seeds "1 2 3" --runs results/search
+#   bash scripts/search-comparison.sh --files map-elites    # run only the files matching it
 #
 # Runs go to RUNS/<file name>/seed-<n>/ (default results/search/, git-ignored) and are reused
 # when they hold best.json and wall.txt; runs use --jobs 1, JOBS side by side (default 2), so
@@ -19,6 +20,7 @@ cd "$(dirname "$0")/.."
 RUNS=results/search
 SEEDS="1 2 3 4 5"
 ONLY=""
+FILES=""
 JOBS=2
 TRIALS=20
 BIN=target/release/berry-evolve
@@ -32,6 +34,7 @@ while [ $# -gt 0 ]; do
     --runs) RUNS=$2; shift 2 ;;
     --seeds) SEEDS=$2; shift 2 ;;
     --only) ONLY=$2; shift 2 ;;
+    --files) FILES=$2; shift 2 ;;
     --jobs) JOBS=$2; shift 2 ;;
     --trials) TRIALS=$2; shift 2 ;;
     --bin) BIN=$2; shift 2 ;;
@@ -66,6 +69,7 @@ for family in "${FAMILIES[@]}"; do
   IFS='|' read -r fname files _ _ <<< "$family"
   case "$fname" in *"$ONLY"*) ;; *) continue ;; esac
   for exp in $files; do
+    case "$exp" in *"$FILES"*) ;; *) continue ;; esac
     for seed in $SEEDS; do echo "$exp $seed"; done
   done
 done | xargs -P "$JOBS" -n 2 bash -c 'run_one "$0" "$1"'

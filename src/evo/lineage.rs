@@ -32,11 +32,17 @@ pub enum Birth {
     /// sep-CMA-ES: the mean itself, with the previous generation's mean (or, when the search
     /// was restarted there, its best individual) as parent; the first generation's has none.
     CmaMean,
+    /// MAP-Elites: an elite of the archive plus Gaussian noise. Its parent is an elite of any
+    /// earlier generation, so it is named in [`Lineage::elites`], not by an index.
+    Gaussian,
+    /// MAP-Elites: iso-line variation of two elites of the archive (the first moved along the
+    /// line to the second), named in [`Lineage::elites`].
+    IsoLine,
 }
 
 impl Birth {
     /// The name used in checkpoints and CSV (`random`, `elite`, `mutated`, `crossover`,
-    /// `pgpe_sample`, `pgpe_centre`, `cma_sample`, `cma_mean`).
+    /// `pgpe_sample`, `pgpe_centre`, `cma_sample`, `cma_mean`, `gaussian`, `iso_line`).
     pub fn name(self) -> &'static str {
         match self {
             Birth::Random => "random",
@@ -47,6 +53,8 @@ impl Birth {
             Birth::PgpeCentre => "pgpe_centre",
             Birth::CmaSample => "cma_sample",
             Birth::CmaMean => "cma_mean",
+            Birth::Gaussian => "gaussian",
+            Birth::IsoLine => "iso_line",
         }
     }
 }
@@ -60,6 +68,30 @@ pub struct Lineage {
     /// (none, one, or two; both the same index when a selection picked one individual twice).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub parents: Vec<u64>,
+    /// Its parents when they are archive elites of any earlier generation (MAP-Elites), by
+    /// genome id, in the order [`Birth`] describes; absent otherwise, so the other
+    /// algorithms' checkpoints keep their bytes.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub elites: Vec<GenomeId>,
+}
+
+/// A genome's id: the generation it was evaluated in and its index in that generation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+pub struct GenomeId {
+    /// The generation.
+    pub generation: u64,
+    /// The index in the generation.
+    pub individual: u64,
+}
+
+impl std::fmt::Display for GenomeId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "individual {} of generation {}",
+            self.individual, self.generation
+        )
+    }
 }
 
 impl Lineage {
@@ -68,6 +100,7 @@ impl Lineage {
         Lineage {
             birth,
             parents: Vec::new(),
+            elites: Vec::new(),
         }
     }
 
@@ -76,6 +109,16 @@ impl Lineage {
         Lineage {
             birth,
             parents: parents.iter().map(|&p| p as u64).collect(),
+            elites: Vec::new(),
+        }
+    }
+
+    /// A lineage whose parents are the archive elites `elites` (MAP-Elites).
+    pub fn of_elites(birth: Birth, elites: &[GenomeId]) -> Lineage {
+        Lineage {
+            birth,
+            parents: Vec::new(),
+            elites: elites.to_vec(),
         }
     }
 }

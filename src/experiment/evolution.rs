@@ -27,7 +27,8 @@
 //! `[evolution.pgpe]` table apply, and the GA's keys must be left out. `algorithm =
 //! "sep-cma-es"` and `"cma-es"` likewise, with the `[evolution.cma_es]` table ([`CmaEsSpec`]).
 //! `algorithm = "novelty"` keeps the GA's keys and selects by novelty ([`NoveltySpec`],
-//! `[evolution.novelty]`).
+//! `[evolution.novelty]`). `algorithm = "map-elites"` keeps a grid archive of elites
+//! ([`MapElitesSpec`], `[evolution.map_elites]`): of the GA's keys only `init_range` applies.
 //!
 //! Every key has a default. A key that only matters for a setting the table did not choose
 //! (`rank_pressure` with `kind = "tournament"`, `probability` with crossover `kind = "none"`,
@@ -66,7 +67,8 @@ pub struct EvolutionSpec {
     /// (Sehnke et al.'s PGPE with ClipUp, `evo::pgpe`), `"sep-cma-es"` (Ros & Hansen's
     /// diagonal CMA-ES, `evo::search::sep_cma_es`), `"cma-es"` (Hansen's CMA-ES with a full
     /// covariance matrix, `evo::search::cma_es`; at most 2,000 brain parameters) or
-    /// `"novelty"` (the GA selecting by novelty, `[evolution.novelty]`). Not written back when "ga", so GA
+    /// `"novelty"` (the GA selecting by novelty, `[evolution.novelty]`) or `"map-elites"` (a
+    /// grid archive of elites, `[evolution.map_elites]`). Not written back when "ga", so GA
     /// experiments keep their bytes and config hash.
     #[serde(skip_serializing_if = "Algorithm::is_ga")]
     pub algorithm: Algorithm,
@@ -101,6 +103,10 @@ pub struct EvolutionSpec {
     /// which needs its `descriptors`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub novelty: Option<NoveltySpec>,
+    /// MAP-Elites' settings (`[evolution.map_elites]`; only with `algorithm = "map-elites"`,
+    /// which needs its `descriptors`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub map_elites: Option<MapElitesSpec>,
 }
 
 /// The search algorithms `[evolution] algorithm` chooses from.
@@ -123,6 +129,11 @@ pub enum Algorithm {
     /// Novelty search (Lehman & Stanley 2011): the GA selecting by novelty in behaviour
     /// space (`[evolution.novelty]`).
     Novelty,
+    /// MAP-Elites (Mouret & Clune 2015): a grid archive keeping the best genome of every
+    /// cell of behaviour space, each generation made by varying elites drawn from it
+    /// (`[evolution.map_elites]`).
+    #[serde(rename = "map-elites")]
+    MapElites,
 }
 
 impl Algorithm {
@@ -146,6 +157,7 @@ impl Default for EvolutionSpec {
             pgpe: None,
             cma_es: None,
             novelty: None,
+            map_elites: None,
         }
     }
 }
@@ -154,7 +166,11 @@ impl EvolutionSpec {
     /// PGPE's settings when `algorithm = "pgpe"` (the table's, or every default).
     pub fn pgpe_settings(&self) -> Option<PgpeSpec> {
         match self.algorithm {
-            Algorithm::Ga | Algorithm::SepCmaEs | Algorithm::CmaEs | Algorithm::Novelty => None,
+            Algorithm::Ga
+            | Algorithm::SepCmaEs
+            | Algorithm::CmaEs
+            | Algorithm::Novelty
+            | Algorithm::MapElites => None,
             Algorithm::Pgpe => Some(self.pgpe.unwrap_or_default()),
         }
     }
@@ -164,21 +180,44 @@ impl EvolutionSpec {
         (self.algorithm == Algorithm::Novelty).then(|| self.novelty.clone().unwrap_or_default())
     }
 
-    /// Novelty's descriptors must be measures `[behaviour] measures` computes (each
-    /// individual's evaluation carries them in that order).
+    /// MAP-Elites' settings when `algorithm = "map-elites"` (the table's, or every default).
+    pub fn map_elites_settings(&self) -> Option<MapElitesSpec> {
+        (self.algorithm == Algorithm::MapElites)
+            .then(|| self.map_elites.clone().unwrap_or_default())
+    }
+
+    /// True when the search keeps an archive of elites (MAP-Elites), whose quality-diversity
+    /// metrics fitness.csv gains as columns and whose cells `archive.csv` lists.
+    pub fn has_archive(&self) -> bool {
+        self.algorithm == Algorithm::MapElites
+    }
+
+    /// Novelty's and MAP-Elites' descriptors must be measures `[behaviour] measures`
+    /// computes (each individual's evaluation carries them in that order).
     pub fn validate_descriptors(&self, measures: &[Measure]) -> Valid {
-        let Some(novelty) = self.novelty_settings() else {
-            return Ok(());
-        };
-        let computed: Vec<&str> = measures.iter().map(|m| m.name()).collect();
-        for d in &novelty.descriptors {
-            if !measures.contains(&d.measure) {
-                return Err(InvalidValue::new(
+        let (key, descriptors): (&str, Vec<Measure>) =
+            if let Some(novelty) = self.novelty_settings() {
+                (
                     "evolution.novelty.descriptors",
+                    novelty.descriptors.iter().map(|d| d.measure).collect(),
+                )
+            } else if let Some(grid) = self.map_elites_settings() {
+                (
+                    "evolution.map_elites.descriptors",
+                    grid.descriptors.iter().map(|d| d.measure).collect(),
+                )
+            } else {
+                return Ok(());
+            };
+        let computed: Vec<&str> = measures.iter().map(|m| m.name()).collect();
+        for d in &descriptors {
+            if !measures.contains(d) {
+                return Err(InvalidValue::new(
+                    key,
                     format!(
                         "`{}` is not computed by this experiment: [behaviour] measures = [{}]; \
                          add it to [behaviour] measures or describe behaviour by one of those",
-                        d.measure.name(),
+                        d.name(),
                         computed.join(", ")
                     ),
                 ));
@@ -192,7 +231,7 @@ impl EvolutionSpec {
     /// become the champion.
     pub fn evaluated_per_generation(&self) -> usize {
         match self.algorithm {
-            Algorithm::Ga | Algorithm::Novelty => self.population,
+            Algorithm::Ga | Algorithm::Novelty | Algorithm::MapElites => self.population,
             Algorithm::Pgpe | Algorithm::SepCmaEs | Algorithm::CmaEs => self.population + 1,
         }
     }
@@ -217,10 +256,19 @@ impl EvolutionSpec {
     /// The GA's keys would be silently ignored by `algorithm`: refuse them (a key written
     /// with its default value cannot be told apart and is accepted).
     fn refuse_ga_keys(&self, algorithm: &str) -> Valid {
+        self.refuse_ga_keys_but(algorithm, false)
+    }
+
+    /// [`EvolutionSpec::refuse_ga_keys`], accepting `init_range` when `keep_init_range`
+    /// (MAP-Elites draws its random genomes as the GA's generation 0).
+    fn refuse_ga_keys_but(&self, algorithm: &str, keep_init_range: bool) -> Valid {
         let ga = EvolutionSpec::default();
         for (differs, key) in [
             (self.elitism != ga.elitism, "elitism"),
-            (self.init_range != ga.init_range, "init_range"),
+            (
+                !keep_init_range && self.init_range != ga.init_range,
+                "init_range",
+            ),
             (self.selection != ga.selection, "selection"),
             (self.crossover != ga.crossover, "crossover"),
             (self.mutation != ga.mutation, "mutation"),
@@ -291,7 +339,23 @@ impl EvolutionSpec {
                 "is only used with algorithm = \"novelty\"; remove it or set algorithm = \"novelty\"",
             ));
         }
+        if self.map_elites.is_some() && self.algorithm != Algorithm::MapElites {
+            return Err(InvalidValue::new(
+                "evolution.map_elites",
+                "is only used with algorithm = \"map-elites\"; remove it or set algorithm = \"map-elites\"",
+            ));
+        }
         match self.algorithm {
+            Algorithm::MapElites => {
+                if self.pgpe.is_some() {
+                    return Err(InvalidValue::new(
+                        "evolution.pgpe",
+                        "is only used with algorithm = \"pgpe\", but this table has algorithm = \"map-elites\"; remove it",
+                    ));
+                }
+                self.refuse_ga_keys_but("map-elites", true)?;
+                self.map_elites_settings().unwrap_or_default().validate()
+            }
             Algorithm::Novelty => {
                 if self.pgpe.is_some() {
                     return Err(InvalidValue::new(
@@ -1117,5 +1181,264 @@ impl NoveltySpec {
             0.0,
             1.0,
         )
+    }
+}
+
+/// `[evolution.map_elites]`: MAP-Elites (Mouret & Clune 2015) with a grid archive. Each
+/// descriptor (a `[behaviour]` measure) splits its [min, max] into `bins` equal cells (values
+/// outside are clamped to the first or last); the archive keeps, per cell, the genome of the
+/// highest fitness seen there. Each generation (`[evolution] population` genomes: the batch
+/// size) is random while the archive holds fewer than `initial_random` elites (generation 0
+/// always), and otherwise made by an emitter from elites drawn uniformly from the archive.
+///
+/// ```toml
+/// [behaviour]
+/// measures = ["distinct_food", "food_types"]
+///
+/// [evolution]
+/// algorithm = "map-elites"
+/// population = 64               # the batch: genomes evaluated per generation
+///
+/// [evolution.map_elites]
+/// descriptors = [
+///     { measure = "distinct_food", min = 0, max = 20, bins = 20 },
+///     { measure = "food_types", min = 0, max = 4, bins = 5 },
+/// ]
+/// initial_random = 1            # random generations until the archive holds this many
+/// emitter = "iso-line"          # or "gaussian" (then sigma, not iso_sigma/line_sigma)
+/// iso_sigma = 0.02
+/// line_sigma = 0.2
+/// qd_offset = 0.0               # QD score = sum over elites of (fitness − qd_offset)
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct MapElitesSpec {
+    /// `descriptors`: the grid, one `{ measure, min, max, bins }` per dimension (1 to 3,
+    /// required; each a `[behaviour]` measure, at most once; at most 100,000 cells in all).
+    pub descriptors: Vec<GridDescriptorSpec>,
+    /// `initial_random`: generations are random genomes (drawn as the GA's generation 0,
+    /// uniform in ±`init_range`) while the archive holds fewer elites than this; generation 0
+    /// always is (default: 1; at least 1, at most the grid's cells).
+    pub initial_random: usize,
+    /// `emitter`: how an offspring is made from elites: `"iso-line"` (Vassiliades & Mouret
+    /// 2018, default) or `"gaussian"`.
+    pub emitter: Emitter,
+    /// `sigma`: the Gaussian emitter's x' = x + sigma · N(0, I) (default: 0.1, the GA's
+    /// mutation sigma; only with `emitter = "gaussian"`; 0 to 10^6).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sigma: Option<f64>,
+    /// `iso_sigma`: the iso-line emitter's isotropic noise σ_iso in
+    /// x' = x_i + σ_iso · N(0, I) + σ_line · N(0, 1) · (x_j − x_i) (default: 0.02, the paper's
+    /// 0.01 for genes in [0, 1] scaled to genes in [−1, 1]; only with `emitter = "iso-line"`;
+    /// 0 to 10^6).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub iso_sigma: Option<f64>,
+    /// `line_sigma`: the iso-line emitter's σ_line, a fraction of the distance between the two
+    /// elites (default: 0.2, the paper's; only with `emitter = "iso-line"`; 0 to 10^6).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub line_sigma: Option<f64>,
+    /// `qd_offset`: the QD score is the sum over elites of (fitness − qd_offset), as pyribs'
+    /// `qd_offset`; set it at or below the lowest fitness the experiment can give so that
+    /// every elite adds to the score (default: 0; finite).
+    pub qd_offset: f64,
+}
+
+/// One dimension of a grid archive: a `[behaviour]` measure, its range and its cells.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GridDescriptorSpec {
+    /// `measure`: the `[behaviour]` measure, by name (e.g. `"distinct_food"`).
+    pub measure: Measure,
+    /// `min`: the low end of the first cell (values below fall in it).
+    pub min: f64,
+    /// `max`: the high end of the last cell (values above fall in it); greater than `min`.
+    pub max: f64,
+    /// `bins`: how many equal cells [min, max] is split into (at least 1).
+    pub bins: usize,
+}
+
+impl GridDescriptorSpec {
+    /// The dimension as a behaviour space's descriptor (its range, without the bins).
+    pub fn descriptor(&self) -> DescriptorSpec {
+        DescriptorSpec {
+            measure: self.measure,
+            min: self.min,
+            max: self.max,
+        }
+    }
+}
+
+/// How MAP-Elites makes an offspring from the archive's elites.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, JsonSchema)]
+pub enum Emitter {
+    /// x' = x_i + σ_iso · N(0, I) + σ_line · N(0, 1) · (x_j − x_i), two elites drawn
+    /// uniformly (Vassiliades & Mouret 2018).
+    #[default]
+    #[serde(rename = "iso-line")]
+    IsoLine,
+    /// x' = x + σ · N(0, I), one elite drawn uniformly.
+    #[serde(rename = "gaussian")]
+    Gaussian,
+}
+
+/// The most cells a grid archive may have (the product of the descriptors' bins): every
+/// cell's elite holds a genome in memory and in every checkpoint.
+pub const MAX_GRID_CELLS: usize = 100_000;
+
+/// The most descriptors (grid dimensions) MAP-Elites accepts: what `plot` can draw.
+pub const MAX_GRID_DIMENSIONS: usize = 3;
+
+/// The Gaussian emitter's `sigma` when not given (the GA's mutation sigma).
+pub const DEFAULT_GAUSSIAN_SIGMA: f64 = 0.1;
+
+/// The iso-line emitter's `iso_sigma` when not given: Vassiliades & Mouret's 0.01 for genes
+/// in [0, 1], scaled by 2 to the default initial genes in [−1, 1].
+pub const DEFAULT_ISO_SIGMA: f64 = 0.02;
+
+/// The iso-line emitter's `line_sigma` when not given (Vassiliades & Mouret's; a fraction of
+/// the distance between two elites, so it needs no scaling).
+pub const DEFAULT_LINE_SIGMA: f64 = 0.2;
+
+impl Default for MapElitesSpec {
+    fn default() -> Self {
+        MapElitesSpec {
+            descriptors: Vec::new(),
+            initial_random: 1,
+            emitter: Emitter::IsoLine,
+            sigma: None,
+            iso_sigma: None,
+            line_sigma: None,
+            qd_offset: 0.0,
+        }
+    }
+}
+
+impl MapElitesSpec {
+    /// The grid's cells: the product of the descriptors' bins (saturating, so that a grid
+    /// far over the limit still reads as over it).
+    pub fn cells(&self) -> usize {
+        self.descriptors
+            .iter()
+            .fold(1usize, |n, d| n.saturating_mul(d.bins))
+    }
+
+    /// The Gaussian emitter's sigma (given or default).
+    pub fn gaussian_sigma(&self) -> f64 {
+        self.sigma.unwrap_or(DEFAULT_GAUSSIAN_SIGMA)
+    }
+
+    /// The iso-line emitter's (σ_iso, σ_line) (given or default).
+    pub fn iso_line_sigmas(&self) -> (f64, f64) {
+        (
+            self.iso_sigma.unwrap_or(DEFAULT_ISO_SIGMA),
+            self.line_sigma.unwrap_or(DEFAULT_LINE_SIGMA),
+        )
+    }
+
+    /// Checks the table; keys start with `evolution.map_elites.` (the descriptors' measures
+    /// are checked against `[behaviour]` by [`EvolutionSpec::validate_descriptors`]).
+    pub fn validate(&self) -> Valid {
+        let key = "evolution.map_elites.descriptors";
+        if self.descriptors.is_empty() {
+            return Err(InvalidValue::new(
+                key,
+                "map-elites needs at least one descriptor, e.g. descriptors = \
+                 [{ measure = \"distinct_food\", min = 0, max = 20, bins = 20 }] \
+                 (a measure of [behaviour] measures)",
+            ));
+        }
+        if self.descriptors.len() > MAX_GRID_DIMENSIONS {
+            return Err(InvalidValue::new(
+                key,
+                format!(
+                    "a grid archive has 1 to {MAX_GRID_DIMENSIONS} dimensions (limit: what plot \
+                     draws as a heat map), got {}; describe behaviour by fewer measures",
+                    self.descriptors.len()
+                ),
+            ));
+        }
+        for (i, d) in self.descriptors.iter().enumerate() {
+            let name = d.measure.name();
+            if !(d.min.is_finite() && d.max.is_finite()) || d.min >= d.max {
+                return Err(InvalidValue::new(
+                    key,
+                    format!(
+                        "the range of `{name}` must have min < max (both finite), got min = {} and max = {}",
+                        d.min, d.max
+                    ),
+                ));
+            }
+            if d.bins == 0 {
+                return Err(InvalidValue::new(
+                    key,
+                    format!("`{name}` must have bins of at least 1, got bins = 0"),
+                ));
+            }
+            if self.descriptors[..i].iter().any(|e| e.measure == d.measure) {
+                return Err(InvalidValue::new(key, format!("names `{name}` twice")));
+            }
+        }
+        let cells = self.cells();
+        if cells > MAX_GRID_CELLS {
+            let bins: Vec<String> = self
+                .descriptors
+                .iter()
+                .map(|d| d.bins.to_string())
+                .collect();
+            return Err(InvalidValue::new(
+                key,
+                format!(
+                    "the grid has {} cells (bins {}), more than the limit of {MAX_GRID_CELLS} \
+                     (limit: every cell's elite is a genome kept in memory and in every \
+                     checkpoint); use fewer bins",
+                    if cells == usize::MAX {
+                        "too many".to_string()
+                    } else {
+                        cells.to_string()
+                    },
+                    bins.join(" × ")
+                ),
+            ));
+        }
+        if self.initial_random == 0 || self.initial_random > cells {
+            return Err(InvalidValue::new(
+                "evolution.map_elites.initial_random",
+                format!(
+                    "must be from 1 to the grid's {cells} cells (random generations until the \
+                     archive holds this many elites), got {}",
+                    self.initial_random
+                ),
+            ));
+        }
+        match self.emitter {
+            Emitter::Gaussian => {
+                for (given, k) in [
+                    (self.iso_sigma.is_some(), "iso_sigma"),
+                    (self.line_sigma.is_some(), "line_sigma"),
+                ] {
+                    if given {
+                        return Err(InvalidValue::new(
+                            format!("evolution.map_elites.{k}"),
+                            "is only used with emitter = \"iso-line\", but this table has \
+                             emitter = \"gaussian\" (which uses sigma); remove it",
+                        ));
+                    }
+                }
+                magnitude("evolution.map_elites.sigma", self.gaussian_sigma())?;
+            }
+            Emitter::IsoLine => {
+                if self.sigma.is_some() {
+                    return Err(InvalidValue::new(
+                        "evolution.map_elites.sigma",
+                        "is only used with emitter = \"gaussian\", but this table has emitter = \
+                         \"iso-line\" (which uses iso_sigma and line_sigma); remove it",
+                    ));
+                }
+                let (iso, line) = self.iso_line_sigmas();
+                magnitude("evolution.map_elites.iso_sigma", iso)?;
+                magnitude("evolution.map_elites.line_sigma", line)?;
+            }
+        }
+        crate::validate::finite("evolution.map_elites.qd_offset", self.qd_offset)
     }
 }

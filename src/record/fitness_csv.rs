@@ -34,6 +34,7 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 use super::atomic::write_atomic;
+use crate::evo::search::grid::QD_COLUMNS;
 
 /// The header line, without its `\n`: the columns in [`FitnessRow`]'s field order.
 pub const HEADER: &str = "generation,evaluations,best,mean,median,worst,std,best_ever,\
@@ -394,8 +395,10 @@ pub fn header(extra: &[String]) -> String {
 /// measure `m` it names, `best_<m>` (the generation's best individual's) and `mean_<m>` (the
 /// population mean); with `[validation]` on, `validation_best` (the best validation fitness
 /// among the candidates validated after this generation, empty in generations without
-/// validation) and `validation_<m>` (that candidate's measures). None for an experiment
-/// without either: the file is then exactly the plain format.
+/// validation) and `validation_<m>` (that candidate's measures); for a search with an
+/// archive (MAP-Elites), last, `qd_score`, `coverage`, `archive_size` and `max_fitness` of
+/// the archive after this generation ([`crate::evo::search::grid::QdMetrics`]). None for an
+/// experiment without any: the file is then exactly the plain format.
 pub fn extra_columns(experiment: &crate::experiment::ExperimentConfig) -> Vec<String> {
     let measures = &experiment.behaviour.measures;
     let mut columns = Vec::new();
@@ -408,6 +411,10 @@ pub fn extra_columns(experiment: &crate::experiment::ExperimentConfig) -> Vec<St
         for m in measures {
             columns.push(format!("validation_{}", m.name()));
         }
+    }
+    // Only an archive search's file has them, so every other run keeps its bytes.
+    if experiment.evolution.has_archive() {
+        columns.extend(QD_COLUMNS.iter().map(|c| c.to_string()));
     }
     columns
 }
@@ -468,7 +475,7 @@ fn format_row_with(
 
 /// A float as the csv serializer writes it: `ryu`'s shortest round-trip text (`3.0`, `0.1`),
 /// `NaN`, `inf` or `-inf`.
-fn float_text(v: f64) -> String {
+pub(crate) fn float_text(v: f64) -> String {
     let mut w = csv::WriterBuilder::new()
         .has_headers(false)
         .terminator(csv::Terminator::Any(b'\n'))

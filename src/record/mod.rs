@@ -1,6 +1,7 @@
 //! Record: all file I/O of a run, written so that it survives a crash and reproduces byte for
-//! byte: atomic file replacement, checkpoints, the fitness CSV, genome files, the champions log, per-tick traces, plots and pictures.
+//! byte: atomic file replacement, checkpoints, the fitness CSV, a MAP-Elites archive, genome files, the champions log, per-tick traces, plots and pictures.
 
+pub mod archive;
 pub mod atomic;
 pub mod champions;
 pub mod checkpoint;

@@ -6,6 +6,7 @@
 //! - a run's `fitness.csv`: the x axis is `generation`; a curve is drawn for each of `best`,
 //!   `mean`, `median`, `worst` and `validation_best` that the header has (empty or non-finite
 //!   cells are left out of their curve);
+//! - a MAP-Elites run's `fitness.csv` also gives [`qd_plot`] (QD score and coverage);
 //! - a `summary.csv` across seeds: the x axis is `generation`; for every column `Q_median`
 //!   (e.g. `best_median`, `mean_median`, `validation_median`) a median line, with a band from
 //!   `Q_q1` to `Q_q3` (first and third quartiles across seeds) when both columns exist.
@@ -369,6 +370,88 @@ fn draw(table: &Table, title: &str, y_label: &str, curves: &[Curve]) -> Result<S
         .rfind("</svg>")
         .ok_or_else(|| PlotError::Draw("plotters wrote an SVG without its closing tag".into()))?;
     svg.insert_str(end, &legend.svg(curves, f64::from(SIZE.1)));
+    Ok(svg)
+}
+
+/// The SVG of an archive search's quality-diversity curves over generations, from its
+/// fitness.csv's `qd_score` and `coverage` columns: QD score above, coverage (in percent of
+/// the cells) below, each on its own axis.
+pub fn qd_plot(table: &Table, title: &str) -> Result<String, PlotError> {
+    let hint = "a MAP-Elites run's fitness.csv has qd_score and coverage columns";
+    let x = generation_column(table, hint)?;
+    let column = |name: &str| {
+        table.column(name).ok_or_else(|| PlotError::Column {
+            path: table.path.clone(),
+            column: name.into(),
+            header: table.header.join(","),
+            hint,
+        })
+    };
+    let qd = table.points(x, column("qd_score")?);
+    let coverage: Vec<(f64, f64)> = table
+        .points(x, column("coverage")?)
+        .into_iter()
+        .map(|(g, c)| (g, 100.0 * c))
+        .collect();
+    if qd.is_empty() {
+        return Err(PlotError::Empty {
+            path: table.path.clone(),
+            reason: "no rows with numbers to plot (has the run finished a generation?)".into(),
+        });
+    }
+    let range = |v: &[(f64, f64)], pick: fn(&(f64, f64)) -> f64| {
+        let lo = v.iter().map(pick).fold(f64::INFINITY, f64::min);
+        let hi = v.iter().map(pick).fold(f64::NEG_INFINITY, f64::max);
+        let pad = if hi > lo { 0.05 * (hi - lo) } else { 1.0 };
+        (lo - pad, hi + pad)
+    };
+    let (x0, x1) = range(&qd, |p| p.0);
+    let mut svg = String::new();
+    {
+        let root =
+            SVGBackend::with_string(&mut svg, (SIZE.0, 2 * SIZE.1 - 100)).into_drawing_area();
+        let e = |e: &dyn std::fmt::Display| PlotError::Draw(e.to_string());
+        root.fill(&WHITE).map_err(|x| e(&x))?;
+        let root = root.titled(title, ("sans-serif", 22)).map_err(|x| e(&x))?;
+        let panels = root.split_evenly((2, 1));
+        for (k, (area, (points, label))) in panels
+            .iter()
+            .zip([(&qd, "QD score"), (&coverage, "coverage (% of cells)")])
+            .enumerate()
+        {
+            let (y0, y1) = range(points, |p| p.1);
+            let mut chart = ChartBuilder::on(area)
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(70)
+                .build_cartesian_2d(x0..x1, y0..y1)
+                .map_err(|x| e(&x))?;
+            chart
+                .configure_mesh()
+                .x_desc("generation")
+                .y_desc(label)
+                .light_line_style(RGBColor(235, 235, 235))
+                .label_style(("sans-serif", 14))
+                .axis_desc_style(("sans-serif", 15))
+                .x_labels(10)
+                .x_label_formatter(&|x| {
+                    if (x - x.round()).abs() < 1e-9 {
+                        format!("{x:.0}")
+                    } else {
+                        String::new()
+                    }
+                })
+                .draw()
+                .map_err(|x| e(&x))?;
+            chart
+                .draw_series(LineSeries::new(
+                    points.iter().copied(),
+                    COLOURS[k].stroke_width(2),
+                ))
+                .map_err(|x| e(&x))?;
+        }
+        root.present().map_err(|x| e(&x))?;
+    }
     Ok(svg)
 }
 

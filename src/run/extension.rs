@@ -48,10 +48,14 @@ pub fn rewind(
     } else {
         current
     };
-    // The measure columns stay; the validation columns become those of an unvalidated row.
+    // The measure columns stay; the validation columns become those of an unvalidated row;
+    // the columns after them (an archive's metrics) stay.
     let measures = 2 * experiment.behaviour.measures.len();
+    let validation = validation_columns(experiment, None);
+    let after = last_extra.iter().skip(measures + validation.len()).copied();
     let mut extra: Vec<Option<f64>> = last_extra.iter().take(measures).copied().collect();
-    extra.extend(validation_columns(experiment, None));
+    extra.extend(validation);
+    extra.extend(after);
     Rewound {
         validated_best,
         last_extra: extra,

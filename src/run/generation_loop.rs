@@ -4,7 +4,7 @@
 //! [`super::start()`] or by the resume's apply step.
 
 use super::checkpoints::CheckpointPayload;
-use super::error::RunError;
+use super::error::{io_err, RunError};
 use super::extension::{self, EndOfRunValidation};
 use super::folder::{evaluation_failed, output_failed};
 use super::lock::RunLock;
@@ -18,6 +18,7 @@ use crate::evo::state::{
 };
 use crate::evo::validation::{self, ValidatedChampion};
 use crate::experiment::Experiment;
+use crate::record::archive::{self, ARCHIVE_FILE};
 use crate::record::champions::ChampionsLog;
 use crate::record::checkpoint;
 use crate::record::fitness_csv::{FitnessCsv, FitnessRow};
@@ -231,7 +232,7 @@ impl Loop {
             self.write_best().map_err(|e| output_failed(&self.dir, e))?;
         }
         let candidates = self.search.champion_candidates(evaluated);
-        let (extras, validated) = pool.install(|| {
+        let (mut extras, validated) = pool.install(|| {
             validation::after_generation(
                 &self.experiment,
                 &self.topology,
@@ -242,6 +243,12 @@ impl Loop {
                 &mut self.validation_worlds,
             )
         })?;
+        if let Some(archive) = self.search.archive(evaluated) {
+            // An archive search (MAP-Elites): its metrics end the row; archive.csv is replaced.
+            extras.extend(archive.metrics().columns());
+            archive::write(&self.dir, &archive)
+                .map_err(|e| output_failed(&self.dir, io_err(&self.dir.join(ARCHIVE_FILE))(e)))?;
+        }
         let replaced = validation::improved(self.validated_best.as_ref(), validated.as_ref());
         if validated.is_some()
             && generation + 1 >= total

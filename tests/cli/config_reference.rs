@@ -138,6 +138,37 @@ fn base_table(path: &str) -> toml::Table {
             toml::Value::Array(vec![descriptor]),
         );
     }
+    // `[evolution.map_elites]` only by MAP-Elites, which needs a descriptor; `sigma` only by
+    // its Gaussian emitter.
+    if path.starts_with("evolution.map_elites.") {
+        set_path(
+            &mut t,
+            "evolution.algorithm",
+            toml::Value::from("map-elites"),
+        );
+        set_path(
+            &mut t,
+            "behaviour.measures",
+            toml::Value::try_from(["ticks_alive"]).unwrap(),
+        );
+        let descriptor: toml::Value = toml::from_str::<toml::Table>(
+            "measure = \"ticks_alive\"\nmin = 0.0\nmax = 100.0\nbins = 10",
+        )
+        .unwrap()
+        .into();
+        set_path(
+            &mut t,
+            "evolution.map_elites.descriptors",
+            toml::Value::Array(vec![descriptor]),
+        );
+        if path == "evolution.map_elites.sigma" {
+            set_path(
+                &mut t,
+                "evolution.map_elites.emitter",
+                toml::Value::from("gaussian"),
+            );
+        }
+    }
     t
 }
 

@@ -1,4 +1,4 @@
-//! Evolution and evaluation (`berry_evolve::evo`, `berry_evolve::experiment`): the search seam, the GA and PGPE,
+//! Evolution and evaluation (`berry_evolve::evo`, `berry_evolve::experiment`): the search seam, the GA and PGPE, MAP-Elites,
 //! trials, lockstep, fitness terms and measures, validation, and experiment files.
 
 #[path = "../cli_common/mod.rs"]
@@ -12,6 +12,7 @@ mod genetic_algorithm;
 mod jobs_counted_within_a_generation;
 mod known_functions;
 mod lockstep_vs_single_trials;
+mod map_elites;
 mod motion_measures;
 mod novelty;
 mod overflowing_brains;

@@ -8,6 +8,7 @@ use crate::cli_common::{fixture, run_ok};
 
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::evaluate::Evaluation;
+use berry_evolve::evo::search::map_elites::MapElitesState;
 use berry_evolve::evo::search::novelty::NoveltyState;
 use berry_evolve::evo::search::pgpe::PgpeState;
 use berry_evolve::evo::search::{self, Search, SearchState};
@@ -152,6 +153,40 @@ fn novelty_search_gives_its_pinned_genomes_and_archive() {
     assert_eq!(births(&third)[0].0, "elite");
 }
 
+/// MAP-Elites' generation 3 of tiny-map-elites.toml and its archive then, pinned (values
+/// from this test's first run, on the commit that added MAP-Elites), so that a change to the
+/// emitter's draws, the cells or the insertion rule shows.
+#[test]
+fn map_elites_gives_its_pinned_genomes_and_archive() {
+    let e = load("tiny-map-elites.toml");
+    let mut search = search::factory::of(&e, &e.topology());
+    let third = drive(&e, search.as_mut(), 3);
+    let Some(Ok(state)) = search
+        .state()
+        .and_then(|s| s.read::<MapElitesState>("map_elites"))
+    else {
+        panic!("map-elites saves its archive");
+    };
+    let fitness: Vec<f64> = state.elites.iter().map(|e| e.fitness).collect();
+    let got = (
+        hash(third.individuals.iter().map(|i| i.genome.clone())),
+        state.elites.len(),
+        hash(state.elites.iter().map(|e| e.genome.clone())),
+        hash_values(&fitness),
+    );
+    assert_eq!(
+        got,
+        (
+            0xe278_6ec6_f088_b725,
+            3,
+            0xadd1_6a4d_7c9a_a976,
+            0x5c30_f73c_26cb_0875
+        ),
+        "{got:x?}"
+    );
+    assert_eq!(births(&third)[0].0, "iso_line");
+}
+
 /// A checkpoint holds the state that sampled the last generation; restoring it into a new
 /// search and telling it that generation gives the next one, as a run never stopped.
 #[test]
@@ -161,6 +196,7 @@ fn the_state_round_trips_through_checkpoint_json_and_resumes_exactly() {
         "tiny-pgpe.toml",
         "tiny-sep-cma-es.toml",
         "tiny-novelty.toml",
+        "tiny-map-elites.toml",
     ] {
         let experiment = load(name);
         let topology = experiment.topology();
@@ -221,6 +257,7 @@ fn pgpe_names_its_centre_as_champion_candidate_and_the_ga_none() {
         ("tiny-sep-cma-es.toml", true),
         ("tiny.toml", false),
         ("tiny-novelty.toml", false),
+        ("tiny-map-elites.toml", false),
     ] {
         let experiment = load(name);
         let search = search::factory::of(&experiment, &experiment.topology());
@@ -278,6 +315,7 @@ fn each_search_describes_itself_and_its_first_genomes_are_its_first_ask() {
         ("tiny-pgpe.toml", "PGPE"),
         ("tiny-sep-cma-es.toml", "sep-CMA-ES"),
         ("tiny-novelty.toml", "novelty search"),
+        ("tiny-map-elites.toml", "MAP-Elites"),
     ] {
         let experiment = load(name);
         let search = search::factory::of(&experiment, &experiment.topology());

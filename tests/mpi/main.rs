@@ -200,7 +200,12 @@ fn one_two_and_three_ranks_give_the_plain_bytes() {
         // Archive searches: the novelty archive (and MAP-Elites' grid) is told the
         // generation's behaviour measures, which each rank sends back with the fitness.
         (
-            variant(t, "tests/fixtures/tiny-novelty.toml", "tiny-novelty.toml", |s| s),
+            variant(
+                t,
+                "tests/fixtures/tiny-novelty.toml",
+                "tiny-novelty.toml",
+                |s| s,
+            ),
             "4",
         ),
     ];

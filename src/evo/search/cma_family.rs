@@ -5,7 +5,6 @@
 //! distribution on the best individual when a checkpoint holds none of their state, and offer
 //! only the mean as champion; what differs is the distribution itself ([`Distribution`]).
 
-use super::sep_cma_es::noises;
 use super::{centre_candidate, improved_centre, own_state, Search, SearchState, Unevaluated};
 use crate::brain::genome::Genome;
 use crate::evo::lineage::{Birth, Lineage};
@@ -13,7 +12,7 @@ use crate::evo::state::{Champion, EvaluatedGeneration, GenerationSummary};
 use crate::evo::validation::Candidate;
 use crate::experiment::evolution::CmaEsSpec;
 use crate::experiment::Experiment;
-use crate::seed::{Generation, Seed};
+use crate::seed::{gaussian, stream, Generation, IndividualId, Purpose, Seed, TrialIndex};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 use std::fmt::Debug;
@@ -51,6 +50,27 @@ pub trait Distribution: Debug + Clone + Send + Sync + 'static {
     ) -> Self::State;
     /// Why `state` cannot continue a search over `parameters` parameters, or `None`.
     fn problem(state: &Self::State, parameters: usize) -> Option<String>;
+}
+
+/// The λ standard normal vectors z_k of generation `generation`: one stream
+/// (`Purpose::Search`, the generation, individual 0, trial 0), vector after vector, parameter
+/// after parameter, so a smaller sample is the first of a larger one (both CMA-ES variants).
+pub fn noises(
+    seed: Seed,
+    generation: Generation,
+    parameters: usize,
+    lambda: usize,
+) -> Vec<Vec<f64>> {
+    let mut rng = stream(
+        seed,
+        Purpose::Search,
+        generation,
+        IndividualId(0),
+        TrialIndex(0),
+    );
+    (0..lambda)
+        .map(|_| (0..parameters).map(|_| gaussian(&mut rng)).collect())
+        .collect()
 }
 
 /// A CMA-ES search as a [`Search`]: θ_g, the generation it samples, where its mean came from.

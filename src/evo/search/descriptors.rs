@@ -1,7 +1,7 @@
 //! Behaviour descriptors: an individual's `[behaviour]` measures, as named by a search's
 //! `descriptors`, each scaled from its [min, max] to [0, 1], so that distances in behaviour
-//! space weigh every dimension alike (novelty search; a grid archive would bin the same
-//! vector).
+//! space weigh every dimension alike (novelty search; MAP-Elites' grid archive bins the
+//! same vector).
 
 use crate::evo::evaluate::Evaluation;
 use crate::experiment::evolution::DescriptorSpec;
@@ -47,10 +47,25 @@ impl Descriptors {
     /// The behaviour of `evaluation`: each measure scaled to [0, 1] by its range and clamped
     /// there (a missing or non-finite value reads as the range's low end, 0).
     pub fn of(&self, evaluation: &Evaluation) -> Vec<f64> {
+        self.scale(&self.raw(evaluation))
+    }
+
+    /// The measures of `evaluation` the descriptors name, unscaled, in descriptor order (a
+    /// missing one reads as its range's low end).
+    pub fn raw(&self, evaluation: &Evaluation) -> Vec<f64> {
         self.dimensions
             .iter()
-            .map(|&(at, min, max)| {
-                let x = evaluation.measures.get(at).copied().unwrap_or(min);
+            .map(|&(at, min, _)| evaluation.measures.get(at).copied().unwrap_or(min))
+            .collect()
+    }
+
+    /// `raw` (one value per dimension) scaled to [0, 1] by each range and clamped there (a
+    /// non-finite value reads as 0).
+    pub fn scale(&self, raw: &[f64]) -> Vec<f64> {
+        self.dimensions
+            .iter()
+            .zip(raw)
+            .map(|(&(_, min, max), &x)| {
                 let scaled = (x - min) / (max - min);
                 if scaled.is_finite() {
                     scaled.clamp(0.0, 1.0)

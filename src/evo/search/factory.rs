@@ -2,7 +2,7 @@
 //! algorithm (kept out of the trait's module so that the algorithms, which implement the
 //! trait, and the factory, which builds them, import no circle).
 
-use super::{cma_es, ga, novelty, pgpe, sep_cma_es, Search, Unevaluated};
+use super::{cma_es, ga, map_elites, novelty, pgpe, sep_cma_es, Search, Unevaluated};
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
 use crate::experiment::evolution::Algorithm;
@@ -18,6 +18,7 @@ pub fn of(experiment: &Experiment, topology: &Topology) -> Box<dyn Search> {
         Algorithm::SepCmaEs => Box::new(sep_cma_es::SepCmaEs::new(experiment, parameters)),
         Algorithm::CmaEs => Box::new(cma_es::CmaEs::new(experiment, parameters)),
         Algorithm::Novelty => Box::new(novelty::Novelty::new(experiment, parameters)),
+        Algorithm::MapElites => Box::new(map_elites::MapElites::new(experiment, parameters)),
     }
 }
 

@@ -34,6 +34,9 @@
 //! - [`novelty::Novelty`], novelty search, the GA ranking by novelty in behaviour space
 //!   ([`descriptors`]; `algorithm = "novelty"`): saves its archive as `"search":
 //!   {"novelty": {...}}`.
+//! - [`map_elites::MapElites`], MAP-Elites with a grid archive ([`grid`]; `algorithm =
+//!   "map-elites"`): saves its elites as `"search": {"map_elites": {...}}`, and shows its
+//!   archive to the outputs through [`Search::archive`].
 //!
 //! docs/search.md, "Adding a search algorithm: a checklist", says how to add another.
 
@@ -42,6 +45,8 @@ pub mod cma_family;
 pub mod descriptors;
 pub mod factory;
 pub mod ga;
+pub mod grid;
+pub mod map_elites;
 pub mod novelty;
 pub mod pgpe;
 pub mod sep_cma_es;
@@ -50,6 +55,7 @@ use crate::brain::genome::Genome;
 use crate::evo::lineage::Lineage;
 use crate::evo::state::{improved_champion, Champion, EvaluatedGeneration, GenerationSummary};
 use crate::evo::validation::Candidate;
+use grid::ArchiveView;
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
@@ -212,6 +218,15 @@ pub trait Search: Send + Sync {
     /// (for the estimate). By default 0.
     fn champion_candidates_per_generation(&self) -> usize {
         0
+    }
+
+    /// The search's archive of elites as it will be once `evaluated` (the generation
+    /// [`Search::ask`] gave, not yet told) is told: what archive.csv, fitness.csv's
+    /// quality-diversity columns, `plot` and `extract --cell` show. `None` for a search
+    /// without one (the default).
+    fn archive<'a>(&'a self, evaluated: &'a EvaluatedGeneration) -> Option<ArchiveView<'a>> {
+        let _ = evaluated;
+        None
     }
 }
 

@@ -49,7 +49,6 @@ use super::cma_family::{CmaSearch, Distribution};
 use crate::brain::genome::Genome;
 use crate::evo::select::ranking;
 use crate::experiment::evolution::{CmaEsSpec, MAX_MAGNITUDE};
-use crate::seed::{gaussian, stream, Generation, IndividualId, Purpose, Seed, TrialIndex};
 use serde::{Deserialize, Serialize};
 
 /// The smallest step size: far below any useful step, it keeps σ positive.
@@ -189,26 +188,6 @@ impl SepCmaState {
         }
         None
     }
-}
-
-/// The λ standard normal vectors z_k of generation `generation`, drawn as the module
-/// documentation says.
-pub fn noises(
-    seed: Seed,
-    generation: Generation,
-    parameters: usize,
-    lambda: usize,
-) -> Vec<Vec<f64>> {
-    let mut rng = stream(
-        seed,
-        Purpose::Search,
-        generation,
-        IndividualId(0),
-        TrialIndex(0),
-    );
-    (0..lambda)
-        .map(|_| (0..parameters).map(|_| gaussian(&mut rng)).collect())
-        .collect()
 }
 
 /// The samples x_k = m + σ √c ⊙ z_k for each of `noises` in order, then the mean itself.

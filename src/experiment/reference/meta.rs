@@ -7,7 +7,8 @@
 
 use crate::brain::spec::{MAX_HIDDEN_LAYERS, MAX_SUBSTEPS, MAX_UNITS};
 use crate::experiment::evolution::{
-    DEFAULT_ARCHIVE_PROBABILITY, MAX_GENERATIONS, MAX_MAGNITUDE, MAX_NOVELTY_ARCHIVE,
+    DEFAULT_ARCHIVE_PROBABILITY, DEFAULT_GAUSSIAN_SIGMA, DEFAULT_ISO_SIGMA, DEFAULT_LINE_SIGMA,
+    MAX_GENERATIONS, MAX_GRID_CELLS, MAX_GRID_DIMENSIONS, MAX_MAGNITUDE, MAX_NOVELTY_ARCHIVE,
     MAX_POPULATION,
 };
 use crate::experiment::tables::{MAX_CREATURE_TICKS_PER_GENERATION, MAX_TICKS, MAX_TRIALS};
@@ -366,6 +367,18 @@ pub fn keys() -> Vec<KeyMeta> {
         kd("NoveltySpec.archive_probability", "", unit01(), GA, DEFAULT_ARCHIVE_PROBABILITY),
         k("NoveltySpec.archive_size", "entries", Range::between(0.0, MAX_NOVELTY_ARCHIVE as f64), GA),
         k("NoveltySpec.fitness_weight", "", unit01(), GA),
+        k("EvolutionSpec.map_elites", "", any().note("only with algorithm = \"map-elites\""), GA),
+        k("MapElitesSpec.descriptors", "", any().note(format!("1 to {MAX_GRID_DIMENSIONS}; each a [behaviour] measure, at most once; at most {MAX_GRID_CELLS} cells")), GA),
+        k("MapElitesSpec.initial_random", "elites", Range::ge(1.0).note("at most the grid's cells"), GA),
+        k("MapElitesSpec.emitter", "", any(), GA),
+        kd("MapElitesSpec.sigma", "parameter units", Range::between(0.0, MAX_MAGNITUDE).note("only with emitter = \"gaussian\""), GA, DEFAULT_GAUSSIAN_SIGMA),
+        kd("MapElitesSpec.iso_sigma", "parameter units", Range::between(0.0, MAX_MAGNITUDE).note("only with emitter = \"iso-line\""), GA, DEFAULT_ISO_SIGMA),
+        kd("MapElitesSpec.line_sigma", "", Range::between(0.0, MAX_MAGNITUDE).note("only with emitter = \"iso-line\""), GA, DEFAULT_LINE_SIGMA),
+        k("MapElitesSpec.qd_offset", "fitness units", any(), GA),
+        k("GridDescriptorSpec.measure", "", any().note("one of [behaviour] measures"), GA),
+        k("GridDescriptorSpec.min", "the measure's unit", any().note("below max"), GA),
+        k("GridDescriptorSpec.max", "the measure's unit", any().note("above min"), GA),
+        k("GridDescriptorSpec.bins", "cells", Range::ge(1.0), GA),
         k("DescriptorSpec.measure", "", any().note("one of [behaviour] measures"), GA),
         k("DescriptorSpec.min", "the measure's unit", any().note("below max"), GA),
         k("DescriptorSpec.max", "the measure's unit", any().note("above min"), GA),
