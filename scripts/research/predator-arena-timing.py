@@ -16,7 +16,7 @@ Then the means over trials, split by "outside at the wake" or not.
 Nest and arena geometry are read from EXPERIMENT (the first [[world.areas]] region); the SVG
 scale is 2.4 px per LU with the arena's corner at (20, 50) px, as berry-evolve render draws it.
 
-Usage: python3 scripts/predator-arena-timing.py GENOME EXPERIMENT [GENERATION] [TRIALS]
+Usage: python3 scripts/research/predator-arena-timing.py GENOME EXPERIMENT [GENERATION] [TRIALS]
   (GENERATION default 1099511627777 = the design set; TRIALS default and at most the
    experiment's [evaluation] trials, which render can draw)
 Needs BERRY_EVOLVE (default target/release/berry-evolve).
