@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """When does a predator-arena creature go into the nest: before the hunt, or when it starts?
 
-Renders every trial of GENOME in EXPERIMENT (berry-evolve render, one SVG per trial), reads
-the predator's and the creature's paths from the SVG (one point per tick), and reports per trial:
+Replays GENOME on EXPERIMENT's worlds of GENERATION with a trace (`berry-evolve replay
+--trace`, see docs/replay-and-traces.md), reads the predator's and the creature's positions
+per tick from it (trace-actors.csv, trace.csv, and their start poses from trace-world.jsonl),
+and reports per trial:
   wake     the tick the predator first moves (its sleep, [world.predators] asleep), or "-" if
            it sleeps through the trial
   out_pre  share of the ticks before the wake (or of the whole life if it never wakes) the
@@ -10,75 +12,83 @@ the predator's and the creature's paths from the SVG (one point per tick), and r
   in_post  share of the ticks alive after the wake spent inside the nest
   lat      ticks from the wake to the first tick inside the nest, for a creature outside at
            the wake ("in" if it was already inside; "never" if it did not get in)
-  alive    ticks alive
-Then the means over trials, split by "outside at the wake" or not.
-
-Nest and arena geometry are read from EXPERIMENT (the first [[world.areas]] region); the SVG
-scale is 2.4 px per LU with the arena's corner at (20, 50) px, as berry-evolve render draws it.
+  alive    ticks in the trace (the tick of a death included)
+Then the means over trials, split by "outside at the wake" or not. The nest is the world's
+first area (trace-world.jsonl's `areas`); positions count from the start (tick 0).
 
 Usage: python3 scripts/research/predator-arena-timing.py GENOME EXPERIMENT [GENERATION] [TRIALS]
   (GENERATION default 1099511627777 = the design set; TRIALS default and at most the
-   experiment's [evaluation] trials, which render can draw)
+   experiment's [evaluation] trials)
 Needs BERRY_EVOLVE (default target/release/berry-evolve).
 """
+import csv
+import json
+import math
 import os
-import re
 import subprocess
 import sys
 import tempfile
-import tomllib
 
 BIN = os.environ.get("BERRY_EVOLVE", "target/release/berry-evolve")
 
 
-def points(text):
-    return [tuple(float(v) for v in p.split(",")) for p in text.split()]
+def paths(genome, exp, gen):
+    """Per trial: (the creature's positions, the predator's positions, the nest (lo, hi)),
+    each path from the start (tick 0) to the trace's last tick."""
+    with tempfile.TemporaryDirectory() as tmp:
+        trace = os.path.join(tmp, "trace.csv")
+        subprocess.run([BIN, "replay", genome, "--experiment", exp, "--generation", gen,
+                        "--trace", trace], check=True, capture_output=True)
+        stem = trace[:-len(".csv")]
+        worlds = {}
+        with open(stem + "-world.jsonl") as f:
+            for line in f:
+                w = json.loads(line)
+                predator = next(a for a in w["actors"] if a["role"] == "predator")
+                area = w["areas"][0]
+                worlds[w["trial"]] = ([tuple(w["creatures"][0]["position"])],
+                                      [tuple(predator["start"]["position"])],
+                                      (area["lo"], area["hi"]))
+        with open(trace) as f:
+            for row in csv.DictReader(f):
+                if row["creature"] == "0":
+                    worlds[int(row["trial"])][0].append((float(row["x"]), float(row["y"])))
+        # The first predator of each trial (actors are numbered per kind).
+        with open(stem + "-actors.csv") as f:
+            for row in csv.DictReader(f):
+                if row["kind"] == "predator" and row["index"] == "0":
+                    worlds[int(row["trial"])][1].append((float(row["x"]), float(row["y"])))
+    return worlds
 
 
 def main():
     genome, exp = sys.argv[1], sys.argv[2]
     gen = sys.argv[3] if len(sys.argv) > 3 else "1099511627777"
-    cfg = tomllib.load(open(exp, "rb"))
-    trials = int(sys.argv[4]) if len(sys.argv) > 4 else cfg["evaluation"]["trials"]
-    x0, y0, x1, y1 = cfg["world"]["areas"][0]["region"]
-    # pixel geometry of berry-evolve render: px = 20 + s*x, py = 50 + s*y
-    aw = cfg["world"]["arena"][0]
-    s = 720.0 / aw if aw else 2.4
-    s = 2.4 if abs(aw - 300.0) < 1e-9 else s
+    worlds = paths(genome, exp, gen)
+    trials = int(sys.argv[4]) if len(sys.argv) > 4 else len(worlds)
     rows = []
-    with tempfile.TemporaryDirectory() as tmp:
-        for t in range(trials):
-            svg = os.path.join(tmp, f"t{t}.svg")
-            subprocess.run([BIN, "render", genome, "--experiment", exp, "--trial", str(t),
-                            "--generation", gen, "-o", svg], check=True, capture_output=True)
-            text = open(svg).read()
-            pred = points(re.search(r'class="predator-path" points="([^"]*)"', text).group(1))
-            i = text.index('class="creature-path"')
-            j = text.index("</g>", i)
-            segs = [points(p) for p in re.findall(r'<polyline points="([^"]*)"', text[i:j])]
-            path = segs[0][:]
-            for sg in segs[1:]:
-                path += sg[1:]
-            inside = [x0 <= (px - 20) / s <= x1 and y0 <= (py - 50) / s <= y1 for px, py in path]
-            wake = next((k for k in range(1, len(pred)) if pred[k] != pred[0]), None)
-            alive = len(path) - 1
-            pre = inside[: (wake if wake is not None else len(inside))]
-            out_pre = (sum(1 for v in pre if not v) / len(pre)) if pre else float("nan")
-            if wake is not None and wake < len(inside):
-                post = inside[wake:]
-                in_post = sum(post) / len(post)
-                if inside[wake]:
-                    lat = "in"
-                else:
-                    lat = next((str(k - wake) for k in range(wake, len(inside)) if inside[k]),
-                               "never")
+    for t in range(min(trials, len(worlds))):
+        path, pred, ((x0, y0), (x1, y1)) = worlds[t]
+        inside = [x0 <= x <= x1 and y0 <= y <= y1 for x, y in path]
+        wake = next((k for k in range(1, len(pred)) if pred[k] != pred[0]), None)
+        alive = len(path) - 1
+        pre = inside[: (wake if wake is not None else len(inside))]
+        out_pre = (sum(1 for v in pre if not v) / len(pre)) if pre else float("nan")
+        if wake is not None and wake < len(inside):
+            post = inside[wake:]
+            in_post = sum(post) / len(post)
+            if inside[wake]:
+                lat = "in"
             else:
-                in_post, lat = float("nan"), "-"
-            rows.append((t, wake, out_pre, in_post, lat, alive))
+                lat = next((str(k - wake) for k in range(wake, len(inside)) if inside[k]),
+                           "never")
+        else:
+            in_post, lat = float("nan"), "-"
+        rows.append((t, wake, out_pre, in_post, lat, alive))
     print("trial wake out_pre in_post lat alive")
     for t, wake, op, ip, lat, alive in rows:
         print(f"{t:5d} {wake if wake is not None else '-':>4} {op:7.2f} {ip:7.2f} {lat:>5} {alive:5d}")
-    import math
+
     def mean(v):
         v = [x for x in v if not math.isnan(x)]
         return sum(v) / len(v) if v else float("nan")
