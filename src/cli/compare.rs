@@ -7,6 +7,7 @@ use crate::cli::console::outln;
 use crate::cli::json::{self, finite, Named};
 use crate::cli::worlds::{experiment_file, warn_other_experiment, WorldSet, WorldsChoice};
 
+use anyhow::Context;
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::brain::spec::Topology;
 use berry_evolve::evo::evaluate::{aggregate, run_trial};
@@ -18,7 +19,6 @@ use berry_evolve::experiment::{Aggregate, Experiment, Measure, MEASURES};
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::seed::{stream, IndividualId, Purpose, TrialIndex};
 use berry_evolve::sim::world::World;
-use anyhow::Context;
 use clap::Args;
 use rayon::prelude::*;
 use serde::Serialize;

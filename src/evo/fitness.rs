@@ -203,17 +203,12 @@ impl LifePlan {
         plan.tracks_pose = plan.forward_bonus != 0.0 || plan.follows_motion;
         plan.per_tick = plan.watches_places || plan.tracks_pose;
         plan.bites = spec.distinct_food_bonus != 0.0
-            || plan
-                .measures
-                .iter()
-                .any(|m| {
-                    matches!(
-                        m,
-                        Measure::DistinctFood
-                            | Measure::FoodInAreaEaten
-                            | Measure::RichestSideFirst
-                    )
-                });
+            || plan.measures.iter().any(|m| {
+                matches!(
+                    m,
+                    Measure::DistinctFood | Measure::FoodInAreaEaten | Measure::RichestSideFirst
+                )
+            });
         plan
     }
 
@@ -653,9 +648,7 @@ impl LifeScore {
                     }
                 }
                 Measure::RichestSideFirst => match &self.side_choice {
-                    Some(s) => f64::from(u8::from(
-                        bitten.get(s.food) == Some(&true) && !s.strayed,
-                    )),
+                    Some(s) => f64::from(u8::from(bitten.get(s.food) == Some(&true) && !s.strayed)),
                     None => 0.0,
                 },
             };

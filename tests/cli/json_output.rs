@@ -512,9 +512,15 @@ fn compare_measure_adds_measures_beside_the_files_own() {
     .concat();
     let more = document(&run_ok(&extra).stdout, "berry-evolve/compare/1");
     let (g0, g1) = (&plain["genomes"][0], &more["genomes"][0]);
-    assert_eq!(g0["fitness"], g1["fitness"], "measures never change fitness");
+    assert_eq!(
+        g0["fitness"], g1["fitness"],
+        "measures never change fitness"
+    );
     let names: Vec<&String> = g1["measures"].as_object().unwrap().keys().collect();
-    assert_eq!(names, ["distinct_food", "eaten", "food_types", "still_share"]);
+    assert_eq!(
+        names,
+        ["distinct_food", "eaten", "food_types", "still_share"]
+    );
     // The file's measures first, in its order, then the new ones (the text keeps the order).
     let text = [&extra[..8], &extra[9..]].concat();
     let text = stdout_of(&text);

@@ -49,8 +49,11 @@ fn food(name: &str, radius: f64, substance: [f64; 4], bite: [f64; 4], at: [f64; 
 }
 
 fn experiment(objects: &str) -> Experiment {
-    Experiment::from_toml(&TEXT.replace("OBJECTS", objects), Path::new("measures.toml"))
-        .unwrap_or_else(|e| panic!("{e}"))
+    Experiment::from_toml(
+        &TEXT.replace("OBJECTS", objects),
+        Path::new("measures.toml"),
+    )
+    .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Wheel signals (left, right) in RPT, one pair per tick.
@@ -209,7 +212,10 @@ fn choice() -> Experiment {
 fn first_bite(life: &Life) -> (Option<usize>, f64) {
     let bite = life.path.iter().position(|(_, b)| *b);
     let before = &life.path[..bite.unwrap_or(life.path.len())];
-    let top = before.iter().map(|(p, _)| p[1]).fold(life.start[1], f64::min);
+    let top = before
+        .iter()
+        .map(|(p, _)| p[1])
+        .fold(life.start[1], f64::min);
     (bite, top)
 }
 
