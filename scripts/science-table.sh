@@ -3,7 +3,7 @@
 # open-arena and walled-arena, which say so at their top), run 5 seeds at the file's own
 # budget, then print as Markdown, per experiment: the algorithm and budget, the median wall
 # time of a run, the median and range of held-out fitness (`compare --trials 20`, or the
-# list's sixth column for experiments whose trials are too noisy for 20; worlds evolution
+# list's fifth column for experiments whose trials are too noisy for 20; worlds evolution
 # never saw) and of the behaviour measures, 64 random genomes' median and best, the
 # hand-designed baseline, and the ablation (the sense the behaviour needs taken away) with
 # its drop.
