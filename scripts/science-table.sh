@@ -3,7 +3,7 @@
 # open-arena and walled-arena, which say so at their top), run 5 seeds at the file's own
 # budget, then print as Markdown, per experiment: the algorithm and budget, the median wall
 # time of a run, the median and range of held-out fitness (`compare --trials 20`, or the
-# list's sixth column for experiments whose trials are too noisy for 20; worlds evolution
+# list's fifth column for experiments whose trials are too noisy for 20; worlds evolution
 # never saw) and of the behaviour measures, 64 random genomes' median and best, the
 # hand-designed baseline, and the ablation (the sense the behaviour needs taken away) with
 # its drop.
@@ -18,10 +18,10 @@
 # run on one core while the other core runs another; a run alone with --jobs 2 is faster.
 #
 # The experiment lists (one per helper, tab-separated: experiment, ablation, baseline,
-# behaviour command, optional measures to show, optional held-out trials, default 20) are
-# data files; a behaviour command of
-# `compare` takes the measures the experiment file's [behaviour] names from compare's JSON, so that each helper edits
-# only its own lines:
+# optional behaviour measures to show, optional held-out trials, default 20) are data files,
+# so that each helper edits only its own lines. The measures are built-in ones, all from
+# compare's JSON: those the experiment's [behaviour] does not name are asked for with
+# `compare --measure` (default: the first two the file names).
 LISTS=(scripts/science-table.tsv scripts/science-table-design2.tsv)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -76,14 +76,16 @@ runs, seeds, only, binary = (os.environ[k] for k in ("RUNS", "SEEDS", "ONLY", "B
 seeds = seeds.split()
 
 
-def compare(experiment, genomes, random, trials):
-    """Held-out fitness of each genome file, and the random genomes' (median, best)."""
+def compare(experiment, genomes, random, trials, keys):
+    """Held-out fitness of each genome file, its behaviour measures (the file's own and
+    `keys`), and the random genomes' (median, best)."""
+    extra = ["--measure", ",".join(keys)] if keys else []
     out = subprocess.run([binary, "compare", *genomes, "--experiment", experiment,
-                          "--trials", str(trials), "--random", str(random), "--json"],
+                          "--trials", str(trials), "--random", str(random), *extra, "--json"],
                          capture_output=True, text=True, check=True).stdout
     report = json.loads(out)
     fit = {g["path"]: nan_if_none(g["fitness"]) for g in report["genomes"]}
-    # The experiment's own [behaviour] measures, each averaged over the genome's trials.
+    # The measures, each averaged over the genome's trials.
     measures = {g["path"]: {k: nan_if_none(v) for k, v in g["measures"].items()}
                 for g in report["genomes"]}
     rnd = None
@@ -95,23 +97,6 @@ def compare(experiment, genomes, random, trials):
 
 def nan_if_none(x):
     return float("nan") if x is None else x
-
-
-def behaviour(command, genomes, measures):
-    """Behaviour measures per genome: from compare's JSON when the command is `compare`,
-    else from the command's "GENOME name value ..." lines."""
-    if command == "compare":
-        return {g: measures[g] for g in genomes}
-    out = subprocess.run(command.split() + genomes, capture_output=True, text=True,
-                         check=True).stdout
-    res = {}
-    for line in out.splitlines():
-        parts = line.split()
-        if not parts or parts[0] not in genomes:
-            continue
-        pairs = parts[1:]
-        res[parts[0]] = {pairs[i]: float(pairs[i + 1]) for i in range(0, len(pairs) - 1, 2)}
-    return res
 
 
 def med_range(values):
@@ -135,9 +120,9 @@ print("| experiment | algorithm, pop×gens×trials×ticks | wall (s, median) | h
 print("|---|---|---|---|---|---|---|---|---|")
 for line in os.environ["ROWS"].splitlines():
     cols = line.rstrip("\n").split("\t")
-    exp, abl, base, cmd = cols[:4]
-    keys = cols[4].split(",") if len(cols) > 4 and cols[4] else None
-    trials = int(cols[5]) if len(cols) > 5 and cols[5] else 20
+    exp, abl, base = cols[:3]
+    keys = cols[3].split(",") if len(cols) > 3 and cols[3] else None
+    trials = int(cols[4]) if len(cols) > 4 and cols[4] else 20
     if only not in exp:
         continue
     name = os.path.basename(exp)[:-5]
@@ -149,11 +134,9 @@ for line in os.environ["ROWS"].splitlines():
     walls = [float(open(os.path.join(os.path.dirname(c), "wall.txt")).read())
              for c in champs if os.path.exists(os.path.join(os.path.dirname(c), "wall.txt"))]
     have_base = os.path.exists(base)
-    fit, rnd, meas = compare(exp, champs + ([base] if have_base else []), 64, trials)
-    beh = behaviour(cmd, champs + ([base] if have_base else []), meas)
+    fit, rnd, beh = compare(exp, champs + ([base] if have_base else []), 64, trials, keys)
     if keys is None:
-        first = next(iter(beh.values()))
-        keys = [k for k in first if k != "fitness"][:2]
+        keys = list(next(iter(beh.values())))[:2]
     held = [fit[c] for c in champs]
     bcol = "; ".join(f"{k} {med_range([beh[c][k] for c in champs if k in beh.get(c, {})])}"
                      for k in keys)
@@ -164,9 +147,8 @@ for line in os.environ["ROWS"].splitlines():
     else:
         base_col = "none"
     if os.path.exists(abl):
-        afit, _, ameas = compare(abl, champs, 0, trials)
+        afit, _, abeh = compare(abl, champs, 0, trials, keys)
         amed = statistics.median(afit[c] for c in champs)
-        abeh = behaviour(cmd.replace(exp, abl), champs, ameas)
         acol = (f"{amed:.2f} ({amed - statistics.median(held):+.2f}); "
                 + ", ".join(f"{k} {statistics.median([abeh[c][k] for c in champs]):.2f}"
                             for k in keys))

@@ -267,6 +267,7 @@ pub fn held_out_check(
         trials: Some(worlds),
         random: CHECK_RANDOM,
         json: false,
+        measures: Vec::new(),
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs)

@@ -7,6 +7,7 @@ use crate::cli::console::outln;
 use crate::cli::json::{self, finite, Named};
 use crate::cli::worlds::{experiment_file, warn_other_experiment, WorldSet, WorldsChoice};
 
+use anyhow::Context;
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::brain::spec::Topology;
 use berry_evolve::evo::evaluate::{aggregate, run_trial};
@@ -14,7 +15,7 @@ use berry_evolve::evo::init::initial_population;
 use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::stats::FitnessStats;
 use berry_evolve::evo::trial::{run_trial_in_world, NoObserver, TrialId};
-use berry_evolve::experiment::{Aggregate, Experiment};
+use berry_evolve::experiment::{Aggregate, Experiment, Measure, MEASURES};
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::seed::{stream, IndividualId, Purpose, TrialIndex};
 use berry_evolve::sim::world::World;
@@ -50,6 +51,26 @@ pub struct CompareArgs {
     /// for the random genomes their statistics and each genome.
     #[arg(long)]
     pub json: bool,
+    /// Also report this behaviour measure, beside the experiment's own `[behaviour]`
+    /// measures (repeat it or separate names with commas; e.g. `--measure eaten,still_share`).
+    /// Measures never change fitness, so the experiment file need not change.
+    #[arg(long = "measure", value_name = "NAME", value_delimiter = ',', value_parser = measure_name)]
+    pub measures: Vec<Measure>,
+}
+
+/// A `--measure` name, or a message listing the names there are.
+fn measure_name(name: &str) -> Result<Measure, String> {
+    MEASURES
+        .iter()
+        .copied()
+        .find(|m| m.name() == name.trim())
+        .ok_or_else(|| {
+            let names: Vec<&str> = MEASURES.iter().map(|m| m.name()).collect();
+            format!(
+                "no behaviour measure is named `{name}`; the measures are {}",
+                names.join(", ")
+            )
+        })
 }
 
 /// The experiment's behaviour measures, by name, taken from a trial's full measure array
@@ -358,10 +379,14 @@ pub(crate) fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
         experiment = set.with_trials(&experiment, t)?;
     }
     // Every genome meets the same worlds: common random numbers, group 0.
-    let experiment = experiment
+    let mut experiment = experiment
         .with_overrides()
         .common_random_numbers(true)
         .build()?;
+    if !args.measures.is_empty() {
+        experiment = with_measures(&experiment, &args.measures)
+            .with_context(|| format!("{}: with --measure", experiment_path.display()))?;
+    }
     let built = set.built_worlds(&experiment)?;
     let built = built.as_deref();
     let mut genomes = Vec::new();
@@ -391,6 +416,25 @@ pub(crate) fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
         genomes,
         random,
     })
+}
+
+/// `experiment` reporting `extra` measures after its own `[behaviour]` ones (those it names
+/// already keep their place), validated as if the file named them (an area measure needs
+/// `[behaviour] area`).
+fn with_measures(
+    experiment: &Experiment,
+    extra: &[Measure],
+) -> Result<Experiment, berry_evolve::validate::InvalidValue> {
+    experiment
+        .with_overrides()
+        .edit(|c| {
+            for &m in extra {
+                if !c.behaviour.measures.contains(&m) {
+                    c.behaviour.measures.push(m);
+                }
+            }
+        })
+        .build()
 }
 
 /// `count` random genomes, drawn as the initial population is, evaluated in parallel

@@ -7,7 +7,7 @@
 //! tick costs what it always did, and a world query is made only for a term or measure that
 //! needs it.
 
-use crate::experiment::tables::{area_index, FORWARD_STEP};
+use crate::experiment::tables::{area_index, FORWARD_STEP, STILL_STEP};
 use crate::experiment::{Balance, Experiment, FitnessMode, FitnessSpec, GoalAt, Measure, MEASURES};
 use crate::geometry::{circles_touch, Vec2};
 use crate::sim::area::Area;
@@ -113,7 +113,7 @@ pub struct LifePlan {
     behaviour_area: Option<Area>,
     threat_radius: f64,
     /// Some measure follows the pose tick by tick (`forward_share`, `path_length`,
-    /// `final_x`, `final_y`).
+    /// `final_x`, `final_y`, `still_share`).
     follows_motion: bool,
     /// `forward_bonus` or a measure that follows the motion: the pose is kept every tick.
     tracks_pose: bool,
@@ -196,16 +196,19 @@ impl LifePlan {
                         | Measure::DoorOpened
                         | Measure::StrikesSurvived
                         | Measure::AversiveContacts
+                        | Measure::RichestSideFirst
                 )
             });
         plan.follows_motion = plan.measures.iter().any(|m| m.follows_motion());
         plan.tracks_pose = plan.forward_bonus != 0.0 || plan.follows_motion;
         plan.per_tick = plan.watches_places || plan.tracks_pose;
         plan.bites = spec.distinct_food_bonus != 0.0
-            || plan
-                .measures
-                .iter()
-                .any(|m| matches!(m, Measure::DistinctFood | Measure::FoodInAreaEaten));
+            || plan.measures.iter().any(|m| {
+                matches!(
+                    m,
+                    Measure::DistinctFood | Measure::FoodInAreaEaten | Measure::RichestSideFirst
+                )
+            });
         plan
     }
 
@@ -242,6 +245,67 @@ struct Pass {
     sheltered: bool,
 }
 
+/// The T-maze choice as [`Measure::RichestSideFirst`] follows it: which side of its start
+/// line a creature strays to before it first bites the richest food object.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct SideChoice {
+    /// The richest food object, in [`World::food`] order.
+    food: usize,
+    /// The creature's start position.
+    origin: Vec2,
+    /// A unit normal of its start heading: `(p − origin) · normal` is how far `p` lies to
+    /// one side of the start line (negative: the other side).
+    normal: Vec2,
+    /// The food's side (+1 or −1; 0 on the line) ...
+    side: f64,
+    /// ... and how far onto the other side counts as straying (half the food's distance
+    /// from the line).
+    limit: f64,
+    /// It strayed to the other side before its first bite of the food.
+    strayed: bool,
+    /// It has bitten the food (from then on nothing is followed).
+    bitten: bool,
+}
+
+impl SideChoice {
+    /// The choice creature `creature` of `world` faces at its start; None in a world
+    /// without food.
+    fn start(world: &World, creature: usize) -> Option<SideChoice> {
+        let mut richest: Option<(usize, f64)> = None;
+        for (k, f) in world.food().iter().enumerate() {
+            let full: f64 = f.capacity.iter().sum();
+            if richest.is_none_or(|(_, most)| full > most) {
+                richest = Some((k, full));
+            }
+        }
+        let (food, _) = richest?;
+        let pose = world.creatures()[creature].pose;
+        let normal = pose.heading.normalize_or_zero().perp();
+        let offset = (world.food()[food].position - pose.position).dot(normal);
+        Some(SideChoice {
+            food,
+            origin: pose.position,
+            normal,
+            side: if offset == 0.0 { 0.0 } else { offset.signum() },
+            limit: offset.abs() / 2.0,
+            strayed: false,
+            bitten: false,
+        })
+    }
+
+    /// Follows the creature at `p` after a tick, having bitten the food or not.
+    fn record(&mut self, bitten: bool, p: Vec2) {
+        if self.bitten {
+            return;
+        }
+        self.bitten = bitten;
+        // The tick of the first bite ends at the food, on its own side.
+        if !bitten && self.side * (p - self.origin).dot(self.normal) < -self.limit {
+            self.strayed = true;
+        }
+    }
+}
+
 /// Accumulates what a life's score and measures need, tick by tick.
 #[derive(Debug, Clone)]
 pub struct LifeScore {
@@ -273,7 +337,10 @@ pub struct LifeScore {
     forward_distance: f64,
     /// Ticks whose step along the heading exceeded [`FORWARD_STEP`].
     forward_ticks: u64,
+    /// Ticks whose displacement was below [`STILL_STEP`].
+    still_ticks: u64,
     path_length: f64,
+    side_choice: Option<SideChoice>,
 }
 
 impl LifeScore {
@@ -311,7 +378,9 @@ impl LifeScore {
             },
             forward_distance: 0.0,
             forward_ticks: 0,
+            still_ticks: 0,
             path_length: 0.0,
+            side_choice: None,
         }
     }
 
@@ -336,6 +405,9 @@ impl LifeScore {
         }
         if plan.measures.contains(&Measure::AversiveContacts) {
             score.touching_aversive = touches_aversive(world, p);
+        }
+        if plan.measures.contains(&Measure::RichestSideFirst) {
+            score.side_choice = SideChoice::start(world, creature);
         }
         score
     }
@@ -376,18 +448,21 @@ impl LifeScore {
             self.forward_distance += along.max(0.0);
             if plan.follows_motion {
                 self.forward_ticks += u64::from(along > FORWARD_STEP);
-                self.path_length += step.length();
+                let length = step.length();
+                self.path_length += length;
+                self.still_ticks += u64::from(length < STILL_STEP);
             }
             self.last_pose = pose;
         }
         if plan.watches_places {
-            self.record_places(plan, world, pose.position);
+            self.record_places(plan, world, creature, pose.position);
         }
     }
 
-    /// The areas, the goal and the measures that look at the world around position `p`.
+    /// The areas, the goal and the measures that look at the world around creature
+    /// `creature`'s position `p`.
     #[inline(never)]
-    fn record_places(&mut self, plan: &LifePlan, world: &World, p: Vec2) {
+    fn record_places(&mut self, plan: &LifePlan, world: &World, creature: usize, p: Vec2) {
         if let Some((area, _)) = &plan.area_bonus {
             self.ticks_in_fitness_area += u64::from(area.contains(p));
         }
@@ -441,6 +516,12 @@ impl LifeScore {
                     let touching = touches_aversive(world, p);
                     self.aversive_contacts += u64::from(touching && !self.touching_aversive);
                     self.touching_aversive = touching;
+                }
+                Measure::RichestSideFirst => {
+                    if let Some(choice) = &mut self.side_choice {
+                        let bitten = world.bitten(creature).get(choice.food) == Some(&true);
+                        choice.record(bitten, p);
+                    }
                 }
                 _ => {}
             }
@@ -558,6 +639,18 @@ impl LifeScore {
                 Measure::PathLength => self.path_length,
                 Measure::FinalX => self.last_pose.position.x,
                 Measure::FinalY => self.last_pose.position.y,
+                Measure::Eaten => c.eaten.iter().sum(),
+                Measure::StillShare => {
+                    if self.ticks == 0 {
+                        0.0
+                    } else {
+                        self.still_ticks as f64 / self.ticks as f64
+                    }
+                }
+                Measure::RichestSideFirst => match &self.side_choice {
+                    Some(s) => f64::from(u8::from(bitten.get(s.food) == Some(&true) && !s.strayed)),
+                    None => 0.0,
+                },
             };
         }
         (score, measures)

@@ -450,6 +450,20 @@ pub enum Measure {
     FinalX,
     /// y of its centre in LU (arena frame: from the top edge, downwards), taken as `final_x`.
     FinalY,
+    /// Substance it received, all types summed (A + B + C + D taken from food over the
+    /// trial; what the metabolic vector would hold at the end without decay or spending).
+    Eaten,
+    /// Share of its ticks alive (0–1) on which its centre moved less than 0.05 LU
+    /// ([`STILL_STEP`]) in any direction: parked, or spinning in place. 0 when it lived no
+    /// tick.
+    StillShare,
+    /// The T-maze choice (report §4.5.1), in any world: 1 when it ate from the richest food
+    /// object (the most substance when full, A + B + C + D of its capacity; the first such in
+    /// the world's order) and, before its first bite of it, never strayed onto the other
+    /// side of its start line (the line through its start position along its start heading)
+    /// by more than half as far as that food lies on its own side; else 0. A food on the
+    /// start line has no other side: eating it counts.
+    RichestSideFirst,
 }
 
 /// The smallest displacement along its heading, in LU, that makes a tick count as forward
@@ -458,8 +472,13 @@ pub enum Measure {
 /// wheel of 2 LU: 3.1 LU per tick), so any deliberate drive does.
 pub const FORWARD_STEP: f64 = 0.01;
 
+/// The largest displacement, in LU, of a tick that [`Measure::StillShare`] counts as still:
+/// 1.6% of the default top speed (3.1 LU per tick), so a creature creeping along or turning
+/// on one wheel moves, one parked or spinning on the spot does not.
+pub const STILL_STEP: f64 = 0.05;
+
 /// Every measure, in the order their columns and lines appear.
-pub const MEASURES: [Measure; 15] = [
+pub const MEASURES: [Measure; 18] = [
     Measure::TicksAlive,
     Measure::DistinctFood,
     Measure::FoodTypes,
@@ -475,6 +494,9 @@ pub const MEASURES: [Measure; 15] = [
     Measure::PathLength,
     Measure::FinalX,
     Measure::FinalY,
+    Measure::Eaten,
+    Measure::StillShare,
+    Measure::RichestSideFirst,
 ];
 
 impl Measure {
@@ -496,6 +518,9 @@ impl Measure {
             Measure::PathLength => "path_length",
             Measure::FinalX => "final_x",
             Measure::FinalY => "final_y",
+            Measure::Eaten => "eaten",
+            Measure::StillShare => "still_share",
+            Measure::RichestSideFirst => "richest_side_first",
         }
     }
 
@@ -508,7 +533,11 @@ impl Measure {
     pub fn follows_motion(self) -> bool {
         matches!(
             self,
-            Measure::ForwardShare | Measure::PathLength | Measure::FinalX | Measure::FinalY
+            Measure::ForwardShare
+                | Measure::PathLength
+                | Measure::FinalX
+                | Measure::FinalY
+                | Measure::StillShare
         )
     }
 

@@ -484,3 +484,75 @@ fn the_numbers_of_a_text_line_are_read_with_their_decimals() {
         vec![(-1.25, 2), (0.3, 3), (0.5, 1), (1.5, 2)]
     );
 }
+
+/// `compare --measure` reports measures the experiment file does not name, after its own
+/// (repeated or comma-separated; a name the file has keeps its place), without changing
+/// fitness or the file's measures; an unknown name is refused with the list of names.
+#[test]
+fn compare_measure_adds_measures_beside_the_files_own() {
+    let foraging = experiment("foraging.toml");
+    let hand = Path::new(env!("CARGO_MANIFEST_DIR")).join("genomes/braitenberg-forager.json");
+    let hand = hand.to_str().unwrap();
+    let base = [
+        "compare",
+        hand,
+        "--experiment",
+        &foraging,
+        "--trials",
+        "2",
+        "--random",
+        "2",
+        "--json",
+    ];
+    let plain = document(&run_ok(&base).stdout, "berry-evolve/compare/1");
+    let extra = [
+        &base[..],
+        &["--measure", "eaten,food_types", "--measure", "still_share"],
+    ]
+    .concat();
+    let more = document(&run_ok(&extra).stdout, "berry-evolve/compare/1");
+    let (g0, g1) = (&plain["genomes"][0], &more["genomes"][0]);
+    assert_eq!(
+        g0["fitness"], g1["fitness"],
+        "measures never change fitness"
+    );
+    let names: Vec<&String> = g1["measures"].as_object().unwrap().keys().collect();
+    assert_eq!(
+        names,
+        ["distinct_food", "eaten", "food_types", "still_share"]
+    );
+    // The file's measures first, in its order, then the new ones (the text keeps the order).
+    let text = [&extra[..8], &extra[9..]].concat();
+    let text = stdout_of(&text);
+    let at = |name: &str| text.find(&format!("{name} ")).unwrap_or(usize::MAX);
+    assert!(
+        at("distinct_food") < at("food_types")
+            && at("food_types") < at("eaten")
+            && at("eaten") < at("still_share")
+            && at("still_share") < usize::MAX,
+        "{text}"
+    );
+    for k in ["distinct_food", "food_types"] {
+        assert_eq!(g0["measures"][k], g1["measures"][k], "{k}");
+    }
+    // Nothing decays in foraging: the substance eaten is the final metabolic vector's sum.
+    let m: f64 = g1["metabolism"].as_array().unwrap().iter().map(num).sum();
+    assert!((num(&g1["measures"]["eaten"]) - m).abs() < 1e-9, "{g1}");
+    let still = num(&g1["measures"]["still_share"]);
+    assert!((0.0..=1.0).contains(&still), "{still}");
+    assert!(more["random"]["measures"]["still_share"]["median"].is_number());
+    // Every trial carries them too.
+    assert!(g1["trials"][1]["measures"]["eaten"].is_number());
+
+    let problem = crate::cli_common::run_err(&[&base[..], &["--measure", "eatn"]].concat());
+    assert!(
+        problem.contains("eatn") && problem.contains("still_share"),
+        "{problem}"
+    );
+    // An area measure needs [behaviour] area, which foraging has not: the file is named.
+    let problem = crate::cli_common::run_err(&[&base[..], &["--measure", "area_reached"]].concat());
+    assert!(
+        problem.contains("foraging.toml") && problem.contains("behaviour.area"),
+        "{problem}"
+    );
+}

@@ -465,7 +465,7 @@ death_penalty = 1.0
 measures = ["ticks_alive", "distinct_food", "food_types", "area_reached", "time_in_area",
             "door_opened", "food_in_area_eaten", "shelter_while_threat", "strikes_survived",
             "aversive_contacts", "shocked_ticks", "forward_share", "path_length",
-            "final_x", "final_y"]
+            "final_x", "final_y", "eaten", "still_share", "richest_side_first"]
 area = "goal"
 threat_radius = 60.0
 "#,
@@ -488,7 +488,7 @@ threat_radius = 60.0
         );
     }
     assert_eq!(bits(&together), bits(&alone));
-    assert!(together.iter().all(|e| e.measures.len() == 15));
+    assert!(together.iter().all(|e| e.measures.len() == 18));
     // Random genomes do move: some measure differs between individuals.
     let distinct: std::collections::BTreeSet<Vec<u64>> =
         bits(&together).into_iter().map(|b| b.2).collect();

@@ -2,7 +2,7 @@
 """Cheap-control genomes for the shelter experiments (predator-arena, air-raid).
 
 Writes single-layer (mlp, hidden = []) controllers to OUTDIR, using the input layout of
-EXPERIMENT.toml and the steering convention of scripts/make-design2-baselines.py:
+EXPERIMENT.toml (`inspect --json`) and the wiring of scripts/genomes/vehicle.py:
   still.json     both motors 0
   spin.json      left +max, right -max
   straight.json  both motors +max (whisker turn-away off)
@@ -10,17 +10,16 @@ EXPERIMENT.toml and the steering convention of scripts/make-design2-baselines.py
   to-shelter.json  follow the safe area's smell (component 8), or its beacon's bearing where
                    the world has one (input landmark_1_sin), and stop inside it (area input)
                    and stay there: "go to the nest / a shelter and stay"
-Usage: python3 scripts/shelter-controls.py EXPERIMENT.toml OUTDIR
+Usage: python3 scripts/research/shelter-controls.py EXPERIMENT.toml OUTDIR  (from the repo root)
 """
-import importlib.util
 import json
 import os
 import sys
 
-here = os.path.dirname(os.path.abspath(__file__))
-spec = importlib.util.spec_from_file_location("mdb", os.path.join(here, "make-design2-baselines.py"))
-mdb = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(mdb)
+# The genome builders' package, scripts/genomes/, from the repository root.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+from scripts.genomes.layout import BINARY, layout  # noqa: E402
+from scripts.genomes.vehicle import vehicle  # noqa: E402
 
 
 BEACON_GAIN = 1.0   # the best of 0.5, 1 and 2 on both experiments' design sets
@@ -29,8 +28,13 @@ BEACON_GAIN = 1.0   # the best of 0.5, 1 and 2 on both experiments' design sets
 def save(path, names, params, what):
     g = {"format": 1, "brain": {"kind": "mlp", "hidden": []}, "inputs": names,
          "outputs": ["motor_left", "motor_right"], "parameters": params,
-         "origin": {"description": f"cheap control (scripts/shelter-controls.py): {what}"}}
+         "origin": {"description": f"cheap control (scripts/research/shelter-controls.py): {what}"}}
     json.dump(g, open(path, "w"), indent=1)
+
+
+def flat(rows):
+    """A single-layer network's parameters: the two motor rows, then two zero biases."""
+    return rows[0] + rows[1] + [0.0, 0.0]
 
 
 def bias_only(names, left, right):
@@ -45,7 +49,7 @@ def bias_only(names, left, right):
 def main():
     exp, out = sys.argv[1], sys.argv[2]
     os.makedirs(out, exist_ok=True)
-    names = mdb.layout(exp)
+    names, _ = layout(exp, os.environ.get("BERRY_EVOLVE", BINARY))
     save(f"{out}/still.json", names, bias_only(names, 0.0, 0.0), "stand still")
     save(f"{out}/spin.json", names, bias_only(names, 5.0, -5.0), "spin on the spot")
     save(f"{out}/straight.json", names, bias_only(names, 5.0, 5.0), "drive straight")
@@ -57,11 +61,11 @@ def main():
     stop = [(a, -0.5, -0.5) for a in areas]
     if "landmark_1_sin" in names:
         # The beacon's sin(bearing) is +1 with the shelter to the right: left wheel faster.
-        p = mdb.vehicle(names, whisker=1.5, forward=0.5,
-                        extra=stop + [("landmark_1_sin", BEACON_GAIN, -BEACON_GAIN)])
+        p = flat(vehicle(names, whisker=1.5, forward=0.5,
+                         extra=stop + [("landmark_1_sin", BEACON_GAIN, -BEACON_GAIN)]))
         what = "steer towards the safe area's beacon, stop inside and stay"
     else:
-        p = mdb.vehicle(names, towards=[(8, gain)], whisker=1.5, forward=0.5, extra=stop)
+        p = flat(vehicle(names, towards=[(8, gain)], whisker=1.5, forward=0.5, extra=stop))
         what = "follow the safe area's smell, stop inside and stay"
     save(f"{out}/to-shelter.json", names, p, what)
     return 0

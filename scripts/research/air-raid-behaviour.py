@@ -13,7 +13,7 @@
 A creature that shelters when raided and forages in the quiet spells has P(in | raider) high,
 P(in | quiet) low, about one entry and one exit per raid.
 
-Usage: python3 scripts/air-raid-behaviour.py EXPERIMENT.toml GENOME... [--generation G]
+Usage: python3 scripts/research/air-raid-behaviour.py EXPERIMENT.toml GENOME... [--generation G]
        [--binary BIN] [--trials 20]
 """
 import argparse

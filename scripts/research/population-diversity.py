@@ -6,7 +6,7 @@ prints: generation, mean and best fitness of that generation, the mean per-gene 
 deviation of the population, the mean pairwise Euclidean distance between genomes, the mean
 |gene| (the weight scale), and how many distinct genomes there are. Used in docs/search.md.
 
-Usage: python3 scripts/population-diversity.py RUN [--reference genomes/braitenberg-forager.json]
+Usage: python3 scripts/research/population-diversity.py RUN [--reference genomes/braitenberg-forager.json]
 With --reference, also prints the mean distance from the population to that genome.
 """
 import json

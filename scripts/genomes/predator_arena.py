@@ -1,5 +1,4 @@
-#!/usr/bin/env python3
-"""Writes the hand-designed baseline of experiments/predator-arena.toml.
+"""The hand-designed baseline of experiments/predator-arena.toml.
 
 A hand-wired logic circuit as an MLP with two tanh hidden layers (a Braitenberg vehicle with
 a switch): each unit is tanh(w . x + b) with large gains, so the units act as signs and ANDs.
@@ -24,22 +23,10 @@ So it forages by the food's smell while the predator is not smelt (asleep, or fa
 the predator's smell rises above the threshold it steers up the nest's smell and stops inside
 the nest until the smell falls again.
 
-The input layout comes from `berry-evolve inspect EXPERIMENT` (as scripts/make-design2-baselines.py).
-Usage: BERRY_EVOLVE=/path/berry-evolve python3 scripts/make-predator-arena-baseline.py \
-           [EXPERIMENT] [OUT] [THRESHOLD]
-(defaults: experiments/predator-arena.toml, genomes/predator-arena-baseline.json, and the
-threshold 0.1 where the nest has a beacon, 0.3 where it has only its smell: each the best on the
-design set, the beacon's of 0.03-1.0 with KB 1-10, 100 trials: 30,108)
+(The description in the genome file names scripts/make-predator-arena-baseline.py, the
+builder's old path, so that the committed file keeps its bytes.)
 """
-import importlib.util
-import json
-import os
-import sys
-
-here = os.path.dirname(os.path.abspath(__file__))
-spec = importlib.util.spec_from_file_location("mdb", os.path.join(here, "make-design2-baselines.py"))
-mdb = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(mdb)
+from .write import genome
 
 G = 20.0          # gain of the AND units (layer 2)
 KN = 100.0        # gain on the nest's smell difference (chosen on the design set: 30-300)
@@ -47,19 +34,19 @@ KB = 3.0          # gain on the beacon's bearing (sin), when there is one (1, 3,
 TH = 2.0          # turn towards the nest (1-4 tried; 4 zigzags, 1 is too slow)
 
 
-def home_unit(beacon):
+def home_unit(beacon, kn=KN):
     """S's weights: by the nest's beacon where the world has one, else by the nest's smell."""
     if beacon:
         return [("landmark_1_sin", KB)]
-    return [("smell_right_8", KN), ("smell_left_8", -KN)]
+    return [("smell_right_8", kn), ("smell_left_8", -kn)]
 
 
-def main():
-    exp = sys.argv[1] if len(sys.argv) > 1 else "experiments/predator-arena.toml"
-    out = sys.argv[2] if len(sys.argv) > 2 else "genomes/predator-arena-baseline.json"
-    names = mdb.layout(exp)
+def build(names, threshold=None, kn=KN):
+    """The genome document over the input names `names` (threshold: the predator's smell,
+    left + right, above which it heads home; default 0.1 with the nest's beacon, 0.3 without;
+    kn: the gain on the nest's smell difference where there is no beacon)."""
     beacon = "landmark_1_sin" in names
-    thr = float(sys.argv[3]) if len(sys.argv) > 3 else (0.1 if beacon else 0.3)
+    thr = threshold if threshold is not None else (0.1 if beacon else 0.3)
     n = len(names)
     ix = {name: i for i, name in enumerate(names)}
 
@@ -73,7 +60,7 @@ def main():
     sd = 50.0 / thr                      # danger gate: sharp around the threshold
     l1 = [
         unit([("smell_left_7", sd), ("smell_right_7", sd)], -50.0),          # D: sd * (P - thr)
-        unit(home_unit(beacon)),                                                 # S (graded)
+        unit(home_unit(beacon, kn)),                                                 # S (graded)
         unit([("area_1", 20.0)], -10.0),                                     # A
         unit([("smell_right_1", 200.0), ("smell_left_1", -200.0)]),          # F
         unit([("whisker_left", 3.0), ("whisker_right", -3.0)]),              # W
@@ -132,23 +119,11 @@ def main():
         params += w
     params += [b for _, b in l2]
     params += left + right + [bl, br]
-    genome = {
-        "format": 1,
-        "brain": {"kind": "mlp", "hidden": [len(l1), len(l2)]},
-        "inputs": names,
-        "outputs": ["motor_left", "motor_right"],
-        "parameters": params,
-        "origin": {"description": "hand-designed baseline for experiments/predator-arena.toml "
-                   "(scripts/make-predator-arena-baseline.py): forage by the food's smell; "
-                   f"when the predator's smell (left + right) is above {thr}, steer "
-                   + ("towards the nest's beacon" if beacon else "up the nest's smell")
-                   + " and stop inside the nest; whisker turn-away; brake while eating unless in danger"},
-    }
-    with open(out, "w") as f:
-        json.dump(genome, f, indent=2)
-        f.write("\n")
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+    return genome(
+        names, ["motor_left", "motor_right"], params,
+        "hand-designed baseline for experiments/predator-arena.toml "
+        "(scripts/make-predator-arena-baseline.py): forage by the food's smell; "
+        f"when the predator's smell (left + right) is above {thr}, steer "
+        + ("towards the nest's beacon" if beacon else "up the nest's smell")
+        + " and stop inside the nest; whisker turn-away; brake while eating unless in danger",
+        hidden=[len(l1), len(l2)])

@@ -1,11 +1,10 @@
-#!/usr/bin/env python3
-"""Writes the hand-designed baseline of experiments/air-raid.toml: "forage, and shelter while a
+"""The hand-designed baseline of experiments/air-raid.toml: "forage, and shelter while a
 raider is about" as a small ReLU network (mlp, hidden = [12], activation relu), weights by hand.
 
-Inputs (layout from `berry-evolve inspect EXPERIMENT`): r = smell_left_7 + smell_right_7 (the
+Inputs (layout from `berry-evolve inspect --json`): r = smell_left_7 + smell_right_7 (the
 raiders' smell; a raider is smelled only while in flight and within its range), the food smell
 (component 1), the shelter smell (component 8), the area flag(s), whiskers, food detectors.
-Steering convention as scripts/make-design2-baselines.py: left motor += g (right - left smell)
+Steering convention as in vehicle.py: left motor += g (right - left smell)
 turns towards the smell.
 
 Hidden ReLU units (12):
@@ -28,47 +27,29 @@ h9 and h10 steer by its bearing instead of the shelter's smell; there gs 0.5 and
 the best of 28 settings on the design set with 100 trials (gs 0.2-4, home 0-1, c 0.2-0.5, gf
 3-24, brake 0-1, forward 1.1-1.3): 4,227, against 3,347 for the smell-steered vehicle.
 
-Usage: python3 scripts/make-air-raid-baseline.py EXPERIMENT.toml [--binary BIN] [gains] > OUT.json
+(The description in the genome file names scripts/make-air-raid-baseline.py, the builder's
+old path, so that the committed file keeps its bytes.)
 """
-import argparse
-import importlib.util
-import json
-import os
-import sys
+from types import SimpleNamespace
+
+from .write import genome
 
 
-# The input layout as `inspect` prints it, read by make-vehicle.py.
-_spec = importlib.util.spec_from_file_location(
-    "make_vehicle", os.path.join(os.path.dirname(os.path.abspath(__file__)), "make-vehicle.py"))
-_vehicle = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(_vehicle)
-
-
-def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("experiment")
-    ap.add_argument("--binary", default="target/release/berry-evolve")
-    ap.add_argument("--gf", type=float, default=6.0, help="food steering gain")
-    ap.add_argument("--gs", type=float, default=None,
-                    help="shelter steering gain (default 2 on the smell, 0.5 on the beacon)")
-    ap.add_argument("--b", type=float, default=20.0, help="raider-smell gate gain")
-    ap.add_argument("--c", type=float, default=0.5, help="shelter steering threshold")
-    ap.add_argument("--home", type=float, default=None,
-                    help="weak shelter steering at all times (keeps it round the shelter; "
-                    "default 1 on the smell, 0 on the beacon)")
-    ap.add_argument("--forward", type=float, default=1.1)
-    ap.add_argument("--whisker", type=float, default=1.5)
-    ap.add_argument("--brake", type=float, default=1.0)
-    a = ap.parse_args()
-    inputs, outputs = _vehicle.motor_layout(a.experiment, a.binary)
+def build(inputs, outputs, gf=6.0, gs=None, b=20.0, c=0.5, home=None, forward=1.1,
+          whisker=1.5, brake=1.0):
+    """The genome document (gs default 2 on the smell, 0.5 on the beacon; home default 1 on
+    the smell, 0 on the beacon: each the best tried on the design set)."""
     ix = {n: i for i, n in enumerate(inputs)}
     beacon = "landmark_1_sin" in ix
-    # The beacon's sin(bearing) spans [-1, 1], the smell's left-right difference a few hundredths:
-    # so their gains differ (each the best of those tried on the design set).
-    if a.gs is None:
-        a.gs = 0.5 if beacon else 2.0
-    if a.home is None:
-        a.home = 0.0 if beacon else 1.0
+    # The beacon's sin(bearing) spans [-1, 1], the smell's left-right difference a few
+    # hundredths: so their gains differ.
+    if gs is None:
+        gs = 0.5 if beacon else 2.0
+    if home is None:
+        home = 0.0 if beacon else 1.0
+    # By name, as the hand-wiring below reads them (it names its own `b`, `home`).
+    a = SimpleNamespace(gf=gf, gs=gs, b=b, c=c, home=home, forward=forward, whisker=whisker,
+                        brake=brake)
     n = len(inputs)
     areas = [x for x in inputs if x.startswith("area_")]
     K = 1000.0
@@ -113,21 +94,13 @@ def main():
     left = [1, -1, 1, -1, -F, F, W, -W, -E, 1, -1, 0.0]
     right = [-1, 1, -1, 1, -F, F, -W, W, -E, -1, 1, 0.0]
     params = [x for row in w for x in row] + b + left + right + [F, F]
-    genome = {
-        "format": 1,
-        "brain": {"kind": "mlp", "hidden": [H], "activation": "relu"},
-        "inputs": inputs,
-        "outputs": outputs,
-        "parameters": params,
-        "origin": {"description": "hand-designed baseline for experiments/air-raid.toml "
-                   "(scripts/make-air-raid-baseline.py): forage by the food's smell; while a "
-                   "raider's smell is on, " + ("steer towards the shelter's beacon" if beacon
-                   else "follow the shelter's smell") + " and stop inside; "
-                   f"gains gf={a.gf} gs={a.gs} home={a.home} b={a.b} c={a.c} forward={F} whisker={W} brake={E}"},
-    }
-    json.dump(genome, sys.stdout, indent=2)
-    sys.stdout.write("\n")
+    return genome(
+        inputs, outputs, params,
+        "hand-designed baseline for experiments/air-raid.toml "
+        "(scripts/make-air-raid-baseline.py): forage by the food's smell; while a "
+        "raider's smell is on, " + ("steer towards the shelter's beacon" if beacon
+                                    else "follow the shelter's smell") + " and stop inside; "
+        f"gains gf={a.gf} gs={a.gs} home={a.home} b={a.b} c={a.c} forward={F} whisker={W} "
+        f"brake={E}",
+        hidden=[H], activation="relu")
 
-
-if __name__ == "__main__":
-    main()
