@@ -20,6 +20,7 @@ pub mod stats;
 pub mod trial;
 pub mod validation;
 pub mod vary;
+pub mod worlds;
 
 pub use init::initial_population;
 /// PGPE, kept at its old path (`evo::pgpe`) for the code and tests that name it.
