@@ -5,6 +5,7 @@
 mod cli_common;
 
 mod cma_es;
+mod episode_steps;
 mod experiment_files;
 mod experiment_limits;
 mod fitness_terms_and_measures;
