@@ -228,8 +228,22 @@ impl PyExperiment {
         path: PathBuf,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let file = GenomeFile::load(&path).map_err(genome_file_error)?;
-        file.topology_for(&self.experiment, &path)
+        let topology = file
+            .topology_for(&self.experiment, &path)
             .map_err(genome_file_error)?;
+        // The command line decodes a genome with its own file's brain; this experiment's
+        // evaluate decodes every row with the experiment's [brain], so they must agree.
+        if topology != self.topology {
+            return Err(value_error(format!(
+                "{}: the genome's brain ({} parameters) is not experiment `{}`'s [brain] ({} \
+                 parameters); evaluate it with the experiment it was evolved in, or with \
+                 `berry-evolve compare`, which uses the genome's own brain",
+                path.display(),
+                topology.parameter_count(),
+                self.experiment.name,
+                self.topology.parameter_count()
+            )));
+        }
         Ok(PyArray1::from_vec(py, file.genome().parameters))
     }
 
