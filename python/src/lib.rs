@@ -49,6 +49,13 @@ fn genome_file_error(error: GenomeFileError) -> PyErr {
     }
 }
 
+/// What `evaluate_arrays` returns: fitness (n,), metabolism (n, 4), {measure: (n,)}.
+type EvaluatedArrays<'py> = (
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyDict>,
+);
+
 /// An experiment, validated, with its brain topology: what Python's `Experiment` wraps.
 #[pyclass(name = "Experiment", module = "berry_evolve", frozen)]
 struct PyExperiment {
@@ -186,11 +193,7 @@ impl PyExperiment {
         genomes: PyReadonlyArray2<'py, f64>,
         generation: u64,
         worlds: &str,
-    ) -> PyResult<(
-        Bound<'py, PyArray1<f64>>,
-        Bound<'py, PyArray2<f64>>,
-        Bound<'py, PyDict>,
-    )> {
+    ) -> PyResult<EvaluatedArrays<'py>> {
         let set = WorldSet::parse(worlds, generation).map_err(value_error)?;
         let list: Vec<Genome> = genomes
             .as_array()
@@ -398,6 +401,8 @@ impl Worlds {
     /// `autoreset`, an env whose episode ended at the previous step starts its next episode
     /// instead (its action ignored, reward 0, flags false: Gymnasium's next-step autoreset).
     #[pyo3(signature = (actions, obs, rewards, terminated, truncated, autoreset = true))]
+    // Python's signature: the action batch, the four output buffers and the mode.
+    #[allow(clippy::too_many_arguments)]
     fn step(
         &mut self,
         py: Python<'_>,
