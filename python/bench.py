@@ -3,11 +3,13 @@
     python python/bench.py [--reps 5] [--steps 2000] [--envs 256]
 
 1. ``Experiment.evaluate`` of one foraging generation (generation 0's 64 genomes on its
-   training worlds) against the command line evaluating the very same generation
-   (``berry-evolve run experiments/foraging.toml --generations 1``: that run's only work is this
-   evaluation, plus process start, reading the experiment and writing the run folder). The
-   genomes are the run's own (read back from its checkpoint), so both do the same work; both
-   use every core. Median of ``--reps`` runs each, interleaved.
+   training worlds) against the command line evaluating the very same generation: inside the
+   process, ``berry-evolve bench --generations 1`` (its evolution figure on all cores: the
+   evaluation of generation 0 plus the search's ask and tell), and as a whole process,
+   ``berry-evolve run experiments/foraging.toml --generations 1`` (plus process start, reading
+   the experiment and writing the run folder, synced). The genomes are the run's own (read back
+   from its checkpoint, and checked to give the run's bits), so all do the same work. Medians of
+   ``--reps`` runs, interleaved.
 2. ``make_vec_env`` with ``--envs`` worlds driven by a numpy linear controller: env-steps per
    second, and the share of the time spent outside the Rust step (the controller in numpy and
    the Python wrapper).
@@ -16,15 +18,20 @@ Needs the package installed and target/release/berry-evolve built (``cargo build
 """
 
 import argparse
+import json
 import statistics
 import subprocess
+import sys
 import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
 
-import berry_evolve as be
+# Run as `python python/bench.py`, this folder is first on the path and its berry_evolve/
+# (the sources, without the built extension) would shadow the installed package.
+sys.path = [p for p in sys.path if Path(p or ".").resolve() != Path(__file__).resolve().parent]
+import berry_evolve as be  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 FORAGING = ROOT / "experiments" / "foraging.toml"
@@ -39,6 +46,17 @@ def cli_generation(out: Path) -> float:
         check=True,
     )
     return time.perf_counter() - start
+
+
+def cli_bench(reps: int) -> float:
+    """Seconds per foraging generation 0 in `berry-evolve bench` (its fastest thread count)."""
+    out = subprocess.run(
+        [str(CLI), "bench", "--generations", "1", "--scaling", "0", "--worlds", "16",
+         "--ticks", "10", "--repeat", str(reps), "--json"],
+        check=True, capture_output=True, text=True,
+    ).stdout
+    threads = json.loads(out)["evolution"]["threads"]
+    return 1.0 / max(t["generations_per_second"] for t in threads)
 
 
 def evaluate_speed(reps: int) -> None:
@@ -56,11 +74,13 @@ def evaluate_speed(reps: int) -> None:
             start = time.perf_counter()
             exp.evaluate(population, generation=0)
             py_times.append(time.perf_counter() - start)
+        b = cli_bench(reps)
     c, p = statistics.median(cli_times), statistics.median(py_times)
     print(
         f"evaluate, one foraging generation ({len(population)} genomes x {exp.trials} trials x "
-        f"{exp.ticks} ticks): Python {p * 1000:.1f} ms, command line {c * 1000:.1f} ms "
-        f"(whole process), Python/CLI {p / c:.3f}"
+        f"{exp.ticks} ticks): Python {p * 1000:.1f} ms; command line {b * 1000:.1f} ms in "
+        f"`bench` (Python/CLI {p / b:.3f}), {c * 1000:.1f} ms as a whole `run` process "
+        f"(Python/CLI {p / c:.3f})"
     )
 
 
