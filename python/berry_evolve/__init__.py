@@ -169,16 +169,14 @@ def load_genome(path: PathLike) -> np.ndarray:
 def make_env(experiment, seed: "int | None" = None, **kwargs):
     """A ``gymnasium.Env`` of one creature in ``experiment`` (a path or an
     :class:`Experiment`); see :class:`berry_evolve.envs.BerryEnv`."""
-    from .envs import BerryEnv
-
+    BerryEnv = _envs().BerryEnv
     return BerryEnv(experiment, seed=seed, **kwargs)
 
 
 def make_vec_env(experiment, num_envs: int, seed: "int | None" = None, **kwargs):
     """A ``gymnasium.vector.VectorEnv`` of ``num_envs`` worlds stepped together in Rust; see
     :class:`berry_evolve.envs.BerryVecEnv`."""
-    from .envs import BerryVecEnv
-
+    BerryVecEnv = _envs().BerryVecEnv
     return BerryVecEnv(experiment, num_envs, seed=seed, **kwargs)
 
 
@@ -187,6 +185,20 @@ def open_run(directory: PathLike):
     from .runs import Run
 
     return Run(directory)
+
+
+def _envs():
+    """The environments' module, or an ImportError that says what to install."""
+    try:
+        import gymnasium  # noqa: F401
+    except ImportError as error:
+        raise ImportError(
+            "the environments need gymnasium: pip install gymnasium (or pip install "
+            "'./python[gym]' from the repository)"
+        ) from error
+    from . import envs
+
+    return envs
 
 
 def _experiment(experiment) -> Experiment:
