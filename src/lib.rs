@@ -21,11 +21,14 @@
 //! - `experiment`: TOML experiment files (raw `ExperimentConfig`, validated `Experiment`),
 //!   `[evolution]` included; the shipped ones built into the program (`experiment::templates`).
 //! - `evo`: the genetic algorithm and PGPE, and parallel, deterministic evaluation: one trial
-//!   path (`evo::trial`), the parts evaluation and lockstep share (`evo::life`).
+//!   path (`evo::trial`), the parts evaluation and lockstep share (`evo::life`), the named
+//!   world sets and evaluating genomes on them (`evo::worlds`: training g, validation,
+//!   held-out), one creature's trial stepped by a caller (`evo::episode`).
 //! - `record`: file output: fitness CSV, checkpoints, genome files, traces, plots, pictures.
 //! - `run`: one run folder, by concern: errors, the folder (names, lock, own files),
 //!   checkpoints, start, resume (a pure plan, then an apply step), the generation loop.
-//! - `cli`: the command-line front end (lives in the binary).
+//! - `cli`: the command-line front end (lives in the binary). The Python package (`python/`,
+//!   a crate of its own in this workspace) is another front door onto this library.
 //!
 //! rayon runs evo's evaluation (on a pool `run` builds) and the binary's `compare` and
 //! `bench`; each collects in index order and reduces serially.

@@ -5,16 +5,16 @@
 
 use crate::cli::console::outln;
 use crate::cli::json::{self, finite, Named};
-use crate::cli::worlds::{experiment_file, warn_other_experiment, WorldSet, WorldsChoice};
+use crate::cli::worlds::{
+    experiment_file, warn_other_experiment, WorldSet, WorldSetArgs, WorldsChoice,
+};
 
 use anyhow::Context;
-use berry_evolve::brain::genome::Genome;
-use berry_evolve::brain::spec::Topology;
-use berry_evolve::evo::evaluate::{aggregate, run_trial};
+use berry_evolve::evo::evaluate::aggregate;
 use berry_evolve::evo::init::initial_population;
 use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::stats::FitnessStats;
-use berry_evolve::evo::trial::{run_trial_in_world, NoObserver, TrialId};
+use berry_evolve::evo::worlds::{alone, lives};
 use berry_evolve::experiment::{Aggregate, Experiment, Measure, MEASURES};
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::seed::{stream, IndividualId, Purpose, TrialIndex};
@@ -220,7 +220,7 @@ pub struct Worlds {
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub validation: bool,
     /// The generation number whose worlds these are (for the held-out set,
-    /// [`crate::cli::worlds::HELD_OUT_GENERATION`]; 0 for the validation worlds, whose
+    /// [`berry_evolve::evo::worlds::HELD_OUT_GENERATION`]; 0 for the validation worlds, whose
     /// streams are of their own purpose).
     pub generation: u64,
     /// The set, resolved.
@@ -322,41 +322,6 @@ impl CompareReport {
     }
 }
 
-/// Lives every trial of `genome` in `set`'s worlds (group 0): the `built` worlds (the
-/// validation worlds) when given, else those its generation's streams build; the trials in
-/// parallel (collected in trial order, so the same bits on any number of threads).
-fn outcomes(
-    experiment: &Experiment,
-    topology: &Topology,
-    genome: &Genome,
-    set: WorldSet,
-    built: Option<&[World]>,
-) -> anyhow::Result<Vec<TrialOutcome>> {
-    let genomes = std::slice::from_ref(genome);
-    let generation = set.generation();
-    if let Some(worlds) = built {
-        return Ok(worlds
-            .par_iter()
-            .enumerate()
-            .map(|(t, world)| {
-                let id = TrialId {
-                    generation,
-                    group: 0,
-                    trial: TrialIndex(t as u64),
-                };
-                run_trial_in_world(experiment, topology, genomes, id, world.clone(), NoObserver)
-                    .map(|o| o[0])
-            })
-            .collect::<Result<Vec<_>, _>>()?);
-    }
-    Ok((0..experiment.evaluation.trials)
-        .into_par_iter()
-        .map(|t| {
-            run_trial(experiment, topology, genomes, generation, 0, TrialIndex(t)).map(|o| o[0])
-        })
-        .collect::<Result<Vec<_>, _>>()?)
-}
-
 /// Runs the subcommand.
 pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     let report = compare(&args)?;
@@ -374,15 +339,12 @@ pub(crate) fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
     let set = WorldSet::choose(args.worlds, args.generation, WorldsChoice::HeldOut, 0)?;
     let experiment_path = experiment_file(args.experiment.as_deref(), &args.genomes)?;
     let mut experiment = Experiment::load(&experiment_path)?;
-    set.check(&experiment, &experiment_path)?;
+    set.check_file(&experiment, &experiment_path)?;
     if let Some(t) = args.trials {
         experiment = set.with_trials(&experiment, t)?;
     }
     // Every genome meets the same worlds: common random numbers, group 0.
-    let mut experiment = experiment
-        .with_overrides()
-        .common_random_numbers(true)
-        .build()?;
+    let mut experiment = alone(&experiment)?;
     if !args.measures.is_empty() {
         experiment = with_measures(&experiment, &args.measures)
             .with_context(|| format!("{}: with --measure", experiment_path.display()))?;
@@ -394,7 +356,7 @@ pub(crate) fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
         let file = GenomeFile::load(path)?;
         let topology = file.topology_for(&experiment, path)?;
         warn_other_experiment(&file, path, &experiment, &experiment_path);
-        let o = outcomes(&experiment, &topology, &file.genome(), set, built)?;
+        let o = lives(&experiment, &topology, &file.genome(), set, built)?;
         genomes.push(GenomeReport::new(
             &experiment,
             Some(path.display().to_string()),
@@ -459,7 +421,7 @@ fn random_genomes(
     let genomes = drawn
         .par_iter()
         .map(|g| {
-            let o = outcomes(experiment, &topology, g, set, built)?;
+            let o = lives(experiment, &topology, g, set, built)?;
             Ok(GenomeReport::new(experiment, None, &o))
         })
         .collect::<anyhow::Result<Vec<_>>>()?;

@@ -8,7 +8,9 @@
 use crate::cli::compare::{measures_in_order, measures_text, TrialReport};
 use crate::cli::console::{errln, outln};
 use crate::cli::json::{self, Named};
-use crate::cli::worlds::{experiment_file, warn_other_experiment, WorldSet, WorldsChoice};
+use crate::cli::worlds::{
+    experiment_file, warn_other_experiment, WorldSet, WorldSetArgs, WorldsChoice,
+};
 
 use anyhow::Context;
 use berry_evolve::brain::genome::Genome;
@@ -135,7 +137,7 @@ impl Replay {
             WorldsChoice::Training,
             file.origin.generation.unwrap_or(0),
         )?;
-        worlds.check(&experiment, experiment_path)?;
+        worlds.check_file(&experiment, experiment_path)?;
         // Without common random numbers a generation's worlds depend on the individual's
         // index too; the held-out worlds are compare's, one set for every genome (group 0).
         let group = match worlds {

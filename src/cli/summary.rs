@@ -8,7 +8,7 @@
 use crate::cli::compare::{fitness_text, measures_in_order};
 use crate::cli::console::outln;
 use crate::cli::json::{self, Named};
-use crate::cli::worlds::{warn_other_experiment, WorldSet, WorldsChoice};
+use crate::cli::worlds::{warn_other_experiment, WorldSet, WorldSetArgs, WorldsChoice};
 
 use anyhow::Context;
 use berry_evolve::brain::genome::Genome;
@@ -229,7 +229,7 @@ fn held_out_experiment(args: &SummaryArgs, set: WorldSet) -> anyhow::Result<(Pat
         None => folders[0].1.join(berry_evolve::run::EXPERIMENT_FILE),
     };
     let mut experiment = Experiment::load(&experiment_path)?;
-    set.check(&experiment, &experiment_path)?;
+    set.check_file(&experiment, &experiment_path)?;
     if let Some(t) = args.trials {
         experiment = set.with_trials(&experiment, t)?;
     }

@@ -1,25 +1,19 @@
-//! What `replay`, `render`, `compare` and `summary` share about whose worlds a genome meets:
-//! the named world sets (`--worlds held-out|validation|training`), how their trials are titled
-//! ("held-out world 2", "validation world 2", "trial 2 of generation 5"), the experiment file
-//! of a run folder's genome (`--experiment` left out), and the warning for a genome replayed in
+//! What `replay`, `render`, `compare` and `summary` share about whose worlds a genome meets,
+//! on the command line: `--worlds held-out|validation|training` and `--generation` resolved to
+//! a library [`WorldSet`] (the sets themselves, their titles and their evaluation live in
+//! [`berry_evolve::evo::worlds`], which the Python package uses too), the experiment file of a
+//! run folder's genome (`--experiment` left out), and the warning for a genome replayed in
 //! another experiment than the one that evolved it.
 
 use crate::cli::console::errln;
 
 use anyhow::Context;
-use berry_evolve::evo::validation::validation_worlds;
+pub use berry_evolve::evo::worlds::WorldSet;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::run::EXPERIMENT_FILE;
-use berry_evolve::seed::Generation;
-use berry_evolve::sim::world::World;
 use clap::ValueEnum;
 use std::path::{Path, PathBuf};
-
-/// Generation number whose trial worlds serve as the held-out test set: far beyond any run's
-/// length, so no individual was ever selected on them. `--generation 1099511627776` (its
-/// value, 2^40) still names them.
-pub const HELD_OUT_GENERATION: u64 = 1 << 40;
 
 /// `--worlds`: a named set of trial worlds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -32,33 +26,29 @@ pub enum WorldsChoice {
     Training,
 }
 
-/// Whose trial worlds, resolved.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum WorldSet {
-    /// Generation G's training worlds ([`berry_evolve::seed::Purpose::TrialWorld`] streams).
-    Training(u64),
-    /// The held-out worlds: the training streams of [`HELD_OUT_GENERATION`], group 0.
-    HeldOut,
-    /// The experiment's validation worlds
-    /// ([`berry_evolve::seed::Purpose::ValidationWorld`] streams).
-    Validation,
-}
-
-impl WorldSet {
-    /// Generation `g`'s worlds: the held-out set for [`HELD_OUT_GENERATION`] (so the old
-    /// `--generation 1099511627776` form is named like `--worlds held-out`).
-    pub fn of_generation(g: u64) -> WorldSet {
-        if g == HELD_OUT_GENERATION {
-            WorldSet::HeldOut
-        } else {
-            WorldSet::Training(g)
-        }
-    }
-
+/// What the command line adds to a [`WorldSet`]: resolving `--worlds` and `--generation`,
+/// refusals worded with the flags, and `--trials`.
+pub trait WorldSetArgs: Sized {
     /// The set `--worlds` and `--generation` name: `default` when neither is given, and the
     /// training worlds of `--generation` (else `default_generation`) for `training`. A
     /// generation given with another set is refused: it would be silently ignored.
-    pub fn choose(
+    fn choose(
+        worlds: Option<WorldsChoice>,
+        generation: Option<u64>,
+        default: WorldsChoice,
+        default_generation: u64,
+    ) -> anyhow::Result<Self>;
+
+    /// Refuses the validation worlds of an experiment without validation: it has none.
+    fn check_file(self, experiment: &Experiment, path: &Path) -> anyhow::Result<()>;
+
+    /// `experiment` with `trials` worlds in this set (the validation table's `trials` for
+    /// the validation worlds, `[evaluation] trials` for the others), validated again.
+    fn with_trials(self, experiment: &Experiment, trials: u64) -> anyhow::Result<Experiment>;
+}
+
+impl WorldSetArgs for WorldSet {
+    fn choose(
         worlds: Option<WorldsChoice>,
         generation: Option<u64>,
         default: WorldsChoice,
@@ -87,69 +77,8 @@ impl WorldSet {
         })
     }
 
-    /// The generation whose streams build the worlds (0 for the validation worlds, whose
-    /// streams are of their own purpose).
-    pub fn generation(self) -> Generation {
-        Generation(match self {
-            WorldSet::Training(g) => g,
-            WorldSet::HeldOut => HELD_OUT_GENERATION,
-            WorldSet::Validation => 0,
-        })
-    }
-
-    /// `training`, `held-out` or `validation` (as `--worlds` spells it).
-    pub fn name(self) -> &'static str {
-        match self {
-            WorldSet::Training(_) => "training",
-            WorldSet::HeldOut => "held-out",
-            WorldSet::Validation => "validation",
-        }
-    }
-
-    /// The title of trial `t`: `held-out world 2`, `validation world 2`, `trial 2 of
-    /// generation 5`.
-    pub fn trial_title(self, t: u64) -> String {
-        match self {
-            WorldSet::Training(g) => format!("trial {t} of generation {g}"),
-            WorldSet::HeldOut | WorldSet::Validation => format!("{} world {t}", self.name()),
-        }
-    }
-
-    /// A trial's line label: `trial 2` for training worlds (as replay always printed),
-    /// `held-out world 2` and `validation world 2` for the named sets.
-    pub fn trial_label(self, t: u64) -> String {
-        match self {
-            WorldSet::Training(_) => format!("trial {t}"),
-            _ => self.trial_title(t),
-        }
-    }
-
-    /// `n` trials of this set: `3 trial(s) of generation 5`, `3 held-out world(s)`.
-    pub fn count_text(self, n: usize) -> String {
-        match self {
-            WorldSet::Training(g) => format!("{n} trial(s) of generation {g}"),
-            _ => format!("{n} {} world(s)", self.name()),
-        }
-    }
-
-    /// `the held-out worlds (...)`, `the validation worlds (...)` or `generation G's training
-    /// worlds`, as compare's first line says it.
-    pub fn description(self) -> String {
-        match self {
-            WorldSet::HeldOut => {
-                "the held-out worlds (never used in training or validation)".to_string()
-            }
-            WorldSet::Validation => {
-                "the validation worlds (the [validation] table's, on which best.json is chosen)"
-                    .to_string()
-            }
-            WorldSet::Training(g) => format!("generation {g}'s training worlds"),
-        }
-    }
-
-    /// Refuses the validation worlds of an experiment without validation: it has none.
-    pub fn check(self, experiment: &Experiment, path: &Path) -> anyhow::Result<()> {
-        if self == WorldSet::Validation && !experiment.validation.enabled() {
+    fn check_file(self, experiment: &Experiment, path: &Path) -> anyhow::Result<()> {
+        if self.check(experiment).is_err() {
             anyhow::bail!(
                 "--worlds validation: experiment `{}` ({}) has no [validation] table (or its \
                  `every` is 0), so it has no validation worlds; add one (e.g. `[validation]` \
@@ -161,28 +90,7 @@ impl WorldSet {
         Ok(())
     }
 
-    /// How many worlds the set has in `experiment`: `[validation] trials` for the validation
-    /// worlds, `[evaluation] trials` for the others.
-    pub fn trials(self, experiment: &Experiment) -> u64 {
-        match self {
-            WorldSet::Validation => experiment.validation.trials,
-            _ => experiment.evaluation.trials,
-        }
-    }
-
-    /// The validation worlds (for one creature each) of `experiment`, exactly those a run's
-    /// validation evaluates on; None for the other sets, whose trial worlds are built trial by
-    /// trial from their generation's streams.
-    pub fn built_worlds(self, experiment: &Experiment) -> anyhow::Result<Option<Vec<World>>> {
-        match self {
-            WorldSet::Validation => Ok(Some(validation_worlds(experiment)?)),
-            _ => Ok(None),
-        }
-    }
-
-    /// `experiment` with `trials` worlds in this set (the validation table's `trials` for
-    /// the validation worlds, `[evaluation] trials` for the others), validated again.
-    pub fn with_trials(self, experiment: &Experiment, trials: u64) -> anyhow::Result<Experiment> {
+    fn with_trials(self, experiment: &Experiment, trials: u64) -> anyhow::Result<Experiment> {
         let overrides = experiment.with_overrides();
         let overrides = match self {
             WorldSet::Validation => overrides.edit(|c| c.validation.trials = trials),
@@ -289,6 +197,8 @@ pub fn warn_other_experiment(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use berry_evolve::evo::worlds::HELD_OUT_GENERATION;
+    use berry_evolve::seed::Generation;
 
     #[test]
     fn named_sets_and_the_old_generation_agree() {

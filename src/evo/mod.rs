@@ -5,6 +5,7 @@
 //! [`crate::experiment::evolution`]. Every random draw comes from a stream passed in,
 //! in a documented order, so a run reproduces bit for bit from its seed.
 
+pub mod episode;
 pub mod evaluate;
 pub mod fitness;
 pub mod init;
@@ -20,6 +21,7 @@ pub mod stats;
 pub mod trial;
 pub mod validation;
 pub mod vary;
+pub mod worlds;
 
 pub use init::initial_population;
 /// PGPE, kept at its old path (`evo::pgpe`) for the code and tests that name it.
