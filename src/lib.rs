@@ -23,7 +23,8 @@
 //! - `evo`: the genetic algorithm and PGPE, and parallel, deterministic evaluation: one trial
 //!   path (`evo::trial`), the parts evaluation and lockstep share (`evo::life`).
 //! - `record`: file output: fitness CSV, checkpoints, genome files, traces, plots, pictures.
-//! - `run`: one run folder: its lock, the generation loop, checkpoints, resume.
+//! - `run`: one run folder, by concern: errors, the folder (names, lock, own files),
+//!   checkpoints, start, resume (a pure plan, then an apply step), the generation loop.
 //! - `cli`: the command-line front end (lives in the binary).
 //!
 //! rayon runs evo's evaluation (on a pool `run` builds) and the binary's `compare` and

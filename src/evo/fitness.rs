@@ -7,7 +7,7 @@
 //! tick costs what it always did, and a world query is made only for a term or measure that
 //! needs it.
 
-use crate::experiment::tables::area_index;
+use crate::experiment::tables::{area_index, FORWARD_STEP};
 use crate::experiment::{Balance, Experiment, FitnessMode, FitnessSpec, GoalAt, Measure, MEASURES};
 use crate::geometry::{circles_touch, Vec2};
 use crate::sim::area::Area;
@@ -112,6 +112,11 @@ pub struct LifePlan {
     /// `[behaviour] area`.
     behaviour_area: Option<Area>,
     threat_radius: f64,
+    /// Some measure follows the pose tick by tick (`forward_share`, `path_length`,
+    /// `final_x`, `final_y`).
+    follows_motion: bool,
+    /// `forward_bonus` or a measure that follows the motion: the pose is kept every tick.
+    tracks_pose: bool,
     /// Some term or measure needs the world at the end of every tick.
     per_tick: bool,
     /// ... and it is more than the forward distance: an area, the closest approach to a goal
@@ -143,6 +148,8 @@ impl LifePlan {
             measures: Vec::new(),
             behaviour_area: None,
             threat_radius: 0.0,
+            follows_motion: false,
+            tracks_pose: false,
             per_tick: false,
             watches_places: false,
             bites: spec.distinct_food_bonus != 0.0,
@@ -191,7 +198,9 @@ impl LifePlan {
                         | Measure::AversiveContacts
                 )
             });
-        plan.per_tick = plan.watches_places || plan.forward_bonus != 0.0;
+        plan.follows_motion = plan.measures.iter().any(|m| m.follows_motion());
+        plan.tracks_pose = plan.forward_bonus != 0.0 || plan.follows_motion;
+        plan.per_tick = plan.watches_places || plan.tracks_pose;
         plan.bites = spec.distinct_food_bonus != 0.0
             || plan
                 .measures
@@ -258,9 +267,13 @@ pub struct LifeScore {
     strikes_survived: u64,
     touching_aversive: bool,
     aversive_contacts: u64,
-    /// The pose at the end of the previous tick (or the start), for `forward_distance`.
+    /// The pose at the end of the previous tick (or the start), for `forward_distance` and
+    /// the motion measures (kept only when the plan tracks the pose).
     last_pose: Pose,
     forward_distance: f64,
+    /// Ticks whose step along the heading exceeded [`FORWARD_STEP`].
+    forward_ticks: u64,
+    path_length: f64,
 }
 
 impl LifeScore {
@@ -297,6 +310,8 @@ impl LifeScore {
                 heading: Vec2::X,
             },
             forward_distance: 0.0,
+            forward_ticks: 0,
+            path_length: 0.0,
         }
     }
 
@@ -348,14 +363,21 @@ impl LifeScore {
     /// Records what `plan` watches in `world` at the end of a tick that creature `creature`
     /// lived through (after [`LifeScore::record_tick`]; only when
     /// [`LifePlan::needs_world_every_tick`]). The forward distance is summed inline (it is
-    /// the main job's one per-tick term); the rest is looked up out of line, only when the
-    /// plan watches places or gadgets.
+    /// the main job's one per-tick term), with the motion measures when asked for; the rest
+    /// is looked up out of line, only when the plan watches places or gadgets.
     #[inline]
     pub fn record_world(&mut self, plan: &LifePlan, world: &World, creature: usize) {
         let pose = world.creatures()[creature].pose;
-        if plan.forward_bonus != 0.0 {
+        if plan.tracks_pose {
             let last = self.last_pose;
-            self.forward_distance += (pose.position - last.position).dot(last.heading).max(0.0);
+            let step = pose.position - last.position;
+            let along = step.dot(last.heading);
+            // The same operations as before the motion measures: the same bits.
+            self.forward_distance += along.max(0.0);
+            if plan.follows_motion {
+                self.forward_ticks += u64::from(along > FORWARD_STEP);
+                self.path_length += step.length();
+            }
             self.last_pose = pose;
         }
         if plan.watches_places {
@@ -526,6 +548,16 @@ impl LifeScore {
                 }
                 Measure::AversiveContacts => self.aversive_contacts as f64,
                 Measure::ShockedTicks => self.shocked_ticks as f64,
+                Measure::ForwardShare => {
+                    if self.ticks == 0 {
+                        0.0
+                    } else {
+                        self.forward_ticks as f64 / self.ticks as f64
+                    }
+                }
+                Measure::PathLength => self.path_length,
+                Measure::FinalX => self.last_pose.position.x,
+                Measure::FinalY => self.last_pose.position.y,
             };
         }
         (score, measures)

@@ -436,10 +436,30 @@ pub enum Measure {
     /// Ticks on which the shock sensor was on (aversive objects, walls with `wall_shock`,
     /// shocking predators).
     ShockedTicks,
+    /// Share of its ticks alive (0–1) on which it moved forward: its centre's displacement
+    /// over the tick, along its heading at the tick's start, exceeded 0.01 LU
+    /// ([`FORWARD_STEP`]; a creature spinning in place moves 0, one reversing a negative
+    /// distance). 0 when it lived no tick.
+    ForwardShare,
+    /// LU its centre travelled: over its ticks alive, the sum of the straight distances from
+    /// where each tick started to where it ended (a tick's curve counts as its chord).
+    PathLength,
+    /// x of its centre in LU (arena frame: from the left edge, to the right) at the end of
+    /// its last tick alive, or at the start when it lived none: where a creature killed in a
+    /// tick stood when the tick began, the end of the path `path_length` measures.
+    FinalX,
+    /// y of its centre in LU (arena frame: from the top edge, downwards), taken as `final_x`.
+    FinalY,
 }
 
+/// The smallest displacement along its heading, in LU, that makes a tick count as forward
+/// motion for [`Measure::ForwardShare`]: above rounding, so spinning in place (exactly 0)
+/// or a wobble never counts, and about 0.3% of the default top speed (0.25 RPT with a
+/// wheel of 2 LU: 3.1 LU per tick), so any deliberate drive does.
+pub const FORWARD_STEP: f64 = 0.01;
+
 /// Every measure, in the order their columns and lines appear.
-pub const MEASURES: [Measure; 11] = [
+pub const MEASURES: [Measure; 15] = [
     Measure::TicksAlive,
     Measure::DistinctFood,
     Measure::FoodTypes,
@@ -451,6 +471,10 @@ pub const MEASURES: [Measure; 11] = [
     Measure::StrikesSurvived,
     Measure::AversiveContacts,
     Measure::ShockedTicks,
+    Measure::ForwardShare,
+    Measure::PathLength,
+    Measure::FinalX,
+    Measure::FinalY,
 ];
 
 impl Measure {
@@ -468,12 +492,24 @@ impl Measure {
             Measure::StrikesSurvived => "strikes_survived",
             Measure::AversiveContacts => "aversive_contacts",
             Measure::ShockedTicks => "shocked_ticks",
+            Measure::ForwardShare => "forward_share",
+            Measure::PathLength => "path_length",
+            Measure::FinalX => "final_x",
+            Measure::FinalY => "final_y",
         }
     }
 
     /// Its position in [`MEASURES`] (and in a trial's array of measure values).
     pub fn index(self) -> usize {
         MEASURES.iter().position(|&m| m == self).unwrap_or(0)
+    }
+
+    /// Does it follow the creature's pose tick by tick (its motion and where it ends)?
+    pub fn follows_motion(self) -> bool {
+        matches!(
+            self,
+            Measure::ForwardShare | Measure::PathLength | Measure::FinalX | Measure::FinalY
+        )
     }
 
     /// Does it need `[behaviour] area`?

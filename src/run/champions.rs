@@ -1,7 +1,8 @@
 //! The run folder's `champions.jsonl` (see [`crate::record::champions`]): which genome of a
 //! generation is its champion.
 
-use super::{Loop, RunError};
+use super::error::RunError;
+use super::generation_loop::Loop;
 use crate::evo::state::{EvaluatedGeneration, GenerationSummary};
 use crate::record::genome_file::{GenomeFile, Origin};
 

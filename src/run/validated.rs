@@ -1,7 +1,9 @@
 //! `best.json` of a run with `[validation]` on: the best individual on the validation worlds
 //! so far, its origin saying so.
 
-use super::{Loop, RunError, BEST_FILE};
+use super::error::RunError;
+use super::generation_loop::Loop;
+use super::names::BEST_FILE;
 use crate::record::genome_file::{GenomeFile, Origin};
 
 impl Loop {

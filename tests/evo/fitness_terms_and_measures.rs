@@ -464,7 +464,8 @@ death_penalty = 1.0
 [behaviour]
 measures = ["ticks_alive", "distinct_food", "food_types", "area_reached", "time_in_area",
             "door_opened", "food_in_area_eaten", "shelter_while_threat", "strikes_survived",
-            "aversive_contacts", "shocked_ticks"]
+            "aversive_contacts", "shocked_ticks", "forward_share", "path_length",
+            "final_x", "final_y"]
 area = "goal"
 threat_radius = 60.0
 "#,
@@ -487,7 +488,7 @@ threat_radius = 60.0
         );
     }
     assert_eq!(bits(&together), bits(&alone));
-    assert!(together.iter().all(|e| e.measures.len() == 11));
+    assert!(together.iter().all(|e| e.measures.len() == 15));
     // Random genomes do move: some measure differs between individuals.
     let distinct: std::collections::BTreeSet<Vec<u64>> =
         bits(&together).into_iter().map(|b| b.2).collect();

@@ -170,7 +170,8 @@ fn one_two_and_three_ranks_give_the_plain_bytes() {
     let tmp = tempfile::tempdir().unwrap();
     let t = tmp.path();
     // A gadget world (doors, lockstep MLP), validation with behaviour measures, a stateful
-    // brain (one job per trial), PGPE (its centre evaluated last) and MAP-Elites.
+    // brain (one job per trial), PGPE (its centre evaluated last), novelty search and
+    // MAP-Elites.
     let cases = [
         (
             variant(
@@ -200,7 +201,18 @@ fn one_two_and_three_ranks_give_the_plain_bytes() {
             variant(t, "tests/fixtures/tiny-pgpe.toml", "tiny-pgpe.toml", |s| s),
             "4",
         ),
-        // An archive search: archive.csv and the checkpoint's elites too.
+        // Archive searches: the novelty archive and MAP-Elites' grid are told the
+        // generation's behaviour measures, which each rank sends back with the fitness
+        // (MAP-Elites: archive.csv and the checkpoint's elites too).
+        (
+            variant(
+                t,
+                "tests/fixtures/tiny-novelty.toml",
+                "tiny-novelty.toml",
+                |s| s,
+            ),
+            "4",
+        ),
         (
             variant(
                 t,

@@ -63,16 +63,11 @@
 //! with the same bits. The mean starts at 0, σ at `[evolution.cma_es] sigma_init`, C, b_j
 //! and d_j at the identity, the paths at 0.
 
-use super::sep_cma_es::{noises, MAX_VARIANCE, MIN_SIGMA};
-use super::{centre_candidate, improved_centre, own_state, Search, SearchState, Unevaluated};
+use super::cma_family::{CmaSearch, Distribution};
+use super::sep_cma_es::{MAX_VARIANCE, MIN_SIGMA};
 use crate::brain::genome::Genome;
-use crate::evo::lineage::{Birth, Lineage};
 use crate::evo::select::ranking;
-use crate::evo::state::{Champion, EvaluatedGeneration, GenerationSummary};
-use crate::evo::validation::Candidate;
 use crate::experiment::evolution::{CmaEsSpec, MAX_MAGNITUDE};
-use crate::experiment::Experiment;
-use crate::seed::{Generation, Seed};
 use serde::{Deserialize, Serialize};
 
 pub use crate::experiment::evolution::MAX_CMA_ES_PARAMETERS as MAX_PARAMETERS;
@@ -450,177 +445,53 @@ pub fn update(
     next
 }
 
-/// CMA-ES as a [`Search`]: θ_g, the generation it samples, where its mean came from.
+/// CMA-ES with a full covariance matrix, as a [`Distribution`] of [`CmaSearch`].
 #[derive(Debug, Clone)]
-pub struct CmaEs {
-    seed: Seed,
-    spec: CmaEsSpec,
-    constants: Constants,
-    parameters: usize,
-    /// The generation `state` samples.
-    generation: u64,
-    /// θ_g; `None` after a restore without a CMA-ES state (a run that switched algorithm),
-    /// until [`Search::tell`] centres a new distribution on the best individual.
-    state: Option<CmaState>,
-    /// The individual of generation g − 1 the mean came from (`None` for generation 0).
-    mean_parent: Option<usize>,
-}
+pub struct Full;
 
-impl CmaEs {
-    /// A new search for `experiment` (`[evolution.cma_es]`, or every default) with genomes of
-    /// `parameters` parameters: θ_0 is [`CmaState::initial`], λ the population.
-    pub fn new(experiment: &Experiment, parameters: usize) -> CmaEs {
-        let spec = experiment.evolution.cma_es.unwrap_or_default();
-        CmaEs {
-            seed: experiment.seed(),
-            spec,
-            constants: Constants::new(parameters, experiment.evolution.population),
-            parameters,
-            generation: 0,
-            state: Some(CmaState::initial(&spec, parameters)),
-            mean_parent: None,
-        }
+impl Distribution for Full {
+    type State = CmaState;
+    type Constants = Constants;
+    const NAME: &'static str = "cma-es";
+    const TAG: &'static str = "cma_es";
+    const DESCRIBE: &'static str = "CMA-ES";
+
+    fn constants(parameters: usize, population: usize) -> Constants {
+        Constants::new(parameters, population)
     }
 
-    fn lambda(&self) -> usize {
-        self.constants.lambda
+    fn lambda(constants: &Constants) -> usize {
+        constants.lambda
     }
 
-    /// The first `count` samples of generation `self.generation` (then the mean).
-    fn sample(&self, count: usize) -> Vec<Genome> {
-        let initial;
-        let state = match &self.state {
-            Some(state) => state,
-            None => {
-                initial = CmaState::initial(&self.spec, self.parameters);
-                &initial
-            }
-        };
-        individuals(
-            state,
-            &noises(
-                self.seed,
-                Generation(self.generation),
-                self.parameters,
-                count,
-            ),
-        )
+    fn initial(spec: &CmaEsSpec, parameters: usize) -> CmaState {
+        CmaState::initial(spec, parameters)
+    }
+
+    fn centred_on(mean: &[f64], sigma: f64) -> CmaState {
+        CmaState::centred_on(mean, sigma)
+    }
+
+    fn individuals(state: &CmaState, noises: &[Vec<f64>]) -> Vec<Genome> {
+        individuals(state, noises)
+    }
+
+    fn update(
+        constants: &Constants,
+        state: &CmaState,
+        noises: &[Vec<f64>],
+        fitness: &[f64],
+    ) -> CmaState {
+        update(constants, state, noises, fitness)
+    }
+
+    fn problem(state: &CmaState, parameters: usize) -> Option<String> {
+        state.problem(parameters)
     }
 }
 
-impl Search for CmaEs {
-    fn name(&self) -> &'static str {
-        "cma-es"
-    }
-
-    fn describe(&self) -> &'static str {
-        "CMA-ES"
-    }
-
-    fn evaluated_per_generation(&self) -> usize {
-        self.lambda() + 1
-    }
-
-    fn generation(&self) -> u64 {
-        self.generation
-    }
-
-    fn ask(&self) -> Unevaluated {
-        let mut lineage = vec![Lineage::orphan(Birth::CmaSample); self.lambda()];
-        lineage.push(match self.mean_parent {
-            Some(p) => Lineage::of(Birth::CmaMean, &[p]),
-            None => Lineage::orphan(Birth::CmaMean),
-        });
-        Unevaluated {
-            genomes: self.sample(self.lambda()),
-            lineage,
-        }
-    }
-
-    /// θ_{g+1} from the samples' fitness (the mean's left out). Without θ_g, or when the
-    /// generation does not hold λ samples and the mean (a run that changed its algorithm or
-    /// population), the new distribution is centred on the generation's best individual.
-    fn tell(&mut self, evaluated: &EvaluatedGeneration) {
-        let fitness = evaluated.selection_fitness();
-        let lambda = self.lambda();
-        let (next, parent) = match &self.state {
-            Some(state) if fitness.len() == lambda + 1 => {
-                let z = noises(
-                    self.seed,
-                    Generation(evaluated.generation),
-                    self.parameters,
-                    lambda,
-                );
-                (
-                    update(&self.constants, state, &z, &fitness[..lambda]),
-                    lambda,
-                )
-            }
-            _ => {
-                let best = evaluated.summary().best_individual.unwrap_or(0);
-                (
-                    CmaState::centred_on(
-                        &evaluated.individuals[best].genome.parameters,
-                        self.spec.sigma_init,
-                    ),
-                    best,
-                )
-            }
-        };
-        self.state = Some(next);
-        self.generation = evaluated.generation + 1;
-        self.mean_parent = Some(parent);
-    }
-
-    fn state(&self) -> Option<SearchState> {
-        self.state.as_ref().map(|s| SearchState::of("cma_es", s))
-    }
-
-    fn restore(&mut self, state: Option<&SearchState>, generation: u64) {
-        self.generation = generation;
-        // Another algorithm's state, or none: `tell` centres on the best individual.
-        self.state = own_state::<CmaState>(state, "cma_es", "cma-es").ok();
-        self.mean_parent = None;
-    }
-
-    fn state_problem(&self, state: Option<&SearchState>) -> Option<String> {
-        match own_state::<CmaState>(state, "cma_es", "cma-es") {
-            Ok(state) => state.problem(self.parameters),
-            Err(why) => Some(why),
-        }
-    }
-
-    fn first_genomes(&self, n: usize) -> Vec<Genome> {
-        let n = n.min(self.evaluated_per_generation());
-        if n == self.evaluated_per_generation() {
-            return self.ask().genomes;
-        }
-        // Sample after sample from one stream: a smaller sample is the first of the full one.
-        let mut genomes = self.sample(n);
-        genomes.truncate(n);
-        genomes
-    }
-
-    /// Only the mean, the last individual, can become the champion (a sample is the mean plus
-    /// noise).
-    fn improved_champion(
-        &self,
-        previous: Option<&Champion>,
-        generation: &EvaluatedGeneration,
-        _summary: &GenerationSummary,
-    ) -> Option<Champion> {
-        improved_centre(previous, generation)
-    }
-
-    /// The mean, which validation always considers.
-    fn champion_candidates(&self, evaluated: &EvaluatedGeneration) -> Vec<Candidate> {
-        centre_candidate(evaluated)
-    }
-
-    fn champion_candidates_per_generation(&self) -> usize {
-        1
-    }
-}
+/// CMA-ES as a [`super::Search`] (`algorithm = "cma-es"`).
+pub type CmaEs = CmaSearch<Full>;
 
 #[cfg(test)]
 mod tests {

@@ -41,6 +41,7 @@
 //! docs/search.md, "Adding a search algorithm: a checklist", says how to add another.
 
 pub mod cma_es;
+pub mod cma_family;
 pub mod descriptors;
 pub mod factory;
 pub mod ga;
