@@ -77,7 +77,15 @@ pub fn run(args: ExtractArgs) -> anyhow::Result<()> {
         .map_err(|e| anyhow::anyhow!("{}: its experiment is not valid: {e}", path.display()))?;
     let born = individual.lineage.as_ref().map_or(String::new(), |l| {
         let parents: Vec<String> = l.parents.iter().map(u64::to_string).collect();
-        if parents.is_empty() {
+        if !l.elites.is_empty() {
+            // MAP-Elites: parents are archive elites of any earlier generation.
+            let elites: Vec<String> = l.elites.iter().map(|e| e.to_string()).collect();
+            format!(
+                ", born {} of the elites {}",
+                l.birth.name(),
+                elites.join(" and ")
+            )
+        } else if parents.is_empty() {
             format!(", born {}", l.birth.name())
         } else {
             format!(

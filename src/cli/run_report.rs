@@ -166,9 +166,18 @@ impl RunOutcome {
         if let Some(why) = &self.check_failed {
             errln!("held-out check not made: {why}");
         }
+        // A MAP-Elites run also has its archive (only then, so other runs' words stay).
+        let archive = std::path::Path::new(&self.run_dir)
+            .join("archive.csv")
+            .is_file();
         errln!(
-            "results in {}: fitness.csv, best.json, checkpoints/",
-            self.run_dir
+            "results in {}: fitness.csv, best.json, checkpoints/{}",
+            self.run_dir,
+            if archive {
+                ", archive.csv (plot draws it; extract --cell I,J takes an elite)"
+            } else {
+                ""
+            }
         );
         if let [render, replay] = self.look.as_slice() {
             errln!(

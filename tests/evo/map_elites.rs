@@ -558,3 +558,46 @@ fn extract_cell_round_trips_an_elite() {
         "{e}"
     );
 }
+
+/// A finished run with `[validation]` extended by `resume --generations` sets aside its
+/// end-of-run validation (the row's validation columns rewound) and keeps its QD columns
+/// after them: the bytes of a run planned that long from the start.
+#[test]
+fn an_extended_run_keeps_its_qd_columns() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(fixture("tiny-map-elites.toml"))
+        .unwrap()
+        .replace(
+            "[output]",
+            "[validation]\nevery = 2\ntop = 2\ntrials = 2\n\n[output]",
+        );
+    let file = dir.path().join("validated.toml");
+    std::fs::write(&file, text).unwrap();
+    let (whole, extended) = (dir.path().join("whole"), dir.path().join("extended"));
+    run(&file, &whole, "7", "2");
+    run(&file, &extended, "4", "2");
+    let header = String::from_utf8(read(&extended.join("fitness.csv"))).unwrap();
+    assert!(header
+        .lines()
+        .next()
+        .unwrap()
+        .ends_with("validation_distinct_food,qd_score,coverage,archive_size,max_fitness"));
+    run_ok(&[
+        "resume",
+        extended.to_str().unwrap(),
+        "--generations",
+        "7",
+        "--quiet",
+    ]);
+    for f in [
+        "fitness.csv",
+        "archive.csv",
+        "best.json",
+        "checkpoints/gen-000006.json",
+    ] {
+        assert!(
+            read(&whole.join(f)) == read(&extended.join(f)),
+            "{f} differs"
+        );
+    }
+}
