@@ -128,7 +128,9 @@ for line in os.environ["FAMILIES_TEXT"].splitlines():
     keys = keys.split(",")
     have = [f for f in files if os.path.exists(f)]
     champs = {f: [c for c in (f"{runs}/{os.path.basename(f)[:-5]}/seed-{s}/best.json"
-                              for s in seeds) if os.path.exists(c)] for f in have}
+                              for s in seeds)
+                     if os.path.exists(os.path.join(os.path.dirname(c), "wall.txt"))]
+              for f in have}
     genomes = [c for f in have for c in champs[f]]
     if baseline != "-":
         genomes.append(baseline)
