@@ -4,7 +4,8 @@
 # generation at 50, 500 and 2,000 parameters, from `berry-evolve bench --json`.
 #
 #   bash scripts/search-share.sh                 # prints a Markdown table
-#   bash scripts/search-share.sh --generations 5
+#   bash scripts/search-share.sh --generations 10   # default 6: generation 0's random draw
+#                                                 # counts once, as in a run it is amortised
 #
 # Each case is experiments/foraging.toml with the algorithm, the population and the hidden
 # layer (24 -> h -> 2: 27h + 2 parameters, h = 0 for 50) changed, written to a temporary
@@ -13,7 +14,7 @@
 # share therefore largest).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-GENERATIONS=3
+GENERATIONS=6
 BIN=target/release/berry-evolve
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -56,8 +57,14 @@ descriptors = [
 }
 
 
+GA_ONLY = re.compile(r"elitism = \d+\n|\[evolution\.(selection|crossover|mutation)\]\n[^\[]*")
+
+
 def case(algorithm, population, hidden):
-    text = base.replace("population = 64", f"population = {population}")
+    text = base if algorithm in ("ga", "novelty") else GA_ONLY.sub("", base)
+    if algorithm == "map-elites":
+        text = text.replace("\ninit_range", "\n#init_range").replace("\n#init_range", "\ninit_range")
+    text = text.replace("population = 64", f"population = {population}")
     text = text.replace("hidden = []", f"hidden = [{hidden}]" if hidden else "hidden = []")
     text = text.replace("[evolution]\n", f'[evolution]\nalgorithm = "{algorithm}"\n', 1)
     text = text.replace("[evaluation]\n", TABLES[algorithm].lstrip("\n") + "\n[evaluation]\n", 1)
