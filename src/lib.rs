@@ -6,7 +6,7 @@
 //!
 //! ```text
 //! geometry, seed, validate, input, cpu, invocation  <-  sim  <-  brain  <-  experiment  <-  evo
-//!                                       <-  record  <-  run  <-  cli
+//!                                       <-  record  <-  view  <-  run  <-  cli
 //! ```
 //!
 //! - [`geometry`]: the report's §6, pure functions on circles, segments and rays.
@@ -24,7 +24,12 @@
 //!   path (`evo::trial`), the parts evaluation and lockstep share (`evo::life`), the named
 //!   world sets and evaluating genomes on them (`evo::worlds`: training g, validation,
 //!   held-out), one creature's trial stepped by a caller (`evo::episode`).
-//! - `record`: file output: fitness CSV, checkpoints, genome files, traces, plots, pictures.
+//! - `record`: file I/O: fitness CSV, checkpoints, genome files, traces, the MAP-Elites
+//!   archive, the tables plots read.
+//! - `view`: the pictures, drawn from traces and tables: the trajectory picture
+//!   (`view::render`, one function per layer of the picture), the replay page
+//!   (`view::replay_html`), the fitness plots (`view::plot`), the archive's heat map
+//!   (`view::heat_map`).
 //! - `run`: one run folder, by concern: errors, the folder (names, lock, own files),
 //!   checkpoints, start, resume (a pure plan, then an apply step), the generation loop.
 //! - `cli`: the command-line front end (lives in the binary). The Python package (`python/`,
@@ -72,3 +77,4 @@ pub mod run;
 pub mod seed;
 pub mod sim;
 pub mod validate;
+pub mod view;
