@@ -4,6 +4,7 @@
 
 use crate::evo::search::grid::Dimension;
 use crate::view::render::text_width;
+use std::collections::BTreeMap;
 
 /// The heat map's colours from low to high fitness (viridis at five stops).
 const RAMP: [(u8, u8, u8); 5] = [
@@ -51,6 +52,24 @@ fn short(x: f64) -> String {
     }
 }
 
+/// Where the cells go, in pixels: `nx` × `ny` cells of side `cs` per panel, panels (one per
+/// bin of a third descriptor) `cols` to a row `gap` apart, the grid's top left at (`left`,
+/// `top`) and its size `grid_w` × `grid_h`.
+#[derive(Debug, Clone, Copy)]
+struct Grid {
+    nx: usize,
+    ny: usize,
+    cols: usize,
+    gap: f64,
+    cs: f64,
+    left: f64,
+    top: f64,
+    pw: f64,
+    ph: f64,
+    grid_w: f64,
+    grid_h: f64,
+}
+
 /// The archive as a heat map (SVG), titled `title`: each cell coloured by its elite's
 /// fitness (viridis, the colour bar at the right gives the scale), empty cells light grey.
 /// One dimension: a strip of cells; two: a grid (first descriptor across, second up); three:
@@ -94,68 +113,118 @@ pub fn heat_map(dimensions: &[Dimension], elites: &[(Vec<usize>, f64)], title: &
         elites.len(),
         100.0 * elites.len() as f64 / cells.max(1) as f64
     );
-    let fitness: std::collections::BTreeMap<&[usize], f64> =
-        elites.iter().map(|(c, f)| (c.as_slice(), *f)).collect();
-    let label_every = (14.0 / cs).ceil().max(1.0) as usize;
+    let fitness: BTreeMap<&[usize], f64> = elites.iter().map(|(c, f)| (c.as_slice(), *f)).collect();
+    let grid = Grid {
+        nx,
+        ny,
+        cols,
+        gap,
+        cs,
+        left,
+        top,
+        pw,
+        ph,
+        grid_w,
+        grid_h,
+    };
     for p in 0..panels {
-        let px = left + (p % cols) as f64 * (pw + gap);
-        let py = top + (p / cols) as f64 * (ph + gap + 20.0);
-        s.push_str("<g class=\"panel\">\n");
-        if let Some(d) = dimensions.get(2) {
-            let w = (d.max - d.min) / d.bins as f64;
-            s.push_str(&format!(
-                "<text x=\"{:.0}\" y=\"{:.0}\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"12\">{} bin {p}: [{}, {}{}</text>\n",
-                px + pw / 2.0,
-                py - 8.0,
-                escape(&d.measure),
-                short(d.min + w * p as f64),
-                short(d.min + w * (p + 1) as f64),
-                // The last bin holds its top end (and everything clamped above it).
-                if p + 1 == d.bins { "]" } else { ")" }
-            ));
-        }
-        for i in 0..nx {
-            for j in 0..ny {
-                let mut cell = vec![i];
-                if dimensions.len() > 1 {
-                    cell.push(j);
-                }
-                if dimensions.len() > 2 {
-                    cell.push(p);
-                }
-                let x = px + i as f64 * cs;
-                let y = py + (ny - 1 - j) as f64 * cs;
-                let (fill, tip) = match fitness.get(cell.as_slice()) {
-                    Some(&f) => (colour(scale(f)), format!("cell {cell:?}: fitness {f}")),
-                    None => ("#EEEEEE".to_string(), format!("cell {cell:?}: empty")),
-                };
-                s.push_str(&format!(
-                    "<rect x=\"{x:.1}\" y=\"{y:.1}\" width=\"{cs:.1}\" height=\"{cs:.1}\" fill=\"{fill}\" stroke=\"#FFFFFF\" stroke-width=\"{:.1}\"><title>{}</title></rect>\n",
-                    (cs / 16.0).min(1.0),
-                    tip.replace(['[', ']'], "")
-                ));
-            }
-        }
-        // Bin indices along the axes, every few bins when cells are small.
-        for i in (0..nx).step_by(label_every) {
-            s.push_str(&format!(
-                "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"10\" fill=\"#444444\">{i}</text>\n",
-                px + (i as f64 + 0.5) * cs,
-                py + ph + 12.0
-            ));
-        }
-        if dimensions.len() > 1 {
-            for j in (0..ny).step_by(label_every) {
-                s.push_str(&format!(
-                    "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\" dy=\"0.35em\" font-family=\"sans-serif\" font-size=\"10\" fill=\"#444444\">{j}</text>\n",
-                    px - 4.0,
-                    py + (ny - 1 - j) as f64 * cs + cs / 2.0
-                ));
-            }
-        }
-        s.push_str("</g>\n");
+        panel(&mut s, dimensions, &grid, p, &fitness, scale);
     }
-    // Axis names with their ranges, once for the whole figure.
+    axis_names(&mut s, dimensions, &grid);
+    colour_bar(&mut s, &grid, elites.is_empty(), lo, hi);
+    s
+}
+
+/// Panel `p` (the `p`th bin of a third descriptor, or the only one): its cells coloured by
+/// `scale`d fitness, empty ones grey, and the bin indices along its axes.
+fn panel(
+    s: &mut String,
+    dimensions: &[Dimension],
+    grid: &Grid,
+    p: usize,
+    fitness: &BTreeMap<&[usize], f64>,
+    scale: impl Fn(f64) -> f64,
+) {
+    let Grid {
+        nx,
+        ny,
+        cols,
+        gap,
+        cs,
+        left,
+        top,
+        pw,
+        ph,
+        ..
+    } = *grid;
+    let label_every = (14.0 / cs).ceil().max(1.0) as usize;
+    let px = left + (p % cols) as f64 * (pw + gap);
+    let py = top + (p / cols) as f64 * (ph + gap + 20.0);
+    s.push_str("<g class=\"panel\">\n");
+    if let Some(d) = dimensions.get(2) {
+        let w = (d.max - d.min) / d.bins as f64;
+        s.push_str(&format!(
+            "<text x=\"{:.0}\" y=\"{:.0}\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"12\">{} bin {p}: [{}, {}{}</text>\n",
+            px + pw / 2.0,
+            py - 8.0,
+            escape(&d.measure),
+            short(d.min + w * p as f64),
+            short(d.min + w * (p + 1) as f64),
+            // The last bin holds its top end (and everything clamped above it).
+            if p + 1 == d.bins { "]" } else { ")" }
+        ));
+    }
+    for i in 0..nx {
+        for j in 0..ny {
+            let mut cell = vec![i];
+            if dimensions.len() > 1 {
+                cell.push(j);
+            }
+            if dimensions.len() > 2 {
+                cell.push(p);
+            }
+            let x = px + i as f64 * cs;
+            let y = py + (ny - 1 - j) as f64 * cs;
+            let (fill, tip) = match fitness.get(cell.as_slice()) {
+                Some(&f) => (colour(scale(f)), format!("cell {cell:?}: fitness {f}")),
+                None => ("#EEEEEE".to_string(), format!("cell {cell:?}: empty")),
+            };
+            s.push_str(&format!(
+                "<rect x=\"{x:.1}\" y=\"{y:.1}\" width=\"{cs:.1}\" height=\"{cs:.1}\" fill=\"{fill}\" stroke=\"#FFFFFF\" stroke-width=\"{:.1}\"><title>{}</title></rect>\n",
+                (cs / 16.0).min(1.0),
+                tip.replace(['[', ']'], "")
+            ));
+        }
+    }
+    // Bin indices along the axes, every few bins when cells are small.
+    for i in (0..nx).step_by(label_every) {
+        s.push_str(&format!(
+            "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"10\" fill=\"#444444\">{i}</text>\n",
+            px + (i as f64 + 0.5) * cs,
+            py + ph + 12.0
+        ));
+    }
+    if dimensions.len() > 1 {
+        for j in (0..ny).step_by(label_every) {
+            s.push_str(&format!(
+                "<text x=\"{:.1}\" y=\"{:.1}\" text-anchor=\"end\" dy=\"0.35em\" font-family=\"sans-serif\" font-size=\"10\" fill=\"#444444\">{j}</text>\n",
+                px - 4.0,
+                py + (ny - 1 - j) as f64 * cs + cs / 2.0
+            ));
+        }
+    }
+    s.push_str("</g>\n");
+}
+
+/// Axis names with their ranges, once for the whole figure.
+fn axis_names(s: &mut String, dimensions: &[Dimension], grid: &Grid) {
+    let Grid {
+        left,
+        top,
+        grid_w,
+        grid_h,
+        ..
+    } = *grid;
     if let Some(d) = dimensions.first() {
         s.push_str(&format!(
             "<text x=\"{:.0}\" y=\"{:.0}\" text-anchor=\"middle\" font-family=\"sans-serif\" font-size=\"14\">{}: {} to {} in {} bins (bin index under each column)</text>\n",
@@ -183,7 +252,18 @@ pub fn heat_map(dimensions: &[Dimension], elites: &[(Vec<usize>, f64)], title: &
             escape(&text)
         ));
     }
-    // The colour bar.
+}
+
+/// The colour bar right of the grid, labelled with the highest and lowest fitness (dashes
+/// when the archive is `empty`), and the picture's end.
+fn colour_bar(s: &mut String, grid: &Grid, empty: bool, lo: f64, hi: f64) {
+    let Grid {
+        left,
+        top,
+        grid_w,
+        grid_h,
+        ..
+    } = *grid;
     let bx = left + grid_w + 40.0;
     let bh = grid_h.max(60.0);
     let steps = 50;
@@ -196,7 +276,7 @@ pub fn heat_map(dimensions: &[Dimension], elites: &[(Vec<usize>, f64)], title: &
             colour(t)
         ));
     }
-    let (top_label, bottom_label) = if elites.is_empty() {
+    let (top_label, bottom_label) = if empty {
         ("—".to_string(), "—".to_string())
     } else {
         (short(hi), short(lo))
@@ -211,5 +291,4 @@ pub fn heat_map(dimensions: &[Dimension], elites: &[(Vec<usize>, f64)], title: &
         top + bh,
         top - 8.0,
     ));
-    s
 }
