@@ -171,7 +171,13 @@ fn segment(colour: &str, width: f64, dash: &str, opacity: f64) -> String {
 /// The key to the arena's symbols: only the kinds `trace`'s world has (and the marks of the
 /// events it had), each drawn as the canvas draws it.
 fn arena_legend(trace: &TrialTrace) -> String {
-    let w: &WorldDescription = &trace.world;
+    let mut out = world_keys(&trace.world);
+    out.push_str(&event_keys(trace));
+    out
+}
+
+/// The keys of the kinds of object the world has, and only those.
+fn world_keys(w: &WorldDescription) -> String {
     let mut out = String::new();
     let mut add = |kind: &str, symbol: String, text: &str| out.push_str(&key(kind, &symbol, text));
     add(
@@ -283,6 +289,13 @@ fn arena_legend(trace: &TrialTrace) -> String {
             "wanderer",
         );
     }
+    out
+}
+
+/// The keys of the marks of the events the trial had, and only those.
+fn event_keys(trace: &TrialTrace) -> String {
+    let mut out = String::new();
+    let mut add = |kind: &str, symbol: String, text: &str| out.push_str(&key(kind, &symbol, text));
     let had = |k: EventKind| trace.events.iter().any(|e| e.event == k);
     if had(EventKind::Eat) {
         add(
