@@ -1,8 +1,8 @@
 //! The trajectory picture's fixed layers under the objects: the arena's floor, areas, door
 //! triggers, walls, doors (as they stand at the end) and teleporters.
 
-use super::{escape, rgb, Frame};
-use crate::record::trace::recorder::{EventKind, TrialTrace};
+use super::frame::{escape, rgb, Frame};
+use crate::evo::trace::{EventKind, TrialTrace};
 use std::fmt::Write as _;
 
 /// The arena's floor and its areas (safe ones green), under everything else.

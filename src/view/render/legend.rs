@@ -2,8 +2,8 @@
 //! then a key to the symbols naming only the kinds of object the world has and the marks of
 //! the events the trial had.
 
-use super::{escape, text_width, Caption, FOOD_COLOURS, MARGIN};
-use crate::record::trace::recorder::{EventKind, TrialTrace, WorldDescription};
+use super::frame::{escape, text_width, Caption, FOOD_COLOURS, MARGIN};
+use crate::evo::trace::{EventKind, TrialTrace, WorldDescription};
 use std::fmt::Write as _;
 
 /// `text` cut to at most `n` characters, keeping its end (file names end in what matters).

@@ -1,8 +1,8 @@
 //! The trajectory picture's objects: food (with the amount left at the end), aversive
 //! objects and landmarks.
 
-use super::{Frame, FOOD_COLOURS};
-use crate::record::trace::recorder::TrialTrace;
+use super::frame::{Frame, FOOD_COLOURS};
+use crate::evo::trace::TrialTrace;
 use std::fmt::Write as _;
 
 /// Food: a ring of the type's colour; the disc inside has area ∝ amount left / capacity.

@@ -2,8 +2,8 @@
 //! predators, the creatures' paths coloured by time with their headings, and the marks of the
 //! trial's events.
 
-use super::{dist, points, split_at_jumps, time_colour, Frame};
-use crate::record::trace::recorder::{ActorKind, EventKind, TrialTrace};
+use super::frame::{dist, points, split_at_jumps, time_colour, Frame};
+use crate::evo::trace::{ActorKind, EventKind, TrialTrace};
 use std::fmt::Write as _;
 
 /// Wanderers, predators, air predators: their paths, then where they are at the end.
