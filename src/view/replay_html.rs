@@ -20,9 +20,9 @@
 //! canvas pixels there, and the same for the middle of a wall, so that a test can check the
 //! drawing against the trace (a reader of the page never sees it).
 
+use crate::evo::trace::{EventKind, TrialTrace, WorldDescription};
 use crate::record::atomic::write_atomic_with;
 use crate::record::trace::files::write_jsonl_to;
-use crate::record::trace::recorder::{EventKind, TrialTrace, WorldDescription};
 use std::io;
 use std::path::Path;
 
