@@ -23,8 +23,9 @@
 //! - `evo`: the genetic algorithm and PGPE, and parallel, deterministic evaluation: one trial
 //!   path (`evo::trial`), the parts evaluation and lockstep share (`evo::life`), the named
 //!   world sets and evaluating genomes on them (`evo::worlds`: training g, validation,
-//!   held-out), one creature's trial stepped by a caller (`evo::episode`).
-//! - `record`: file I/O: fitness CSV, checkpoints, genome files, traces, the MAP-Elites
+//!   held-out), one creature's trial stepped by a caller (`evo::episode`), the whole-world
+//!   trace of a trial recorded by a watcher of the trial path (`evo::trace`).
+//! - `record`: file I/O: fitness CSV, checkpoints, genome files, trace files, the MAP-Elites
 //!   archive, the tables plots read.
 //! - `view`: the pictures, drawn from traces and tables: the trajectory picture
 //!   (`view::render`, one function per layer of the picture), the replay page
