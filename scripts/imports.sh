@@ -28,9 +28,12 @@
 #     use nothing of the crate: the bottom.
 #   - experiment sits under evo: the experiment file, [evolution] included, is data that evo
 #     reads.
+#   - view (the pictures: render, the replay page, plots, the archive's heat map) draws what
+#     record reads and writes (traces, tables) and puts the replay page on disk with record's
+#     atomic writes; cli says what to draw: between record and run.
 #   - run (one run folder: lock, loop, checkpoints, resume) uses sim, brain, evo, experiment and
-#     record and is used only by main.rs and cli: between record and cli.
-LAYERS="geometry seed validate input cpu invocation | sim | brain | experiment | evo | record | run | cli"
+#     record and is used only by main.rs and cli: between view and cli.
+LAYERS="geometry seed validate input cpu invocation | sim | brain | experiment | evo | record | view | run | cli"
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:-summary}

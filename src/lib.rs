@@ -6,7 +6,7 @@
 //!
 //! ```text
 //! geometry, seed, validate, input, cpu, invocation  <-  sim  <-  brain  <-  experiment  <-  evo
-//!                                       <-  record  <-  run  <-  cli
+//!                                       <-  record  <-  view  <-  run  <-  cli
 //! ```
 //!
 //! - [`geometry`]: the report's §6, pure functions on circles, segments and rays.
@@ -23,8 +23,14 @@
 //! - `evo`: the genetic algorithm and PGPE, and parallel, deterministic evaluation: one trial
 //!   path (`evo::trial`), the parts evaluation and lockstep share (`evo::life`), the named
 //!   world sets and evaluating genomes on them (`evo::worlds`: training g, validation,
-//!   held-out), one creature's trial stepped by a caller (`evo::episode`).
-//! - `record`: file output: fitness CSV, checkpoints, genome files, traces, plots, pictures.
+//!   held-out), one creature's trial stepped by a caller (`evo::episode`), the whole-world
+//!   trace of a trial recorded by a watcher of the trial path (`evo::trace`).
+//! - `record`: file I/O: fitness CSV, checkpoints, genome files, trace files, the MAP-Elites
+//!   archive, the tables plots read.
+//! - `view`: the pictures, drawn from traces and tables: the trajectory picture
+//!   (`view::render`, one function per layer of the picture), the replay page
+//!   (`view::replay_html`), the fitness plots (`view::plot`), the archive's heat map
+//!   (`view::heat_map`).
 //! - `run`: one run folder, by concern: errors, the folder (names, lock, own files),
 //!   checkpoints, start, resume (a pure plan, then an apply step), the generation loop.
 //! - `cli`: the command-line front end (lives in the binary). The Python package (`python/`,
@@ -72,3 +78,4 @@ pub mod run;
 pub mod seed;
 pub mod sim;
 pub mod validate;
+pub mod view;

@@ -1,6 +1,6 @@
 //! `berry-evolve plot`: fitness curves of a run (best, mean, median, worst, and
 //! `validation_best` where the run has it) or, for a `summary.csv` across seeds, median
-//! lines with quartile bands, as an SVG file (see [`berry_evolve::record::plot`]). For a
+//! lines with quartile bands, as an SVG file (see [`berry_evolve::view::plot`]). For a
 //! MAP-Elites run (an `archive.csv` beside its fitness.csv) also the archive as a heat map
 //! and its QD score and coverage over generations, each in its own SVG.
 
@@ -10,8 +10,10 @@ use crate::cli::replay::refuse_overwriting_inputs;
 use anyhow::Context;
 use berry_evolve::evo::search::grid::Dimension;
 use berry_evolve::experiment::Experiment;
-use berry_evolve::record::archive::{heat_map, ARCHIVE_FILE};
-use berry_evolve::record::plot::{qd_plot, run_plot, summary_plot, write_svg, Table};
+use berry_evolve::record::archive::ARCHIVE_FILE;
+use berry_evolve::record::plot::{write_svg, Table};
+use berry_evolve::view::heat_map::heat_map;
+use berry_evolve::view::plot::{qd_plot, run_plot, summary_plot};
 use clap::Args;
 use std::path::{Path, PathBuf};
 

@@ -1,6 +1,6 @@
 //! `berry-evolve render`: one trial of a genome drawn as an SVG picture, the arena to scale
 //! with its walls, doors, gadgets, food and predators and the creature's path (see
-//! [`berry_evolve::record::render`]). The trial is lived on the one trial path, so the
+//! [`berry_evolve::view::render`]). The trial is lived on the one trial path, so the
 //! picture shows the life evaluation scored.
 
 use crate::cli::console::errln;
@@ -9,7 +9,7 @@ use crate::cli::worlds::{experiment_file, WorldsChoice};
 
 use anyhow::Context;
 use berry_evolve::record::atomic::write_atomic;
-use berry_evolve::record::render::{render_svg, Caption};
+use berry_evolve::view::render::{render_svg, Caption};
 use clap::Args;
 use std::path::PathBuf;
 

@@ -18,6 +18,7 @@ pub mod search;
 pub mod select;
 pub mod state;
 pub mod stats;
+pub mod trace;
 pub mod trial;
 pub mod validation;
 pub mod vary;

@@ -1,7 +1,7 @@
 //! The one trial path: build a trial's world, live it tick by tick, score every life. Scoring
 //! ([`crate::evo::evaluate::run_trial`], [`crate::evo::evaluate::evaluate_group`], and
 //! evaluation in shared worlds through `live`), replay (`berry-evolve replay`) and traces
-//! (`record::trace`'s recorder is a [`TickObserver`]) all live a trial through this file, so a
+//! (`evo::trace`'s recorder is a [`TickObserver`]) all live a trial through this file, so a
 //! traced life is the scored life by construction. Only the lockstep path
 //! ([`crate::evo::lockstep`], tested bit-identical to this one) steps its worlds itself, built
 //! from the same parts ([`crate::evo::life`]: the world, the checked controllers, the score

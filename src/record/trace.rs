@@ -13,7 +13,7 @@
 //! Rows cover every creature on every tick, dead ones included (alive = 0, pose and
 //! metabolism as they were when it died). `simulate` stops after the tick in which the last
 //! creature died, so its trace ends on the first tick whose rows all say alive = 0: the same
-//! rule as a scored trial, whose trace `replay --trace` writes ([`recorder`]). A creature
+//! rule as a scored trial, whose trace `replay --trace` writes ([`crate::evo::trace`]). A creature
 //! killed in tick 58 has rows up to tick 58 (alive = 0 there) and lived 57 ticks
 //! (`ticks_alive`: the ticks at whose end it was alive).
 //!
@@ -23,10 +23,10 @@
 //! This is the small trace of `berry-evolve simulate`. The trace of the whole world (every
 //! creature's observation and command, wanderers, predators, food amounts, events and a
 //! description of the world), recorded on the one trial path for `replay`, is
-//! [`recorder`] (what is recorded) and [`files`] (its CSV and JSON-lines files).
+//! [`crate::evo::trace`] (what is recorded, by a watcher of the trial beside the trial code)
+//! and [`files`] (its CSV and JSON-lines files).
 
 pub mod files;
-pub mod recorder;
 
 use crate::sim::World;
 use serde::Serialize;

@@ -154,6 +154,32 @@ fn oversized_and_absurd_files_are_refused_quickly_in_bounded_memory() {
 }
 
 #[test]
+fn plot_reads_its_tables_under_the_size_cap() {
+    let tmp = tempfile::tempdir().unwrap();
+    let csv = tmp.path().join("fitness.csv");
+    std::fs::write(&csv, "generation,best,mean\n0,1.5,1\n1,2.5,1.5\n").unwrap();
+    let svg = tmp.path().join("fitness.svg");
+    let args = ["plot", csv.to_str().unwrap(), "-o", svg.to_str().unwrap()];
+    // Under a cap smaller than the file: refused by size, naming the file and the variable.
+    let out = bin()
+        .args(args)
+        .env("BERRY_MAX_INPUT_BYTES", "20")
+        .output()
+        .unwrap();
+    let err = refused(&out, "BERRY_MAX_INPUT_BYTES");
+    assert!(err.contains("fitness.csv"), "{err}");
+    assert!(!svg.exists());
+    // Under the default cap the same table is drawn.
+    let out = bin().args(args).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(svg.is_file());
+}
+
+#[test]
 fn long_values_are_cut_in_messages_and_counts_and_names_are_bounded() {
     let tmp = tempfile::tempdir().unwrap();
     let base = String::from_utf8(std::fs::read(fixture("tiny.toml")).unwrap()).unwrap();

@@ -587,7 +587,7 @@ fn render_legend_is_not_cut_at_the_right_edge() {
         let (dx, dy) = translation(t);
         let x = dx + t.attribute("x").map_or(0.0, |x| x.parse().unwrap());
         let y = dy + t.attribute("y").map_or(0.0, |y| y.parse().unwrap());
-        let w = berry_evolve::record::render::text_width(words, size);
+        let w = berry_evolve::view::render::text_width(words, size);
         let right = if t.attribute("text-anchor") == Some("end") {
             x
         } else {
@@ -724,7 +724,7 @@ fn plot_legend_covers_no_curve() {
         // The entries' text inside the box.
         for t in legend.descendants().filter(|n| n.has_tag_name("text")) {
             let x: f64 = t.attribute("x").unwrap().parse().unwrap();
-            let w = berry_evolve::record::render::text_width(t.text().unwrap().trim(), 14.0);
+            let w = berry_evolve::view::render::text_width(t.text().unwrap().trim(), 14.0);
             assert!(x + w <= r[1], "{name}: {:?} passes the box", t.text());
         }
         let mut curves = 0;

@@ -5,10 +5,10 @@
 
 use crate::sim_common::{put, rng, Still};
 use berry_evolve::evo::search::ga::first_population;
+use berry_evolve::evo::trace::{EventKind, TraceRecorder};
 use berry_evolve::evo::trial::{run_trial, TickObserver, TrialId};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::trace::files::{csv_paths, write_csv_files, write_jsonl};
-use berry_evolve::record::trace::recorder::{EventKind, TraceRecorder};
 use berry_evolve::seed::{Generation, TrialIndex};
 use berry_evolve::sim::World;
 use std::path::Path;

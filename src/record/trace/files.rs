@@ -23,7 +23,7 @@
 //! - `STEM-events.csv`: `trial, tick, event, creature, target_kind, target, x, y, from_x,
 //!   from_y, amount_a, amount_b, amount_c, amount_d`; `event` is `eat`, `shock` (onset),
 //!   `teleport`, `door_open`, `door_close`, `attack` or `death` (see
-//!   [`crate::record::trace::recorder`] for how each is found); empty cells where a column
+//!   [`crate::evo::trace`] for how each is found); empty cells where a column
 //!   does not apply.
 //! - `STEM-world.jsonl`: one JSON object per trial, the [`WorldDescription`] of its world as
 //!   built (walls with colour and opacity, doors and triggers, teleporters, areas, landmarks,
@@ -37,10 +37,10 @@
 //! shocked ticks). Numbers are written shortest-round-trip, or rounded to a number of
 //! decimals (the replay page uses 4: a ten-thousandth of an LU).
 
-use crate::record::atomic::write_atomic_with;
-use crate::record::trace::recorder::{
+use crate::evo::trace::{
     ActorTick, CreatureTick, Event, ObjectTick, OutcomeInfo, TrialTrace, WorldDescription,
 };
+use crate::record::atomic::write_atomic_with;
 use serde::Serialize;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};

@@ -20,9 +20,9 @@
 //! canvas pixels there, and the same for the middle of a wall, so that a test can check the
 //! drawing against the trace (a reader of the page never sees it).
 
+use crate::evo::trace::{EventKind, TrialTrace, WorldDescription};
 use crate::record::atomic::write_atomic_with;
 use crate::record::trace::files::write_jsonl_to;
-use crate::record::trace::recorder::{EventKind, TrialTrace, WorldDescription};
 use std::io;
 use std::path::Path;
 
@@ -171,7 +171,13 @@ fn segment(colour: &str, width: f64, dash: &str, opacity: f64) -> String {
 /// The key to the arena's symbols: only the kinds `trace`'s world has (and the marks of the
 /// events it had), each drawn as the canvas draws it.
 fn arena_legend(trace: &TrialTrace) -> String {
-    let w: &WorldDescription = &trace.world;
+    let mut out = world_keys(&trace.world);
+    out.push_str(&event_keys(trace));
+    out
+}
+
+/// The keys of the kinds of object the world has, and only those.
+fn world_keys(w: &WorldDescription) -> String {
     let mut out = String::new();
     let mut add = |kind: &str, symbol: String, text: &str| out.push_str(&key(kind, &symbol, text));
     add(
@@ -283,6 +289,13 @@ fn arena_legend(trace: &TrialTrace) -> String {
             "wanderer",
         );
     }
+    out
+}
+
+/// The keys of the marks of the events the trial had, and only those.
+fn event_keys(trace: &TrialTrace) -> String {
+    let mut out = String::new();
+    let mut add = |kind: &str, symbol: String, text: &str| out.push_str(&key(kind, &symbol, text));
     let had = |k: EventKind| trace.events.iter().any(|e| e.event == k);
     if had(EventKind::Eat) {
         add(
