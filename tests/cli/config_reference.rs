@@ -441,7 +441,12 @@ fn schema_errors(schema: &Value, toml_text: &str) -> Vec<String> {
 fn config_reference_schema_accepts_every_shipped_experiment_and_refuses_mistakes() {
     let schema: Value = serde_json::from_str(&stdout_of(&["config", "--schema"])).unwrap();
     let mut files = Vec::new();
-    for dir in ["experiments", "experiments/ablations", "experiments/bench"] {
+    for dir in [
+        "experiments",
+        "experiments/ablations",
+        "experiments/bench",
+        "experiments/search",
+    ] {
         for entry in std::fs::read_dir(root().join(dir)).unwrap() {
             let path = entry.unwrap().path();
             if path.extension().is_some_and(|e| e == "toml") {
