@@ -20,6 +20,7 @@ mod novelty;
 mod overflowing_brains;
 mod pgpe;
 mod predator_ends_life;
+mod run_guarantees;
 mod search_trait;
 mod sep_cma_es;
 mod trial_path_observer;

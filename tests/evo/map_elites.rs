@@ -5,6 +5,7 @@
 //! (only for map-elites), and `extract --cell` giving an elite that replays to its fitness.
 
 use crate::cli_common::{fixture, read, run_err, run_ok};
+use crate::run_guarantees::{last_checkpoint, run, same_bytes_on_any_thread_count_and_resumed};
 
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::evaluate::Evaluation;
@@ -18,7 +19,6 @@ use berry_evolve::evo::state::{EvaluatedGeneration, Individual};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::fitness_csv::extra_columns;
 use berry_evolve::seed::{gaussian, stream, Generation, IndividualId, Purpose, Seed, TrialIndex};
-use std::path::Path;
 
 fn elite(cell: Vec<usize>, fitness: f64, individual: u64) -> Elite {
     Elite {
@@ -368,61 +368,16 @@ fn the_map_elites_table_is_checked_and_names_its_key() {
     );
 }
 
-fn run(file: &Path, out: &Path, generations: &str, jobs: &str) {
-    run_ok(&[
-        "run",
-        file.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--generations",
-        generations,
-        "--jobs",
-        jobs,
-        "--quiet",
-        "--no-estimate",
-    ]);
-}
-
-fn same_files(a: &Path, b: &Path, what: &str) {
-    for f in [
-        "fitness.csv",
-        "archive.csv",
-        "best.json",
-        "champions.jsonl",
-        "checkpoints/gen-000005.json",
-    ] {
-        assert!(read(&a.join(f)) == read(&b.join(f)), "{what}: {f} differs");
-    }
-}
-
 /// 1 and 2 threads give the same bytes; a run stopped after 3 generations and resumed to 6
 /// gives the bytes of one never stopped, archive.csv and the checkpoint's archive included;
 /// the checkpoint holds the elites with their genomes; fitness.csv ends with the QD columns,
 /// whose last row agrees with archive.csv; other algorithms' files have no QD columns.
 #[test]
 fn map_elites_runs_are_the_same_bytes_on_any_thread_count_and_resumed() {
-    let dir = tempfile::tempdir().unwrap();
+    let (_dir, one) =
+        same_bytes_on_any_thread_count_and_resumed("tiny-map-elites.toml", &["archive.csv"]);
+    let checkpoint = last_checkpoint(&one);
     let file = fixture("tiny-map-elites.toml");
-    let (one, two, resumed) = (
-        dir.path().join("one"),
-        dir.path().join("two"),
-        dir.path().join("resumed"),
-    );
-    run(&file, &one, "6", "1");
-    run(&file, &two, "6", "2");
-    same_files(&one, &two, "--jobs 1 vs 2");
-    run(&file, &resumed, "3", "2");
-    run_ok(&[
-        "resume",
-        resumed.to_str().unwrap(),
-        "--generations",
-        "6",
-        "--quiet",
-    ]);
-    same_files(&one, &resumed, "resumed vs uninterrupted");
-
-    let checkpoint: serde_json::Value =
-        serde_json::from_slice(&read(&one.join("checkpoints/gen-000005.json"))).unwrap();
     let elites = checkpoint["payload"]["search"]["map_elites"]["elites"]
         .as_array()
         .unwrap()

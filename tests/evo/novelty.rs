@@ -4,7 +4,8 @@
 //! guarantees (any thread count, same bytes; resumed or not, same bytes; the archive in the
 //! checkpoint).
 
-use crate::cli_common::{fixture, read, run_ok};
+use crate::cli_common::{fixture, read};
+use crate::run_guarantees::{last_checkpoint, run, same_bytes_on_any_thread_count_and_resumed};
 
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::evaluate::Evaluation;
@@ -266,58 +267,13 @@ fn the_novelty_table_is_checked_and_names_its_key() {
     );
 }
 
-fn run(file: &Path, out: &Path, generations: &str, jobs: &str) {
-    run_ok(&[
-        "run",
-        file.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--generations",
-        generations,
-        "--jobs",
-        jobs,
-        "--quiet",
-        "--no-estimate",
-    ]);
-}
-
-fn same_files(a: &Path, b: &Path, what: &str) {
-    for f in [
-        "fitness.csv",
-        "best.json",
-        "champions.jsonl",
-        "checkpoints/gen-000005.json",
-    ] {
-        assert!(read(&a.join(f)) == read(&b.join(f)), "{what}: {f} differs");
-    }
-}
-
 /// 1 and 2 threads give the same bytes; a run stopped after 3 generations and resumed to 6
 /// gives the bytes of one never stopped; the checkpoint holds the archive, full by then
 /// (capacity 10, about 3.6 entries a generation), its oldest entries gone.
 #[test]
 fn novelty_runs_are_the_same_bytes_on_any_thread_count_and_resumed() {
-    let dir = tempfile::tempdir().unwrap();
-    let file = fixture("tiny-novelty.toml");
-    let (one, two, resumed) = (
-        dir.path().join("one"),
-        dir.path().join("two"),
-        dir.path().join("resumed"),
-    );
-    run(&file, &one, "6", "1");
-    run(&file, &two, "6", "2");
-    same_files(&one, &two, "--jobs 1 vs 2");
-    run(&file, &resumed, "3", "2");
-    run_ok(&[
-        "resume",
-        resumed.to_str().unwrap(),
-        "--generations",
-        "6",
-        "--quiet",
-    ]);
-    same_files(&one, &resumed, "resumed vs uninterrupted");
-    let checkpoint: serde_json::Value =
-        serde_json::from_slice(&read(&one.join("checkpoints/gen-000005.json"))).unwrap();
+    let (_dir, one) = same_bytes_on_any_thread_count_and_resumed("tiny-novelty.toml", &[]);
+    let checkpoint = last_checkpoint(&one);
     let archive = checkpoint["payload"]["search"]["novelty"]["archive"]
         .as_array()
         .unwrap()

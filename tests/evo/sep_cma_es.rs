@@ -3,12 +3,12 @@
 //! against Ros & Hansen's published figures, the table's validation, and the run guarantees
 //! (any thread count, same bytes; resumed or not, same bytes; the state in the checkpoint).
 
-use crate::cli_common::{fixture, read, run_ok};
+use crate::cli_common::fixture;
 use crate::known_functions;
+use crate::run_guarantees::{last_checkpoint, same_bytes_on_any_thread_count_and_resumed};
 
 use berry_evolve::evo::search::sep_cma_es::SepCmaEs;
 use berry_evolve::experiment::Experiment;
-use std::path::Path;
 
 /// [`known_functions::evaluations_to_reach`] for sep-CMA-ES.
 fn evaluations_to_reach(
@@ -115,57 +115,12 @@ fn the_cma_es_table_is_checked_and_names_its_key() {
     );
 }
 
-fn run(file: &Path, out: &Path, generations: &str, jobs: &str) {
-    run_ok(&[
-        "run",
-        file.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--generations",
-        generations,
-        "--jobs",
-        jobs,
-        "--quiet",
-        "--no-estimate",
-    ]);
-}
-
-fn same_files(a: &Path, b: &Path, what: &str) {
-    for f in [
-        "fitness.csv",
-        "best.json",
-        "champions.jsonl",
-        "checkpoints/gen-000005.json",
-    ] {
-        assert!(read(&a.join(f)) == read(&b.join(f)), "{what}: {f} differs");
-    }
-}
-
 /// 1 and 2 threads give the same bytes; a run stopped after 3 generations and resumed to 6
 /// gives the bytes of one never stopped; the checkpoint holds the distribution.
 #[test]
 fn sep_cma_es_runs_are_the_same_bytes_on_any_thread_count_and_resumed() {
-    let dir = tempfile::tempdir().unwrap();
-    let file = fixture("tiny-sep-cma-es.toml");
-    let (one, two, resumed) = (
-        dir.path().join("one"),
-        dir.path().join("two"),
-        dir.path().join("resumed"),
-    );
-    run(&file, &one, "6", "1");
-    run(&file, &two, "6", "2");
-    same_files(&one, &two, "--jobs 1 vs 2");
-    run(&file, &resumed, "3", "2");
-    run_ok(&[
-        "resume",
-        resumed.to_str().unwrap(),
-        "--generations",
-        "6",
-        "--quiet",
-    ]);
-    same_files(&one, &resumed, "resumed vs uninterrupted");
-    let checkpoint: serde_json::Value =
-        serde_json::from_slice(&read(&one.join("checkpoints/gen-000005.json"))).unwrap();
+    let (_dir, one) = same_bytes_on_any_thread_count_and_resumed("tiny-sep-cma-es.toml", &[]);
+    let checkpoint = last_checkpoint(&one);
     let state = &checkpoint["payload"]["search"]["sep_cma_es"];
     assert!(state["sigma"].as_f64().unwrap() > 0.0, "{state}");
     assert_eq!(state["updates"], 5);
