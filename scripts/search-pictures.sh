@@ -49,7 +49,7 @@ novelty=$(median_seed experiments/search/foraging-plain-novelty.toml)
 # A genome's forward share on the 20 held-out worlds.
 forward() {
   "$bin" compare "$1" --experiment "$plain" --worlds held-out --trials 20 --json |
-    python3 -c 'import json, sys; print(f"{json.load(sys.stdin)["genomes"][0]["measures"]["forward_share"]:.2f}")'
+    python3 -c 'import json, sys; g = json.load(sys.stdin)["genomes"][0]; print("%.2f" % g["measures"]["forward_share"])'
 }
 draw "$ga" "$plain" 0 "GA, $(dirname "$ga" | xargs basename): forward share $(forward "$ga")" "$tmp/ga.png"
 draw "$novelty" "$plain" 0 "novelty search, $(dirname "$novelty" | xargs basename): forward share $(forward "$novelty")" "$tmp/novelty.png"
