@@ -16,6 +16,7 @@ pub mod plain;
 pub mod reference;
 pub mod tables;
 pub mod templates;
+pub mod tiled;
 
 pub use evolution::{
     Algorithm, CmaEsSpec, CrossoverSpec, EvolutionSpec, MutationSpec, PgpeSpec, SelectionSpec,
