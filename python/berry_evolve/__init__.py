@@ -128,8 +128,9 @@ class Experiment:
         dict of ``(n,)`` arrays; ``.metabolism`` holds the mean final metabolic vectors.
 
         ``worlds``: ``"training"`` (generation ``generation``'s trial worlds, evaluated as the
-        run evaluates that generation), ``"validation"`` or ``"held-out"`` (each genome alone
-        in the same worlds, as ``berry-evolve compare`` does). Runs on all cores with the GIL
+        run evaluates that generation), ``"validation"``, ``"held-out"`` or ``"design"`` (each
+        genome alone in the same worlds, as ``berry-evolve compare`` does; tune by hand on
+        ``"design"``, report on ``"held-out"``). Runs on all cores with the GIL
         released; the same bits on any number of threads.
         """
         g = np.ascontiguousarray(genomes, dtype=np.float64)

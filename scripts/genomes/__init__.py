@@ -21,7 +21,7 @@ Options: `--experiment FILE` (another experiment's layout, e.g. an ablation), `-
 (`-` for standard output), `--binary BIN` (default target/release/berry-evolve); tuning
 options of balanced-diet (--common --scarce --whisker --forward --brake), predator-arena
 (--threshold --kn) and air-raid (--gf --gs --b --c --home --forward --whisker --brake), as
-used to choose them on the design set (`compare --generation 1099511627777`).
+used to choose them on the design set (`compare --worlds design`).
 
   python3 -m scripts.genomes vehicle EXPERIMENT [--forward F --spin S --steer G
       --odours 1,2 --avoid-odours K:G --whisker W --brake E --shock-back S --eye G

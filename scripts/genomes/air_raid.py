@@ -21,7 +21,7 @@ mirrored.
 With no raider: a food-smell follower (leaves the shelter for the food round it); with a raider
 smelled: follows the shelter's smell and stops (turns on the spot) inside. The default gains
 (gf 6, gs 2, home 1, b 20, c 0.5, forward 1.1, whisker 1.5, brake 1) were the best of about 20
-settings tried on the design set (compare --generation 1099511627777), never the held-out one.
+settings tried on the design set (compare --worlds design), never the held-out one.
 Where the shelter has a beacon (a [[world.landmarks]] entry, input landmark_1_sin), h2, h3,
 h9 and h10 steer by its bearing instead of the shelter's smell; there gs 0.5 and home 0 were
 the best of 28 settings on the design set with 100 trials (gs 0.2-4, home 0-1, c 0.2-0.5, gf

@@ -24,7 +24,7 @@ def balanced_diet(inputs, outputs, common=0.75, scarce=8.0, whisker=1.0, forward
     scarce types C and D (components 3, 4) than for A and B, so it turns harder for what it
     will otherwise lack; no brake (it eats in passing: the objects hold 8 bites); it does not
     read the metabolism inputs. The defaults are the best of about 80 settings tried on the
-    design set (compare --generation 1099511627777 --trials 100): forward 0.5-1.5, scarce
+    design set (compare --worlds design --trials 100): forward 0.5-1.5, scarce
     4-16, common 0.25-1.5, whisker 1-3, brake 0-1."""
     gains = [(1, common), (2, common), (3, scarce), (4, scarce)]
     rows = vehicle(inputs, towards=gains, whisker=whisker, forward=forward, eat_brake=brake)

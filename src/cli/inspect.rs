@@ -6,7 +6,8 @@ use crate::cli::estimate::{self, count};
 use anyhow::Context;
 use berry_evolve::brain::summary::BrainSummary;
 use berry_evolve::evo::search;
-use berry_evolve::experiment::tables::{Balance, FitnessMode, FitnessSpec, GoalAt};
+use berry_evolve::experiment::tables::{Balance, FitnessMode, FitnessSpec};
+use berry_evolve::experiment::terms::{Sign, TERMS};
 use berry_evolve::experiment::{Experiment, ExperimentError};
 use berry_evolve::run::estimate::{Estimate, Workload};
 use berry_evolve::validate::InvalidValue;
@@ -285,41 +286,20 @@ fn fitness_words(f: &FitnessSpec) -> String {
     if f.imbalance_penalty != 0.0 {
         write!(words, ", − {} × (largest − smallest)", f.imbalance_penalty).ok();
     }
-    let goal = match (&f.goal, f.goal_point) {
-        (Some(area), _) => format!("area `{area}`"),
-        (None, Some([x, y])) => format!("[{x}, {y}]"),
-        (None, None) => String::new(),
-    };
-    let goal_when = match f.goal_at {
-        GoalAt::End => "at the end",
-        GoalAt::Closest => "at its closest",
-    };
-    for (weight, term) in [
-        (f.alive_bonus, "tick alive".to_string()),
-        (
-            f.area_bonus,
-            format!("tick in area `{}`", f.area.as_deref().unwrap_or("?")),
-        ),
-        (f.goal_bonus, format!("nearness to {goal} {goal_when}")),
-        (
-            f.distinct_food_bonus,
-            "distinct food object eaten".to_string(),
-        ),
-        (f.forward_bonus, "LU driven forward".to_string()),
-        (
-            f.shelter_bonus,
-            "tick in a safe area with a predator near".to_string(),
-        ),
-    ] {
+    for term in TERMS.iter().filter(|t| t.sign == Sign::Add) {
+        let weight = (term.weight)(f);
         if weight != 0.0 {
-            write!(words, ", + {weight} × {term}").ok();
+            write!(words, ", + {weight} {}", (term.words)(f)).ok();
         }
     }
     if f.shock_penalty != 0.0 {
         write!(words, ", − {} × shocked tick", f.shock_penalty).ok();
     }
-    if f.death_penalty != 0.0 {
-        write!(words, ", − {} if killed", f.death_penalty).ok();
+    for term in TERMS.iter().filter(|t| t.sign == Sign::Subtract) {
+        let weight = (term.weight)(f);
+        if weight != 0.0 {
+            write!(words, ", − {weight} {}", (term.words)(f)).ok();
+        }
     }
     words
 }

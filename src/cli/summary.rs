@@ -339,6 +339,7 @@ fn held_out(
     let file = match set {
         WorldSet::HeldOut => HELD_OUT_FILE.to_string(),
         WorldSet::Validation => "validation.csv".to_string(),
+        WorldSet::Design => "design.csv".to_string(),
         WorldSet::Training(g) => format!("training-{g}.csv"),
     };
     let path = args.folder.join(file);

@@ -1,5 +1,5 @@
 //! What `replay`, `render`, `compare` and `summary` share about whose worlds a genome meets,
-//! on the command line: `--worlds held-out|validation|training` and `--generation` resolved to
+//! on the command line: `--worlds held-out|validation|training|design` and `--generation` resolved to
 //! a library [`WorldSet`] (the sets themselves, their titles and their evaluation live in
 //! [`berry_evolve::evo::worlds`], which the Python package uses too), the experiment file of a
 //! run folder's genome (`--experiment` left out), and the warning for a genome replayed in
@@ -24,6 +24,9 @@ pub enum WorldsChoice {
     Validation,
     /// A generation's training worlds (`--generation G`).
     Training,
+    /// The design worlds, where hand-designed controllers and settings are tuned, never
+    /// the held-out ones.
+    Design,
 }
 
 /// What the command line adds to a [`WorldSet`]: resolving `--worlds` and `--generation`,
@@ -55,7 +58,10 @@ impl WorldSetArgs for WorldSet {
         default_generation: u64,
     ) -> anyhow::Result<WorldSet> {
         let choice = match (worlds, generation) {
-            (Some(c @ (WorldsChoice::HeldOut | WorldsChoice::Validation)), Some(g)) => {
+            (
+                Some(c @ (WorldsChoice::HeldOut | WorldsChoice::Validation | WorldsChoice::Design)),
+                Some(g),
+            ) => {
                 anyhow::bail!(
                     "--generation {g} names a generation's training worlds, but --worlds {} \
                      names another set; leave out --generation, or give --worlds training \
@@ -71,6 +77,7 @@ impl WorldSetArgs for WorldSet {
         Ok(match choice {
             WorldsChoice::HeldOut => WorldSet::HeldOut,
             WorldsChoice::Validation => WorldSet::Validation,
+            WorldsChoice::Design => WorldSet::Design,
             WorldsChoice::Training => {
                 WorldSet::of_generation(generation.unwrap_or(default_generation))
             }

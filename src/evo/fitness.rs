@@ -8,6 +8,7 @@
 //! needs it.
 
 use crate::experiment::tables::{area_index, FORWARD_STEP, STILL_STEP};
+use crate::experiment::terms::{self, Quantity, Sign, TERMS, TERM_COUNT};
 use crate::experiment::{Balance, Experiment, FitnessMode, FitnessSpec, GoalAt, Measure, MEASURES};
 use crate::geometry::{circles_touch, Vec2};
 use crate::sim::area::Area;
@@ -56,7 +57,12 @@ fn weighted_extremes(weights: &[f64; 4], m: &[f64; 4]) -> Option<(f64, f64)> {
 
 /// The goal-shaping term: `bonus × max(0, 1 − distance / range)`.
 pub fn goal_term(bonus: f64, distance: f64, range: f64) -> f64 {
-    bonus * (1.0 - distance / range).max(0.0)
+    bonus * goal_nearness(distance, range)
+}
+
+/// What the goal term counts: `max(0, 1 − distance / range)`.
+pub fn goal_nearness(distance: f64, range: f64) -> f64 {
+    (1.0 - distance / range).max(0.0)
 }
 
 /// The distance from `p` to the nearest point of `area` (0 inside or on its border).
@@ -96,15 +102,12 @@ pub struct LifePlan {
     imbalance_penalty: f64,
     /// `Balance::Sum` without a penalty: the gain is [`weighted`].
     plain_gain: bool,
-    alive_bonus: f64,
-    death_penalty: f64,
+    /// Each term's weight, in [`TERMS`] order.
+    terms: [f64; TERM_COUNT],
     /// The area `area_bonus` pays for, with the bonus.
     area_bonus: Option<(Area, f64)>,
     /// The goal, its bonus, its range and when the distance is taken.
     goal: Option<(Goal, f64, f64, GoalAt)>,
-    distinct_food_bonus: f64,
-    forward_bonus: f64,
-    shelter_bonus: f64,
     /// Threatened and sheltered ticks are counted (for `shelter_bonus` or the measure).
     counts_threats: bool,
     /// The measures the experiment reports, in its order.
@@ -137,13 +140,9 @@ impl LifePlan {
             balance: spec.balance,
             imbalance_penalty: spec.imbalance_penalty,
             plain_gain: spec.balance == Balance::Sum && spec.imbalance_penalty == 0.0,
-            alive_bonus: spec.alive_bonus,
-            death_penalty: spec.death_penalty,
+            terms: terms::weights(spec),
             area_bonus: None,
             goal: None,
-            distinct_food_bonus: spec.distinct_food_bonus,
-            forward_bonus: spec.forward_bonus,
-            shelter_bonus: spec.shelter_bonus,
             counts_threats: false,
             measures: Vec::new(),
             behaviour_area: None,
@@ -182,8 +181,8 @@ impl LifePlan {
         plan.measures = behaviour.measures.clone();
         plan.behaviour_area = area(&behaviour.area);
         plan.threat_radius = behaviour.threat_radius;
-        plan.counts_threats =
-            plan.shelter_bonus != 0.0 || plan.measures.contains(&Measure::ShelterWhileThreat);
+        plan.counts_threats = plan.weight(Quantity::ShelteredThreatTicks) != 0.0
+            || plan.measures.contains(&Measure::ShelterWhileThreat);
         let closest = matches!(plan.goal, Some((_, _, _, GoalAt::Closest)));
         plan.watches_places = plan.area_bonus.is_some()
             || closest
@@ -200,9 +199,9 @@ impl LifePlan {
                 )
             });
         plan.follows_motion = plan.measures.iter().any(|m| m.follows_motion());
-        plan.tracks_pose = plan.forward_bonus != 0.0 || plan.follows_motion;
+        plan.tracks_pose = plan.weight(Quantity::ForwardDistance) != 0.0 || plan.follows_motion;
         plan.per_tick = plan.watches_places || plan.tracks_pose;
-        plan.bites = spec.distinct_food_bonus != 0.0
+        plan.bites = plan.weight(Quantity::DistinctFood) != 0.0
             || plan.measures.iter().any(|m| {
                 matches!(
                     m,
@@ -210,6 +209,15 @@ impl LifePlan {
                 )
             });
         plan
+    }
+
+    /// The weight of the term that counts `quantity` (0 when none does).
+    fn weight(&self, quantity: Quantity) -> f64 {
+        TERMS
+            .iter()
+            .zip(self.terms)
+            .find(|(t, _)| t.counts == quantity)
+            .map_or(0.0, |(_, w)| w)
     }
 
     /// Must the trial world note which food objects each creature eats from
@@ -565,34 +573,41 @@ impl LifeScore {
     ) -> (f64, [f64; MEASURE_COUNT]) {
         let c: &Creature = &world.creatures()[creature];
         let mut score = self.finish(&c.metabolism);
-        // The extra terms, each added only when on, so that a plain table gives the bits of
-        // `finish` alone.
-        if plan.alive_bonus != 0.0 {
-            score += plan.alive_bonus * self.ticks as f64;
-        }
-        if let Some((_, bonus)) = &plan.area_bonus {
-            score += bonus * self.ticks_in_fitness_area as f64;
-        }
-        if let Some((goal, bonus, range, at)) = &plan.goal {
-            let d = match at {
-                GoalAt::End => goal.distance(c.pose.position),
-                GoalAt::Closest => self.goal_closest.min(goal.distance(c.pose.position)),
-            };
-            score += goal_term(*bonus, d, *range);
-        }
         let bitten = world.bitten(creature);
         let distinct = bitten.iter().filter(|&&b| b).count();
-        if plan.distinct_food_bonus != 0.0 {
-            score += plan.distinct_food_bonus * distinct as f64;
-        }
-        if plan.forward_bonus != 0.0 {
-            score += plan.forward_bonus * self.forward_distance;
-        }
-        if plan.shelter_bonus != 0.0 {
-            score += plan.shelter_bonus * self.sheltered_threat_ticks as f64;
-        }
-        if plan.death_penalty != 0.0 && !c.alive {
-            score -= plan.death_penalty;
+        // The extra terms, each added only when on, so that a plain table gives the bits of
+        // `finish` alone.
+        for (term, &weight) in TERMS.iter().zip(&plan.terms) {
+            if weight == 0.0 {
+                continue;
+            }
+            let quantity = match term.counts {
+                Quantity::TicksAlive => self.ticks as f64,
+                Quantity::TicksInArea => match plan.area_bonus {
+                    Some(_) => self.ticks_in_fitness_area as f64,
+                    None => continue,
+                },
+                Quantity::GoalNearness => match &plan.goal {
+                    Some((goal, _, range, at)) => {
+                        let d = match at {
+                            GoalAt::End => goal.distance(c.pose.position),
+                            GoalAt::Closest => {
+                                self.goal_closest.min(goal.distance(c.pose.position))
+                            }
+                        };
+                        goal_nearness(d, *range)
+                    }
+                    None => continue,
+                },
+                Quantity::DistinctFood => distinct as f64,
+                Quantity::ForwardDistance => self.forward_distance,
+                Quantity::ShelteredThreatTicks => self.sheltered_threat_ticks as f64,
+                Quantity::Died => f64::from(u8::from(!c.alive)),
+            };
+            score = match term.sign {
+                Sign::Add => score + weight * quantity,
+                Sign::Subtract => score - weight * quantity,
+            };
         }
         let mut measures = [0.0; MEASURE_COUNT];
         for &m in &plan.measures {

@@ -30,8 +30,13 @@ use thiserror::Error;
 /// value, 2^40) still names them.
 pub const HELD_OUT_GENERATION: u64 = 1 << 40;
 
+/// Generation number whose trial worlds are the design set: where hand-designed controllers
+/// and an experiment's settings are tuned, so that the held-out worlds stay unseen by the
+/// tuning as well as by evolution (SCIENCE.md). `--generation 1099511627777` still names it.
+pub const DESIGN_GENERATION: u64 = HELD_OUT_GENERATION + 1;
+
 /// The names a world set is given by (`--worlds`, Python's `worlds=`).
-pub const SET_NAMES: [&str; 3] = ["held-out", "validation", "training"];
+pub const SET_NAMES: [&str; 4] = ["held-out", "validation", "training", "design"];
 
 /// Whose trial worlds, resolved.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -43,13 +48,15 @@ pub enum WorldSet {
     /// The experiment's validation worlds
     /// ([`crate::seed::Purpose::ValidationWorld`] streams).
     Validation,
+    /// The design worlds: the training streams of [`DESIGN_GENERATION`], group 0.
+    Design,
 }
 
 /// Why genomes could not be evaluated on a world set.
 #[derive(Debug, Error)]
 pub enum WorldsError {
     /// A set name that is none of [`SET_NAMES`].
-    #[error("unknown world set `{name}`: possible values: held-out, validation, training")]
+    #[error("unknown world set `{name}`: possible values: held-out, validation, training, design")]
     UnknownSet {
         /// The name given.
         name: String,
@@ -87,10 +94,10 @@ impl WorldSet {
     /// Generation `g`'s worlds: the held-out set for [`HELD_OUT_GENERATION`] (so the old
     /// `--generation 1099511627776` form is named like `--worlds held-out`).
     pub fn of_generation(g: u64) -> WorldSet {
-        if g == HELD_OUT_GENERATION {
-            WorldSet::HeldOut
-        } else {
-            WorldSet::Training(g)
+        match g {
+            HELD_OUT_GENERATION => WorldSet::HeldOut,
+            DESIGN_GENERATION => WorldSet::Design,
+            _ => WorldSet::Training(g),
         }
     }
 
@@ -100,6 +107,7 @@ impl WorldSet {
         match name {
             "held-out" => Ok(WorldSet::HeldOut),
             "validation" => Ok(WorldSet::Validation),
+            "design" => Ok(WorldSet::Design),
             "training" => Ok(WorldSet::of_generation(generation)),
             _ => Err(WorldsError::UnknownSet {
                 name: name.to_string(),
@@ -113,6 +121,7 @@ impl WorldSet {
         Generation(match self {
             WorldSet::Training(g) => g,
             WorldSet::HeldOut => HELD_OUT_GENERATION,
+            WorldSet::Design => DESIGN_GENERATION,
             WorldSet::Validation => 0,
         })
     }
@@ -123,6 +132,7 @@ impl WorldSet {
             WorldSet::Training(_) => "training",
             WorldSet::HeldOut => "held-out",
             WorldSet::Validation => "validation",
+            WorldSet::Design => "design",
         }
     }
 
@@ -131,7 +141,9 @@ impl WorldSet {
     pub fn trial_title(self, t: u64) -> String {
         match self {
             WorldSet::Training(g) => format!("trial {t} of generation {g}"),
-            WorldSet::HeldOut | WorldSet::Validation => format!("{} world {t}", self.name()),
+            WorldSet::HeldOut | WorldSet::Validation | WorldSet::Design => {
+                format!("{} world {t}", self.name())
+            }
         }
     }
 
@@ -163,6 +175,9 @@ impl WorldSet {
                 "the validation worlds (the [validation] table's, on which best.json is chosen)"
                     .to_string()
             }
+            WorldSet::Design => "the design worlds (for tuning hand-designed controllers and \
+                                 settings; never used in training, validation or held-out)"
+                .to_string(),
             WorldSet::Training(g) => format!("generation {g}'s training worlds"),
         }
     }
@@ -314,7 +329,7 @@ pub fn evaluate(
                 Generation(g),
             )?)
         }
-        WorldSet::HeldOut | WorldSet::Validation => {
+        WorldSet::HeldOut | WorldSet::Validation | WorldSet::Design => {
             let experiment = alone(experiment)?;
             let built = set.built_worlds(&experiment)?;
             Ok(evaluate_alone(

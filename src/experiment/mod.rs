@@ -16,6 +16,7 @@ pub mod plain;
 pub mod reference;
 pub mod tables;
 pub mod templates;
+pub mod terms;
 pub mod tiled;
 
 pub use evolution::{

@@ -2,6 +2,7 @@
 //! the genetic algorithm: `[evaluation]`, `[fitness]`, `[behaviour]`, `[validation]` and
 //! `[output]`.
 
+use super::terms::{Sign, TERMS};
 use crate::sim::spec::{CreatureSpec, WorldSpec};
 use crate::validate::{
     all_finite, count_within, finite, non_negative, positive, InvalidValue, Valid,
@@ -282,13 +283,14 @@ impl FitnessSpec {
         non_negative("fitness.shock_penalty", self.shock_penalty)?;
         finite("fitness.shock_penalty", self.shock_penalty)?;
         non_negative("fitness.imbalance_penalty", self.imbalance_penalty)?;
-        finite("fitness.alive_bonus", self.alive_bonus)?;
-        non_negative("fitness.death_penalty", self.death_penalty)?;
-        finite("fitness.area_bonus", self.area_bonus)?;
-        finite("fitness.goal_bonus", self.goal_bonus)?;
-        finite("fitness.distinct_food_bonus", self.distinct_food_bonus)?;
-        finite("fitness.forward_bonus", self.forward_bonus)?;
-        finite("fitness.shelter_bonus", self.shelter_bonus)?;
+        for term in &TERMS {
+            let key = format!("fitness.{}", term.key);
+            let weight = (term.weight)(self);
+            match term.sign {
+                Sign::Add => finite(&key, weight)?,
+                Sign::Subtract => non_negative(&key, weight)?,
+            }
+        }
         if let Some(p) = self.goal_point {
             all_finite("fitness.goal_point", &p)?;
         }
@@ -341,9 +343,9 @@ impl FitnessSpec {
             || world.wanderers.count > 0
             || (world.wall_shock && self.shock_penalty != 0.0);
         let moving_counts = creature.decay_per_lu.iter().any(|&d| d != 0.0)
-            || self.forward_bonus != 0.0
-            || self.area_bonus != 0.0
-            || self.goal_bonus != 0.0;
+            || TERMS
+                .iter()
+                .any(|t| t.pays_for_motion && (t.weight)(self) != 0.0);
         world_holds_something || moving_counts
     }
 
@@ -352,13 +354,7 @@ impl FitnessSpec {
     pub fn is_plain(&self) -> bool {
         self.balance == Balance::Sum
             && self.imbalance_penalty == 0.0
-            && self.alive_bonus == 0.0
-            && self.death_penalty == 0.0
-            && self.area_bonus == 0.0
-            && self.goal_bonus == 0.0
-            && self.distinct_food_bonus == 0.0
-            && self.forward_bonus == 0.0
-            && self.shelter_bonus == 0.0
+            && TERMS.iter().all(|t| (t.weight)(self) == 0.0)
     }
 }
 

@@ -458,3 +458,51 @@ fn a_genome_replayed_in_another_experiment_is_warned_about() {
     ]);
     assert!(!err.contains("warning"), "{err}");
 }
+
+/// The design worlds, where hand-designed controllers and settings are tuned: named
+/// `--worlds design`, the old `--generation 1099511627777` to the byte, and not the held-out
+/// worlds.
+#[test]
+fn the_design_worlds_have_a_name_and_are_not_the_held_out_ones() {
+    let (g, e) = (champion(), experiment("foraging.toml"));
+    let compare = |extra: &[&str]| {
+        let mut args = vec![
+            "compare",
+            g.as_str(),
+            "--experiment",
+            e.as_str(),
+            "--trials",
+            "2",
+            "--random",
+            "2",
+            "--json",
+        ];
+        args.extend_from_slice(extra);
+        run_ok(&args).stdout
+    };
+    let named = compare(&["--worlds", "design"]);
+    assert_eq!(named, compare(&["--generation", "1099511627777"]));
+    let held_out: Value = serde_json::from_slice(&compare(&[])).unwrap();
+    let design: Value = serde_json::from_slice(&named).unwrap();
+    assert_ne!(
+        held_out["genomes"], design["genomes"],
+        "design worlds are other worlds"
+    );
+    let text = String::from_utf8(
+        run_ok(&[
+            "compare",
+            &g,
+            "--experiment",
+            &e,
+            "--trials",
+            "1",
+            "--random",
+            "2",
+            "--worlds",
+            "design",
+        ])
+        .stdout,
+    )
+    .unwrap();
+    assert!(text.contains("on the design worlds"), "{text}");
+}

@@ -12,6 +12,7 @@ use crate::experiment::evolution::{
     MAX_POPULATION,
 };
 use crate::experiment::tables::{MAX_CREATURE_TICKS_PER_GENERATION, MAX_TICKS, MAX_TRIALS};
+use crate::experiment::terms::{Sign, TERMS};
 use crate::experiment::MAX_GENERATION_PARAMETERS;
 use crate::experiment::{Algorithm, Balance, GoalAt};
 use crate::sim::controller::InputsSpec;
@@ -401,18 +402,11 @@ pub fn keys() -> Vec<KeyMeta> {
         k("FitnessSpec.shock_penalty", "per tick", ge0(), EVAL),
         kd("FitnessSpec.balance", "", any(), EVAL, Balance::default()),
         kd("FitnessSpec.imbalance_penalty", "", ge0(), EVAL, 0.0),
-        kd("FitnessSpec.alive_bonus", "per tick", any(), EVAL, 0.0),
-        kd("FitnessSpec.death_penalty", "", ge0(), "§4.7, §5.3", 0.0),
         k("FitnessSpec.area", "", any().note("a name in [[world.areas]]"), "§4.6"),
-        kd("FitnessSpec.area_bonus", "per tick", any().note("needs `area`"), "§4.6", 0.0),
         k("FitnessSpec.goal", "", any().note("a name in [[world.areas]]; not with goal_point"), "§4.6"),
         k("FitnessSpec.goal_point", "LU", any(), EVAL),
-        kd("FitnessSpec.goal_bonus", "", any().note("needs `goal` or `goal_point`"), EVAL, 0.0),
         k("FitnessSpec.goal_range", "LU", gt0(), EVAL),
         kd("FitnessSpec.goal_at", "", any(), EVAL, GoalAt::default()),
-        kd("FitnessSpec.distinct_food_bonus", "", any(), EVAL, 0.0),
-        kd("FitnessSpec.forward_bonus", "per LU", any(), EVAL, 0.0),
-        kd("FitnessSpec.shelter_bonus", "per tick", any().note("a threat is within [behaviour] threat_radius"), "§4.7", 0.0),
         // [behaviour], [validation], [output], [demo]
         k("BehaviourSpec.measures", "", any().note("each at most once; area measures need `area`"), RUN),
         k("BehaviourSpec.area", "", any().note("a name in [[world.areas]]"), "§4.6"),
@@ -432,4 +426,13 @@ pub fn keys() -> Vec<KeyMeta> {
         k("ScriptedSpec.gain", "RPT", any(), "§8.1"),
         k("ScriptedSpec.base", "RPT", any(), "§8.1"),
     ]
+    .into_iter()
+    .chain(TERMS.iter().map(|t| {
+        let range = match t.sign {
+            Sign::Add => Range::any(),
+            Sign::Subtract => Range::ge(0.0),
+        };
+        kd(t.schema_key, t.unit, range.note(t.note), t.section, 0.0)
+    }))
+    .collect()
 }
