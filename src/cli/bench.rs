@@ -7,6 +7,7 @@ use berry_evolve::brain::{Brain, BrainController};
 use berry_evolve::evo::lockstep::{self, Lockstep};
 use berry_evolve::evo::search;
 use berry_evolve::evo::state::evaluate;
+use berry_evolve::evo::worlds::random_genomes;
 use berry_evolve::experiment::templates::{Template, BENCH_WORLDS};
 use berry_evolve::experiment::tiled::{object_count, tiled_world, wall_count};
 use berry_evolve::experiment::Experiment;
@@ -215,19 +216,7 @@ fn sim_rate(
     threads: usize,
 ) -> anyhow::Result<f64> {
     let topology = experiment.topology();
-    let mut rng = stream(
-        experiment.seed(),
-        Purpose::Baseline,
-        Generation(0),
-        IndividualId(0),
-        TrialIndex(0),
-    );
-    let genome = berry_evolve::evo::init::initial_population(
-        &experiment.evolution,
-        topology.parameter_count(),
-        &mut rng,
-    )
-    .swap_remove(0);
+    let genome = random_genomes(experiment, Generation(0), 1).swap_remove(0);
     anyhow::ensure!(
         lockstep::stateless(&topology),
         "the simulator benchmark runs worlds in lockstep and needs a stateless brain (an MLP)"

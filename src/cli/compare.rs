@@ -11,13 +11,11 @@ use crate::cli::worlds::{
 
 use anyhow::Context;
 use berry_evolve::evo::evaluate::aggregate;
-use berry_evolve::evo::init::initial_population;
 use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::stats::FitnessStats;
-use berry_evolve::evo::worlds::{alone, lives};
+use berry_evolve::evo::worlds::{self, alone, lives};
 use berry_evolve::experiment::{Aggregate, Experiment, Measure, MEASURES};
 use berry_evolve::record::genome_file::GenomeFile;
-use berry_evolve::seed::{stream, IndividualId, Purpose, TrialIndex};
 use berry_evolve::sim::world::World;
 use clap::Args;
 use rayon::prelude::*;
@@ -408,16 +406,7 @@ fn random_genomes(
     count: u64,
 ) -> anyhow::Result<RandomReport> {
     let topology = experiment.topology();
-    let mut rng = stream(
-        experiment.seed(),
-        Purpose::Baseline,
-        set.generation(),
-        IndividualId(0),
-        TrialIndex(0),
-    );
-    let mut spec = experiment.evolution.clone();
-    spec.population = count as usize;
-    let drawn = initial_population(&spec, topology.parameter_count(), &mut rng);
+    let drawn = worlds::random_genomes(experiment, set.generation(), count as usize);
     let genomes = drawn
         .par_iter()
         .map(|g| {

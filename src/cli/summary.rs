@@ -11,9 +11,8 @@ use crate::cli::json::{self, Named};
 use crate::cli::worlds::{warn_other_experiment, WorldSet, WorldSetArgs, WorldsChoice};
 
 use anyhow::Context;
-use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::evaluate::{evaluate_in_worlds, worlds_from, Evaluation};
-use berry_evolve::evo::init::initial_population;
+use berry_evolve::evo::worlds::random_genomes;
 use berry_evolve::evo::life::trial_stream;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::genome_file::GenomeFile;
@@ -21,7 +20,6 @@ use berry_evolve::record::summary::{
     self, held_out_bytes, quartiles, read_seeds, seed_folders, summary_bytes, HeldOutRow,
     SummaryRow, HELD_OUT_FILE, SUMMARY_FILE,
 };
-use berry_evolve::seed::{stream, IndividualId, Purpose, TrialIndex};
 use clap::Args;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -284,16 +282,7 @@ fn held_out(
     let seed_fitness: Vec<f64> = out.iter().filter_map(|r| r.fitness).collect();
     if args.random > 0 {
         let topology = experiment.topology();
-        let mut rng = stream(
-            experiment.seed(),
-            Purpose::Baseline,
-            generation,
-            IndividualId(0),
-            TrialIndex(0),
-        );
-        let mut spec = experiment.evolution.clone();
-        spec.population = args.random as usize;
-        let genomes: Vec<Genome> = initial_population(&spec, topology.parameter_count(), &mut rng);
+        let genomes = random_genomes(experiment, generation, args.random as usize);
         let evaluations = evaluate_in_worlds(experiment, &topology, &genomes, &worlds)?;
         let fitness: Vec<f64> = evaluations.iter().filter_map(|e| e.fitness).collect();
         let measure =

@@ -19,7 +19,8 @@ use crate::evo::life::{EvaluationError, TrialOutcome};
 use crate::evo::trial::{run_trial_in_world, NoObserver, TrialId};
 use crate::evo::validation::validation_worlds;
 use crate::experiment::Experiment;
-use crate::seed::{Generation, TrialIndex};
+use crate::evo::init::initial_population;
+use crate::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
 use crate::sim::world::World;
 use crate::validate::InvalidValue;
 use rayon::prelude::*;
@@ -213,6 +214,23 @@ impl WorldSet {
             _ => Ok(None),
         }
     }
+}
+
+/// `count` random genomes, the baseline every science table sets champions against: drawn
+/// as an initial population is, from the [`Purpose::Baseline`] stream of `generation` (a
+/// set's [`WorldSet::generation`]), so that `compare` and `summary` on one set draw the very
+/// same genomes.
+pub fn random_genomes(experiment: &Experiment, generation: Generation, count: usize) -> Vec<Genome> {
+    let mut rng = stream(
+        experiment.seed(),
+        Purpose::Baseline,
+        generation,
+        IndividualId(0),
+        TrialIndex(0),
+    );
+    let mut spec = experiment.evolution.clone();
+    spec.population = count;
+    initial_population(&spec, experiment.topology().parameter_count(), &mut rng)
 }
 
 /// `experiment` with common random numbers forced on: every genome evaluated alone meets the
