@@ -139,25 +139,25 @@ impl EventLog {
         self.on.store(on, Ordering::Relaxed);
     }
 
-    /// A new tick begins: the last tick's events go. The list keeps its capacity, so once it
-    /// has grown a tick allocates nothing; the first listened-to tick makes room for
-    /// [`EventLog::ROOM`] events at once.
-    #[inline]
+    /// A new tick begins: the last tick's events go (one store: the list keeps its room,
+    /// so once it has grown a tick allocates nothing). Called whether or not anyone
+    /// listens, which costs less than asking.
+    #[inline(always)]
     pub fn clear(&mut self) {
-        if self.list.capacity() == 0 {
-            self.list.reserve(Self::ROOM);
-        }
         self.list.clear();
     }
 
-    /// Events the list holds before it first grows: more than a busy tick of a shipped
-    /// experiment tells.
+    /// Events the list makes room for at its first event: more than a busy tick of a
+    /// shipped experiment tells.
     pub const ROOM: usize = 256;
 
     /// Adds `event` to this tick's events. Callers check [`EventLog::on`] first, so that
     /// nothing is built when no one listens.
     #[inline]
     pub fn push(&mut self, event: WorldEvent) {
+        if self.list.capacity() == 0 {
+            self.list.reserve(Self::ROOM);
+        }
         self.list.push(event);
     }
 

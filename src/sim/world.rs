@@ -464,9 +464,7 @@ impl World {
     /// creatures 0..i left it in this tick; noise draws follow the tick order).
     #[inline]
     pub fn begin_tick(&mut self) {
-        if self.events.on() {
-            self.events.clear();
-        }
+        self.events.clear();
         // Nothing to regrow (every object full, the common case) and no gadgets: nothing
         // to do, known without entering the loops.
         if self.brute_force {
@@ -770,6 +768,8 @@ impl World {
                 }
                 &self.scratch.food
             };
+            // Asked once per eating creature-tick, not per bite.
+            let listened = self.events.on();
             for &k in near {
                 let f = &mut self.food[k as usize];
                 if circles_touch(position, radius, f.position, f.radius) {
@@ -780,7 +780,7 @@ impl World {
                     if !self.bitten.is_empty() && bite.iter().any(|&g| g > 0.0) {
                         self.bitten[i * self.listed.len() + k as usize] = true;
                     }
-                    if self.events.on() && bite.iter().any(|&g| g > 0.0) {
+                    if listened && bite.iter().any(|&g| g > 0.0) {
                         self.events.push(WorldEvent::Bite {
                             creature: i,
                             food: k as usize,
