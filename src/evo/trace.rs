@@ -10,26 +10,28 @@
 //! alive = 0 there, and lived 57 ticks. `simulate`'s trace ([`crate::record::trace`]) ends
 //! by the same rule. While others live, a dead creature keeps a row per tick with alive = 0.
 //!
-//! Events are derived by comparing the world after a tick with the world after the one
-//! before, so the simulator's hot path knows nothing of traces:
+//! Events are told by the world where it decides them ([`crate::sim::events`]): the recorder
+//! switches the world's event log on when a trial starts and turns each tick's
+//! [`WorldEvent`]s into rows, in this order within a tick:
 //!
-//! - `eat`: a food object's `given` grew (what bites took from it, depleting or not); the
-//!   eater is the creature whose `eaten` grew (of several, the nearest to the object), the
-//!   amounts are the object's growth of `given` per type A–D;
-//! - `shock`: a creature's shock state turned on (an onset, not every shocked tick: the
-//!   creature rows carry those); the source is an aversive object its body touches, else a
-//!   predator that attacked it, else a wall (a blocked move in a world with wall shocks);
-//! - `teleport`: a creature stands exactly on a teleporter's exit it did not stand on before;
-//! - `door_open`, `door_close`: a door's open state changed;
-//! - `attack`: a ground predator's body touches the creature, or an air predator's strike disc
-//!   holds its centre, at its position before or after its move, outside safe areas (the two
-//!   moments the world checks);
-//! - `death`: a living creature is dead.
+//! - `eat`: one row per bite, in food order (the eater, the object, what it received per type
+//!   A–D);
+//! - then per creature in index order: `teleport` (at the exit, `from` the entry); `attack`,
+//!   one row per predator that attacked it (ground predators, then air predators, each by
+//!   index; a predator that struck in phase 2 and again in the contacts phase is one row);
+//!   `shock`, an onset only (shocked after this tick and not after the one before: the
+//!   creature rows carry every shocked tick), with its cause: the aversive object, else the
+//!   predator, else the wall; `death`;
+//! - then `door_open` (by the creature whose body touched the closed door's trigger) and
+//!   `door_close`, in door order.
+//!
+//! Shock, attack and death rows stand at the creature's position after the tick.
 
 use crate::evo::life::TrialOutcome;
 use crate::evo::trial::{TickObserver, TrialId};
 use crate::experiment::Experiment;
-use crate::geometry::{circles_touch, Vec2};
+use crate::geometry::Vec2;
+use crate::sim::events::{Attacker, ShockCause, WorldEvent};
 use crate::sim::gadgets::Role;
 use crate::sim::metabolism::Metabolism;
 use crate::sim::spec::Effect;
@@ -415,32 +417,28 @@ impl TrialTrace {
     }
 }
 
-/// The state of the world after the previous tick, for the diffs.
+/// What the rows of a tick compare with the tick before: each creature's shock state (for
+/// shock onsets) and each food object's amount (for the objects whose amount changed).
 #[derive(Debug, Clone, Default)]
 struct Previous {
-    positions: Vec<Vec2>,
-    alive: Vec<bool>,
     shocked: Vec<bool>,
-    eaten: Vec<[f64; 4]>,
-    given: Vec<[f64; 4]>,
     amount: Vec<[f64; 4]>,
-    doors: Vec<bool>,
 }
 
 impl Previous {
     fn of(world: &World) -> Previous {
-        let c = world.creatures();
         Previous {
-            positions: c.iter().map(|c| c.pose.position).collect(),
-            alive: c.iter().map(|c| c.alive).collect(),
-            shocked: c.iter().map(|c| c.shocked).collect(),
-            eaten: c.iter().map(|c| c.eaten).collect(),
-            given: world.food().iter().map(|f| f.given).collect(),
+            shocked: world.creatures().iter().map(|c| c.shocked).collect(),
             amount: world.food().iter().map(|f| f.amount).collect(),
-            doors: (0..world.door_walls().len())
-                .map(|d| world.door_open(d))
-                .collect(),
         }
+    }
+}
+
+/// The target of an attack or a shock in the CSV's terms: kind and index.
+fn attacker_target(by: Attacker) -> (&'static str, usize) {
+    match by {
+        Attacker::Predator(k) => ("predator", k),
+        Attacker::AirPredator(k) => ("air_predator", k),
     }
 }
 
@@ -614,9 +612,10 @@ impl TraceRecorder {
         }
     }
 
+    /// The rows of the events `world` told for tick `tick` (see the module docs for their
+    /// order).
     fn events(&self, world: &World, tick: u64, events: &mut Vec<Event>) {
-        let prev = &self.previous;
-        let r = world.creature_radius();
+        let told = world.events();
         let creatures = world.creatures();
         let event = |event, creature, target_kind: Option<&str>, target, at: Vec2| Event {
             tick,
@@ -629,34 +628,30 @@ impl TraceRecorder {
             from: None,
             amount: None,
         };
-        // Eating: what each object gave, to the creature that received something.
-        for (k, f) in world.food().iter().enumerate() {
-            let given: [f64; 4] = std::array::from_fn(|t| f.given[t] - prev.given[k][t]);
-            if given.iter().all(|&g| g <= 0.0) {
-                continue;
-            }
-            let eater = creatures
-                .iter()
-                .enumerate()
-                .filter(|(i, c)| (0..4).any(|t| c.eaten[t] > prev.eaten[*i][t]))
-                .min_by(|(_, a), (_, b)| {
-                    let da = a.pose.position.distance_squared(f.position);
-                    let db = b.pose.position.distance_squared(f.position);
-                    da.total_cmp(&db)
-                })
-                .map(|(i, _)| i);
-            let mut e = event(EventKind::Eat, eater, Some("food"), Some(k), f.position);
-            e.amount = Some(given);
+        // Bites, in food order (the world tells them in creature order).
+        let mut bites: Vec<(usize, usize, [f64; 4])> = told
+            .iter()
+            .filter_map(|e| match *e {
+                WorldEvent::Bite {
+                    creature,
+                    food,
+                    amount,
+                } => Some((food, creature, amount)),
+                _ => None,
+            })
+            .collect();
+        bites.sort_by_key(|&(food, _, _)| food);
+        for (k, i, amount) in bites {
+            let at = world.food()[k].position;
+            let mut e = event(EventKind::Eat, Some(i), Some("food"), Some(k), at);
+            e.amount = Some(amount);
             events.push(e);
         }
         for (i, c) in creatures.iter().enumerate() {
-            if !prev.alive[i] {
-                continue;
-            }
             let here = c.pose.position;
-            let before = prev.positions[i];
-            for (k, t) in world.teleporters().iter().enumerate() {
-                if here == t.exit && before != t.exit {
+            let mine = told.iter().filter(|e| creature_of(e) == Some(i));
+            for e in mine.clone() {
+                if let WorldEvent::Teleport { teleporter: k, .. } = *e {
                     let mut e = event(
                         EventKind::Teleport,
                         Some(i),
@@ -664,76 +659,78 @@ impl TraceRecorder {
                         Some(k),
                         here,
                     );
-                    e.from = Some(point(t.entry));
+                    e.from = Some(point(world.teleporters()[k].entry));
                     events.push(e);
-                    break;
                 }
             }
-            // Attacks: at the creature's position before its move (the predator's own move)
-            // or after it (the creature's contacts), outside safe areas.
-            let mut attackers: Vec<(&str, usize)> = Vec::new();
-            let exposed = |p: Vec2| !world.in_safe_area(p);
-            let mut predator = 0;
-            for a in world.actors() {
-                if let Role::Predator { .. } = a.role {
-                    let p = a.pose.position;
-                    if a.awake()
-                        && ((circles_touch(here, r, p, r) && exposed(here))
-                            || (circles_touch(before, r, p, r) && exposed(before)))
-                    {
-                        attackers.push(("predator", predator));
-                    }
-                    predator += 1;
-                }
-            }
-            for (k, f) in world.flyers().iter().enumerate() {
-                let p = f.position;
-                if !f.in_flight() {
-                    continue;
-                }
-                if (circles_touch(here, 0.0, p, f.strike_radius) && exposed(here))
-                    || (circles_touch(before, 0.0, p, f.strike_radius) && exposed(before))
-                {
-                    attackers.push(("air_predator", k));
-                }
-            }
-            for &(kind, k) in &attackers {
+            let mut attackers: Vec<Attacker> = mine
+                .clone()
+                .filter_map(|e| match *e {
+                    WorldEvent::Attack { by, .. } => Some(by),
+                    _ => None,
+                })
+                .collect();
+            attackers.sort();
+            attackers.dedup();
+            for &by in &attackers {
+                let (kind, k) = attacker_target(by);
                 events.push(event(EventKind::Attack, Some(i), Some(kind), Some(k), here));
             }
-            if c.shocked && !prev.shocked[i] {
-                let aversive = world
-                    .aversives()
-                    .iter()
-                    .position(|a| circles_touch(here, r, a.position, a.radius));
-                let (kind, target) = match (aversive, attackers.first()) {
-                    (Some(k), _) => (Some("aversive"), Some(k)),
-                    (None, Some(&(kind, k))) => (Some(kind), Some(k)),
-                    (None, None) if c.blocked => (Some("wall"), None),
-                    (None, None) => (None, None),
+            if c.shocked && !self.previous.shocked[i] {
+                let causes = || {
+                    mine.clone().filter_map(|e| match *e {
+                        WorldEvent::Shock { cause, .. } => Some(cause),
+                        _ => None,
+                    })
+                };
+                let aversive = causes().find(|c| matches!(c, ShockCause::Aversive(_)));
+                let attack = causes().find(|c| matches!(c, ShockCause::Attack(_)));
+                let wall = causes().find(|c| matches!(c, ShockCause::Wall));
+                let (kind, target) = match aversive.or(attack).or(wall) {
+                    Some(ShockCause::Aversive(k)) => (Some("aversive"), Some(k)),
+                    Some(ShockCause::Attack(by)) => {
+                        let (kind, k) = attacker_target(by);
+                        (Some(kind), Some(k))
+                    }
+                    Some(ShockCause::Wall) => (Some("wall"), None),
+                    None => (None, None),
                 };
                 events.push(event(EventKind::Shock, Some(i), kind, target, here));
             }
-            if !c.alive {
+            if mine.clone().any(|e| matches!(e, WorldEvent::Death { .. })) {
                 events.push(event(EventKind::Death, Some(i), None, None, here));
             }
         }
-        for (d, w) in world.door_walls().iter().enumerate() {
-            let open = world.door_open(d);
-            if open == prev.doors[d] {
-                continue;
-            }
+        // Doors, in door order (closed in phase 1, opened in the creatures' contacts).
+        let mut doors: Vec<(usize, EventKind, Option<usize>)> = told
+            .iter()
+            .filter_map(|e| match *e {
+                WorldEvent::DoorOpened { door, creature } => {
+                    Some((door, EventKind::DoorOpen, Some(creature)))
+                }
+                WorldEvent::DoorClosed { door } => Some((door, EventKind::DoorClose, None)),
+                _ => None,
+            })
+            .collect();
+        doors.sort_by_key(|&(door, _, _)| door);
+        for (d, kind, who) in doors {
+            let w = &world.door_walls()[d];
             let middle = (w.segment.a + w.segment.b) * 0.5;
-            let (kind, who) = if open {
-                let t = world.things()[world.doors()[d].trigger];
-                let who = creatures.iter().position(|c| {
-                    c.alive && circles_touch(c.pose.position, r, t.position, t.radius)
-                });
-                (EventKind::DoorOpen, who)
-            } else {
-                (EventKind::DoorClose, None)
-            };
             events.push(event(kind, who, Some("door"), Some(d), middle));
         }
+    }
+}
+
+/// The creature an event concerns (None for a door closing).
+fn creature_of(e: &WorldEvent) -> Option<usize> {
+    match *e {
+        WorldEvent::Bite { creature, .. }
+        | WorldEvent::Shock { creature, .. }
+        | WorldEvent::Attack { creature, .. }
+        | WorldEvent::Teleport { creature, .. }
+        | WorldEvent::DoorOpened { creature, .. }
+        | WorldEvent::Death { creature, .. } => Some(creature),
+        WorldEvent::DoorClosed { .. } => None,
     }
 }
 
@@ -766,6 +763,7 @@ impl TickObserver for TraceRecorder {
             events: Vec::new(),
             outcomes: Vec::new(),
         });
+        world.set_event_log(true);
         self.previous = Previous::of(world);
     }
 

@@ -5,6 +5,7 @@
 //! - [`spec`]: the `[world]` and `[creature]` tables and their validation.
 //! - [`world`]: the running world and the tick loop of §9; [`creature`]: one creature.
 //! - [`wall`], [`food`], [`smell`]: the things in the world.
+//! - [`events`]: what happened in a tick, told by the world where it decides it.
 //! - [`sensors`]: whiskers, smell sensors, food detectors, observation layout.
 //! - [`index`]: what exists only for speed, the spatial indexes the senses, moves and contacts
 //!   query (the static grid, the smell grid, whisker cells, mover cells).
@@ -18,6 +19,7 @@
 pub mod area;
 pub mod controller;
 pub mod creature;
+pub mod events;
 pub mod eye;
 pub mod food;
 pub mod gadgets;

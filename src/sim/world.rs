@@ -54,6 +54,7 @@ use crate::geometry::{circles_touch, Circle, Segment, Vec2};
 use crate::seed::Rng;
 use crate::sim::area::{bearing, Area};
 use crate::sim::controller::{Controller, MotorCommand, ObservationLayout, SensorGroup};
+use crate::sim::events::{DeathCause, EventLog, ShockCause, WorldEvent};
 use crate::sim::eye::{Eye, Scene};
 use crate::sim::food::{Aversive, Food};
 use crate::sim::gadgets::{self, Actor, Context, Door, Flyer, Gadgets, Teleporter, Thing};
@@ -142,6 +143,9 @@ pub struct World {
     /// substance from the object? Empty (and not kept) unless [`World::track_bites`] asked
     /// for it, so that eating costs nothing more when no one needs it.
     bitten: Vec<bool>,
+    /// The events of the last tick, told where they are decided; off unless someone
+    /// listens ([`World::set_event_log`]).
+    events: EventLog,
 }
 
 /// The world's constants that a creature's move, contacts and metabolism read on every tick
@@ -288,6 +292,7 @@ macro_rules! gadget_context {
             things: &mut $world.things,
             areas: &$world.areas,
             rng: &mut $world.rng,
+            events: &mut $world.events,
         }
     };
 }
@@ -418,6 +423,7 @@ impl World {
             gadgets,
             rules,
             bitten: Vec::new(),
+            events: EventLog::default(),
         })
     }
 
@@ -458,6 +464,7 @@ impl World {
     /// creatures 0..i left it in this tick; noise draws follow the tick order).
     #[inline]
     pub fn begin_tick(&mut self) {
+        self.events.clear();
         // Nothing to regrow (every object full, the common case) and no gadgets: nothing
         // to do, known without entering the loops.
         if self.brute_force {
@@ -761,6 +768,8 @@ impl World {
                 }
                 &self.scratch.food
             };
+            // Asked once per eating creature-tick, not per bite.
+            let listened = self.events.on();
             for &k in near {
                 let f = &mut self.food[k as usize];
                 if circles_touch(position, radius, f.position, f.radius) {
@@ -770,6 +779,13 @@ impl World {
                     }
                     if !self.bitten.is_empty() && bite.iter().any(|&g| g > 0.0) {
                         self.bitten[i * self.listed.len() + k as usize] = true;
+                    }
+                    if listened && bite.iter().any(|&g| g > 0.0) {
+                        self.events.push(WorldEvent::Bite {
+                            creature: i,
+                            food: k as usize,
+                            amount: bite,
+                        });
                     }
                     if !self.listed[k as usize] && f.regrows_now() {
                         self.listed[k as usize] = true;
@@ -797,6 +813,16 @@ impl World {
                 .any_aversive(lo, hi, |k| touches(&self.aversives[k]))
         };
         c.shocked = aversive || (rules.wall_shock && outcome.blocked_by_wall);
+        if c.shocked && self.events.on() {
+            tell_shock(
+                &mut self.events,
+                &self.aversives,
+                i,
+                position,
+                radius,
+                aversive,
+            );
+        }
         rules
             .decay
             .apply(&mut c.metabolism, &received, outcome.travelled);
@@ -1206,8 +1232,51 @@ impl World {
     /// Ends creature `creature`'s life now: it no longer senses, moves, eats, blocks, or is
     /// felt or smelled by others. Its last state stays readable.
     pub fn kill(&mut self, creature: usize) {
-        self.creatures[creature].alive = false;
+        let c = &mut self.creatures[creature];
+        if c.alive && self.events.on() {
+            self.events.push(WorldEvent::Death {
+                creature,
+                cause: DeathCause::Killed,
+            });
+        }
+        c.alive = false;
     }
+
+    /// Switches the event log on or off (default: off). On, each tick's [`World::events`]
+    /// tell what the world decided in it; off, nothing is recorded and a tick costs what it
+    /// did without the log. Neither changes any result.
+    ///
+    /// Takes `&self` so that a watcher that only reads the world (a trial observer's
+    /// `start`, which sees `&World`) can switch it on before the first tick.
+    pub fn set_event_log(&self, on: bool) {
+        self.events.set(on);
+    }
+
+    /// The events of the last tick, in the order the world decided them (empty while the
+    /// log is off; cleared when a tick begins). A [`World::kill`] between ticks is added to
+    /// the list of the tick before.
+    pub fn events(&self) -> &[WorldEvent] {
+        self.events.events()
+    }
+}
+
+/// Tells the shock creature `i` received in its contacts phase at `position` (body `radius`):
+/// from the first aversive object it touches when `aversive`, else from a wall. Out of the
+/// tick's path: only a listened-to world comes here.
+#[inline(never)]
+fn tell_shock(
+    events: &mut EventLog,
+    aversives: &[Aversive],
+    i: usize,
+    position: Vec2,
+    radius: f64,
+    aversive: bool,
+) {
+    let cause = aversives
+        .iter()
+        .position(|a| aversive && circles_touch(position, radius, a.position, a.radius))
+        .map_or(ShockCause::Wall, ShockCause::Aversive);
+    events.push(WorldEvent::Shock { creature: i, cause });
 }
 
 /// Motor clamping: to ±`max_rpt`; NaN (a broken controller) counts as 0 so that the world

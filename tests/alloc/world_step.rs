@@ -1,6 +1,7 @@
 //! A tick allocates nothing: a counting global allocator watches `World::step` on a world
 //! with walls, smelly food, aversive objects, landmarks, smelly areas and several creatures,
-//! every sensor switched on (the eye with a 2-D retina) and noise on several groups.
+//! every sensor switched on (the eye with a 2-D retina) and noise on several groups; and with
+//! the world's event log on, once its list has room.
 
 use crate::sim_common;
 use berry_evolve::sim::scripted::ScriptedSpec;
@@ -144,4 +145,30 @@ fn step_does_not_allocate() {
         w.creatures().iter().any(|c| c.travelled > 10.0),
         "nobody moved"
     );
+}
+
+#[test]
+fn step_with_the_event_log_on_does_not_allocate() {
+    let mut w = sim_common::world(WORLD, 5, 1);
+    w.set_event_log(true);
+    let spec = ScriptedSpec::Braitenberg {
+        receptor: 1,
+        gain: 0.5,
+        base: 0.1,
+    };
+    let mut controllers = vec![spec.build(w.layout()).unwrap(); 5];
+    // The first event makes the list's room: step until something is told.
+    w.step(&mut controllers);
+    while w.events().is_empty() {
+        w.step(&mut controllers);
+    }
+    let before = allocations();
+    let mut told = 0;
+    for _ in 0..2_000 {
+        w.step(&mut controllers);
+        told += w.events().len();
+    }
+    let n = allocations() - before;
+    assert_eq!(n, 0, "{n} heap allocations in 2000 ticks");
+    assert!(told > 0, "nothing was told");
 }

@@ -1,7 +1,9 @@
-//! The whole-world trace: events found by diffing the world between ticks (door opened and
-//! closed, eat with the object and amount, teleport, shock from an aversive object, attack,
-//! death) on a hand-made world where each is staged, and, for every shipped experiment, the
-//! trace written to CSV and JSON lines is the scored life.
+//! The whole-world trace: the events the world told (door opened and closed, eat with the
+//! object and amount, teleport, shock from an aversive object, attack, death) as rows, on a
+//! hand-made world where each is staged; the two cases the old re-derivation from two world
+//! states got wrong (the teleporter of a jump through the t-maze's right arm, whose exit both
+//! arms share; a bite's amount, which it took as a difference of running sums); and, for every
+//! shipped experiment, the trace written to CSV and JSON lines is the scored life.
 
 use crate::sim_common::{put, rng, Still};
 use berry_evolve::evo::search::ga::first_population;
@@ -55,7 +57,7 @@ region = [60.0, 100.0, 80.0, 120.0]
 "#;
 
 #[test]
-fn staged_events_are_found_by_diffing_the_world() {
+fn staged_events_are_told_by_the_world() {
     let experiment = Experiment::from_toml(STAGE, Path::new("stage.toml")).unwrap();
     let mut world = World::new(&experiment.world, &experiment.creature, 1, rng(3)).unwrap();
     let mut recorder = TraceRecorder::new(&experiment);
@@ -138,6 +140,76 @@ fn staged_events_are_found_by_diffing_the_world() {
     assert_eq!(trace.creatures.len(), 8);
     assert_eq!(trace.actors.len(), 8);
     assert!(!trace.creatures.last().unwrap().alive);
+}
+
+/// A creature still on a food object that never depletes, between the t-maze's two
+/// teleporters (one exit at (150, 270)).
+const ARMS: &str = r#"
+name = "arms"
+seed = 3
+
+[world]
+arena = [300.0, 300.0]
+[[world.teleporters]]
+entry = [70.0, 100.0]
+radius = 4.0
+exit = [150.0, 270.0]
+[[world.teleporters]]
+entry = [230.0, 100.0]
+radius = 4.0
+exit = [150.0, 270.0]
+[world.kinds.spring]
+class = "food"
+radius = 2.0
+substance = [1.0, 0.0, 0.0, 0.0]
+bite = [0.1, 0.0, 0.0, 0.0]
+depletes = false
+[[world.objects]]
+kind = "spring"
+position = [150.0, 150.0]
+[world.start]
+region = [140.0, 140.0, 160.0, 160.0]
+"#;
+
+#[test]
+fn a_jump_through_the_right_arm_and_every_bite_are_rows_as_the_world_told_them() {
+    let experiment = Experiment::from_toml(ARMS, Path::new("arms.toml")).unwrap();
+    let mut world = World::new(&experiment.world, &experiment.creature, 1, rng(3)).unwrap();
+    let mut recorder = TraceRecorder::new(&experiment);
+    let id = TrialId {
+        generation: Generation(0),
+        group: 0,
+        trial: TrialIndex(0),
+    };
+    recorder.start(id, &world);
+    let mut controllers = [Still];
+    // 30 ticks on the spring: 30 bites of 0.1. Their running sum is not a multiple of 0.1
+    // in floating point, so differences of it (the old way) are not 0.1 on every tick.
+    put(&mut world, 0, 154.0, 150.0, 0.0);
+    for _ in 0..30 {
+        world.step(&mut controllers);
+        recorder.tick(&world, world.tick());
+    }
+    // Through the right arm's entry.
+    put(&mut world, 0, 233.0, 100.0, 0.0);
+    world.step(&mut controllers);
+    recorder.tick(&world, world.tick());
+    let trace = &recorder.trials[0];
+    let eats: Vec<_> = trace
+        .events
+        .iter()
+        .filter(|e| e.event == EventKind::Eat)
+        .collect();
+    assert_eq!(eats.len(), 30);
+    for e in &eats {
+        assert_eq!(e.amount, Some([0.1, 0.0, 0.0, 0.0]), "tick {}", e.tick);
+    }
+    let jump = trace.events.last().unwrap();
+    assert_eq!(jump.event, EventKind::Teleport);
+    assert_eq!(jump.tick, 31);
+    assert_eq!(jump.target, Some(1), "the right arm's teleporter");
+    assert_eq!(jump.from, Some([230.0, 100.0]));
+    assert_eq!((jump.x, jump.y), (150.0, 270.0));
 }
 
 /// The experiment at `path` with at most 2 trials.

@@ -25,3 +25,4 @@ mod spec_tables;
 mod trace_determinism;
 mod whisker_cells_vs_plain_loops;
 mod whisker_pictures;
+mod world_events;

@@ -17,6 +17,7 @@ use crate::geometry::{circle_touches_segment, circles_touch, Vec2};
 use crate::seed::Rng;
 use crate::sim::area::Area;
 use crate::sim::creature::Creature;
+use crate::sim::events::{Attacker, DeathCause, EventLog, ShockCause, WorldEvent};
 use crate::sim::motion::Pose;
 use crate::sim::smell::Smell;
 use crate::sim::spec::{Effect, Strategy};
@@ -105,6 +106,8 @@ pub struct Context<'a> {
     pub areas: &'a [Area],
     /// The trial's generator.
     pub rng: &'a mut Rng,
+    /// The world's events of this tick (pushed only when [`EventLog::on`]).
+    pub events: &'a mut EventLog,
 }
 
 /// Is `position` inside a safe area of `areas` (bounds included)? Predators leave such
@@ -121,26 +124,54 @@ impl Context<'_> {
         in_safe_area(self.areas, position)
     }
 
-    /// A predator's attack on creature `i` (outside safe areas, checked by the caller).
+    /// `by`'s attack on creature `i` (outside safe areas, checked by the caller), told to
+    /// the event log with the death it causes; `contacts`: in the creature's contacts phase,
+    /// where a shock it gives stands to the end of the tick (and is told as a shock).
     #[inline]
-    fn attack(&mut self, i: usize, effect: Effect) {
+    fn attack(&mut self, i: usize, effect: Effect, by: Attacker, contacts: bool) {
         let c = &mut self.creatures[i];
+        let was_alive = c.alive;
         match effect {
             Effect::Lethal => c.alive = false,
             Effect::Shock => c.shocked = true,
         }
+        if self.events.on() {
+            self.tell_attack(i, effect, by, contacts, was_alive);
+        }
     }
 
-    /// Attacks by a predator at `position` (ground: body contact; air: `reach` = strike
+    /// The events of [`Context::attack`]: the attack, then a death (a lethal attack on a
+    /// living creature) or a shock (a shock in the contacts phase).
+    #[inline(never)]
+    fn tell_attack(&mut self, i: usize, effect: Effect, by: Attacker, contacts: bool, was: bool) {
+        self.events.push(WorldEvent::Attack {
+            creature: i,
+            by,
+            effect,
+        });
+        match effect {
+            Effect::Lethal if was => self.events.push(WorldEvent::Death {
+                creature: i,
+                cause: DeathCause::Attack(by),
+            }),
+            Effect::Shock if contacts => self.events.push(WorldEvent::Shock {
+                creature: i,
+                cause: ShockCause::Attack(by),
+            }),
+            _ => {}
+        }
+    }
+
+    /// Attacks by predator `by` at `position` (ground: body contact; air: `reach` = strike
     /// radius, `radius` = 0) on every living creature outside safe areas.
-    fn strike_all(&mut self, position: Vec2, reach: f64, own: f64, effect: Effect) {
+    fn strike_all(&mut self, position: Vec2, reach: f64, own: f64, effect: Effect, by: Attacker) {
         for i in 0..self.creatures.len() {
             let c = &self.creatures[i];
             if c.alive
                 && circles_touch(c.pose.position, own, position, reach)
                 && !self.in_safe_area(c.pose.position)
             {
-                self.attack(i, effect);
+                self.attack(i, effect, by, false);
             }
         }
     }
@@ -174,6 +205,9 @@ impl Gadgets {
         for k in 0..self.doors.len() {
             if ctx.walls.door_open(k) && self.doors[k].open_until.is_some_and(|u| ctx.tick > u) {
                 ctx.walls.set_door_open(k, false);
+                if ctx.events.on() {
+                    ctx.events.push(WorldEvent::DoorClosed { door: k });
+                }
             }
         }
     }
@@ -252,9 +286,9 @@ impl Gadgets {
         let actor = &mut self.actors[a];
         actor.moved_on(pose);
         ctx.things[actor.thing].position = pose.position;
-        if let Some(effect) = predator {
+        if let (Some(effect), Role::Predator { predator: k, .. }) = (predator, actor.role) {
             let r = ctx.radius;
-            ctx.strike_all(pose.position, r, r, effect);
+            ctx.strike_all(pose.position, r, r, effect, Attacker::Predator(k));
         }
     }
 
@@ -273,7 +307,8 @@ impl Gadgets {
                 thing.smell.set_quiet(!fl.in_flight());
             }
             if fl.in_flight() {
-                ctx.strike_all(fl.position, fl.strike_radius, 0.0, fl.effect);
+                let by = Attacker::AirPredator(f);
+                ctx.strike_all(fl.position, fl.strike_radius, 0.0, fl.effect, by);
             }
         }
     }
@@ -307,6 +342,12 @@ impl Gadgets {
             let t = &ctx.things[self.doors[k].trigger];
             if circles_touch(position, ctx.radius, t.position, t.radius) {
                 self.doors[k].open_until = Some(ctx.tick + self.doors[k].open_ticks);
+                if ctx.events.on() && !ctx.walls.door_open(k) {
+                    ctx.events.push(WorldEvent::DoorOpened {
+                        door: k,
+                        creature: i,
+                    });
+                }
                 ctx.walls.set_door_open(k, true);
             }
         }
@@ -319,14 +360,14 @@ impl Gadgets {
     fn teleport(&self, i: usize, ctx: &mut Context<'_>) {
         let r = ctx.radius;
         let position = ctx.creatures[i].pose.position;
-        let Some(t) = self
+        let Some(k) = self
             .teleporters
             .iter()
-            .find(|t| circles_touch(position, r, t.entry, t.radius))
-            .copied()
+            .position(|t| circles_touch(position, r, t.entry, t.radius))
         else {
             return;
         };
+        let t = self.teleporters[k];
         let walls_free = !ctx
             .walls
             .blocking()
@@ -347,6 +388,12 @@ impl Gadgets {
             if let Some(h) = t.exit_heading {
                 c.pose.heading = h;
             }
+            if ctx.events.on() {
+                ctx.events.push(WorldEvent::Teleport {
+                    creature: i,
+                    teleporter: k,
+                });
+            }
         }
     }
 
@@ -360,18 +407,21 @@ impl Gadgets {
         }
         let r = ctx.radius;
         for a in 0..self.actors.len() {
-            if let Role::Predator { effect, .. } = self.actors[a].role {
+            if let Role::Predator {
+                effect, predator, ..
+            } = self.actors[a].role
+            {
                 if self.actors[a].awake()
                     && circles_touch(position, r, self.actors[a].pose.position, r)
                 {
-                    ctx.attack(i, effect);
+                    ctx.attack(i, effect, Attacker::Predator(predator), true);
                 }
             }
         }
         for f in 0..self.flyers.len() {
             let fl = self.flyers[f];
             if fl.in_flight() && circles_touch(position, 0.0, fl.position, fl.strike_radius) {
-                ctx.attack(i, fl.effect);
+                ctx.attack(i, fl.effect, Attacker::AirPredator(f), true);
             }
         }
     }
