@@ -106,7 +106,7 @@ pub fn next_generation_with_lineage(
     }
     // Each offspring's mutation, drawn in turn and applied to all of them at the end.
     let mut mutations = Vec::with_capacity(spec.population - elites);
-    let mut words = Words::new(rng);
+    let mut words = Words::expecting(rng, expected_words(spec, parents, elites));
     while next.len() < spec.population {
         // Selection draws from the stream itself, the rest from the words after its draws.
         rng.set_word_pos(words.position());
@@ -147,6 +147,21 @@ pub fn next_generation_with_lineage(
         .zip(mutations.par_iter())
         .for_each(|(child, mutation)| mutation.apply(child));
     (next, lineage)
+}
+
+/// About how many 32-bit words of the stream the offspring will use (a little more), so that
+/// [`Words`] draws them in one or a few batches.
+fn expected_words(spec: &EvolutionSpec, parents: &[Genome], elites: usize) -> usize {
+    let genes = parents.first().map_or(0, |p| p.parameters.len()) as f64;
+    let crossover = match spec.crossover {
+        CrossoverSpec::None => 0.0,
+        CrossoverSpec::Uniform { probability } => 1.0 + probability.clamp(0.0, 1.0) * genes,
+        _ => 2.0,
+    };
+    let mutation = 2.0 + genes * (1.0 + 2.0 * spec.mutation.probability.clamp(0.0, 1.0));
+    let offspring = spec.population.saturating_sub(elites) as f64;
+    // 64-bit draws are two words; 2% and a little more for the picks and the spread.
+    (offspring * (crossover + mutation) * 2.0 * 1.02) as usize + 4096
 }
 
 /// Recombines `x` and `y` by `crossover` (always: the crossover probability is the caller's

@@ -220,8 +220,8 @@ fn pgpe_and_cma_noises_are_the_sequential_ones() {
 #[test]
 fn map_elites_offspring_are_the_sequential_ones() {
     let genes = 2500;
-    let xi: Vec<f64> = (0..genes).map(|i| (i as f64).sin()).collect();
-    let xj: Vec<f64> = (0..genes).map(|i| (i as f64).cos()).collect();
+    let xi: Vec<f64> = (0..genes).map(|i| libm::sin(i as f64)).collect();
+    let xj: Vec<f64> = (0..genes).map(|i| libm::cos(i as f64)).collect();
     for threads in [1, 3] {
         let mut r = rng(21);
         let (iso, gauss) = on(threads, || {

@@ -81,7 +81,10 @@ pub type NoiseKey = (u64, usize, Vec<u64>);
 /// draw them again (the draws are most of PGPE's and CMA-ES's cost). Looked up by their
 /// [`NoiseKey`], so a state changed in between (a restore) draws afresh.
 #[derive(Debug, Default)]
-pub struct NoiseCache(Mutex<Option<(NoiseKey, Arc<Vec<Vec<f64>>>)>>);
+pub struct NoiseCache(Mutex<Kept>);
+
+/// The noises a [`NoiseCache`] keeps, with what they were drawn for.
+type Kept = Option<(NoiseKey, Arc<Vec<Vec<f64>>>)>;
 
 impl Clone for NoiseCache {
     fn clone(&self) -> Self {
@@ -90,7 +93,7 @@ impl Clone for NoiseCache {
 }
 
 impl NoiseCache {
-    fn lock(&self) -> std::sync::MutexGuard<'_, Option<(NoiseKey, Arc<Vec<Vec<f64>>>)>> {
+    fn lock(&self) -> std::sync::MutexGuard<'_, Kept> {
         // A panic elsewhere cannot leave a half-written entry: the entry is replaced whole.
         self.0
             .lock()
@@ -126,8 +129,10 @@ impl NoiseCache {
     }
 }
 
-/// 32-bit words per batch of [`Words`], and per parallel task of a batch.
+/// 32-bit words per batch of [`Words`] (at least, and at most: 16 MB), and per parallel task
+/// of a batch.
 const BATCH: usize = 1 << 16;
+const MAX_BATCH: usize = 1 << 22;
 const BATCH_CHUNK: usize = 1 << 13;
 
 /// A generator that gives exactly the words of a ChaCha stream from a given position, read
@@ -142,16 +147,25 @@ pub struct Words {
     buffer: Vec<u32>,
     /// The next word to give, as an index into `buffer`.
     next: usize,
+    /// The words the next refill draws: few large batches mean few waits for the threads.
+    batch: usize,
 }
 
 impl Words {
     /// The words of `rng`'s stream from where `rng` stands (`rng` does not move).
     pub fn new(rng: &Rng) -> Words {
+        Words::expecting(rng, BATCH)
+    }
+
+    /// [`Words::new`] for a use of about `expected` 32-bit words: the first batch holds that
+    /// many (within limits), later ones a sixteenth.
+    pub fn expecting(rng: &Rng, expected: usize) -> Words {
         Words {
             base: rng.clone(),
             start: rng.get_word_pos(),
             buffer: Vec::new(),
             next: 0,
+            batch: expected.clamp(BATCH, MAX_BATCH),
         }
     }
 
@@ -178,7 +192,8 @@ impl Words {
         let position = self.position();
         self.start = position;
         self.next = 0;
-        self.buffer.resize(BATCH, 0);
+        self.buffer.resize(self.batch, 0);
+        self.batch = (self.batch / 16).max(BATCH);
         let base = &self.base;
         self.buffer
             .par_chunks_mut(BATCH_CHUNK)

@@ -150,7 +150,8 @@ pub fn noises(
     let mut noises = draws::gaussian_rows(&mut rng, population / 2, state.stdev.len());
     noises.par_iter_mut().for_each(|z| {
         for (x, &s) in z.iter_mut().zip(&state.stdev) {
-            *x = s * *x;
+            // x · s is s · x to the bit (IEEE multiplication commutes).
+            *x *= s;
         }
     });
     noises
