@@ -141,9 +141,19 @@ pub fn chance(rng: &mut impl RngCore, p: f64) -> bool {
 /// A standard normal draw (mean 0, standard deviation 1) by the Box–Muller transform, using
 /// two uniform draws and `libm` so that the bits are the same on every platform.
 pub fn gaussian(rng: &mut impl RngCore) -> f64 {
-    // 1 - unit is in (0, 1], so the logarithm is finite.
-    let u1 = 1.0 - unit(rng);
-    let u2 = unit(rng);
+    let a = unit(rng);
+    let b = unit(rng);
+    gaussian_from(a, b)
+}
+
+/// The normal draw [`gaussian`] makes from its two `unit()` draws `a` then `b`: drawing is
+/// split from transforming so that hot loops can draw the words in stream order and do the
+/// costly `log`, `sqrt` and `cos` in parallel afterwards, with the same bits.
+#[inline]
+pub fn gaussian_from(a: f64, b: f64) -> f64 {
+    // 1 - a is in (0, 1], so the logarithm is finite.
+    let u1 = 1.0 - a;
+    let u2 = b;
     libm::sqrt(-2.0 * libm::log(u1)) * libm::cos(std::f64::consts::TAU * u2)
 }
 

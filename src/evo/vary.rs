@@ -27,12 +27,27 @@
 //!
 //! `chance` and `unit` consume one 64-bit output, `gaussian` two, and `below` one or
 //! (rarely, on rejection) more.
+//!
+//! # Drawing, then transforming
+//!
+//! The draws above are made one after another from the one stream, in that order; but a
+//! mutated gene's normal draw is only recorded then (its two `unit()` values), and turned
+//! into the number ([`gaussian_from`], the `log`, `sqrt` and `cos` that cost most of a
+//! variation) once every offspring is drawn, offspring by offspring in parallel. Each gene
+//! is mutated at most once and each value is a pure function of its own two draws, so the
+//! bits are those of drawing and mutating gene after gene, on any number of threads.
+//! Crossover's and mutation's words themselves are read from a buffer of the same stream's
+//! words filled ahead in parallel ([`Words`]); selection draws from the stream moved to
+//! where the buffer stands, and the buffer continues after its words.
 
 use crate::brain::genome::Genome;
 use crate::evo::lineage::{Birth, Lineage};
+use crate::evo::search::draws::Words;
 use crate::evo::select::Selector;
 use crate::experiment::evolution::{CrossoverSpec, EvolutionSpec, MutationSpec, MAX_MAGNITUDE};
-use crate::seed::{below, chance, gaussian, unit, Rng};
+use crate::seed::{below, chance, gaussian, gaussian_from, unit, Rng};
+use rand_chacha::rand_core::RngCore;
+use rayon::prelude::*;
 
 /// Makes the next generation: exactly `spec.population` genomes, the `spec.elitism` best
 /// parents first (best first, ties broken by lower index; copied unchanged, step size
@@ -89,16 +104,25 @@ pub fn next_generation_with_lineage(
         next.push(parents[i].clone());
         lineage.push(Lineage::of(Birth::Elite, &[i]));
     }
+    // Each offspring's mutation, drawn in turn and applied to all of them at the end.
+    let mut mutations = Vec::with_capacity(spec.population - elites);
+    let mut words = Words::expecting(rng, expected_words(spec, parents, elites));
     while next.len() < spec.population {
+        // Selection draws from the stream itself, the rest from the words after its draws.
+        rng.set_word_pos(words.position());
         let xi = selector.pick(rng);
         let x = &parents[xi];
         let (mut child, born) = match spec.crossover {
-            CrossoverSpec::None => (x.clone(), Lineage::of(Birth::Mutated, &[xi])),
+            CrossoverSpec::None => {
+                words.seek(rng.get_word_pos());
+                (x.clone(), Lineage::of(Birth::Mutated, &[xi]))
+            }
             crossover => {
                 let yi = selector.pick(rng);
                 let y = &parents[yi];
-                if chance(rng, crossover.probability()) {
-                    let mut child = recombine(&crossover, x, y, rng);
+                words.seek(rng.get_word_pos());
+                if chance(&mut words, crossover.probability()) {
+                    let mut child = recombine_from(&crossover, x, y, &mut words);
                     if spec.mutation.self_adaptive.is_some() {
                         let sx = x.step_size.unwrap_or(spec.mutation.sigma);
                         let sy = y.step_size.unwrap_or(spec.mutation.sigma);
@@ -110,11 +134,34 @@ pub fn next_generation_with_lineage(
                 }
             }
         };
-        mutate(&mut child, &spec.mutation, rng);
+        mutations.push(draw_mutation(&mut child, &spec.mutation, &mut words));
         next.push(child);
         lineage.push(born);
     }
+    if !mutations.is_empty() {
+        // Where drawing everything from the stream would have left it.
+        rng.set_word_pos(words.position());
+    }
+    next[elites..]
+        .par_iter_mut()
+        .zip(mutations.par_iter())
+        .for_each(|(child, mutation)| mutation.apply(child));
     (next, lineage)
+}
+
+/// About how many 32-bit words of the stream the offspring will use (a little more), so that
+/// [`Words`] draws them in one or a few batches.
+fn expected_words(spec: &EvolutionSpec, parents: &[Genome], elites: usize) -> usize {
+    let genes = parents.first().map_or(0, |p| p.parameters.len()) as f64;
+    let crossover = match spec.crossover {
+        CrossoverSpec::None => 0.0,
+        CrossoverSpec::Uniform { probability } => 1.0 + probability.clamp(0.0, 1.0) * genes,
+        _ => 2.0,
+    };
+    let mutation = 2.0 + genes * (1.0 + 2.0 * spec.mutation.probability.clamp(0.0, 1.0));
+    let offspring = spec.population.saturating_sub(elites) as f64;
+    // 64-bit draws are two words; 2% and a little more for the picks and the spread.
+    (offspring * (crossover + mutation) * 2.0 * 1.02) as usize + 4096
 }
 
 /// Recombines `x` and `y` by `crossover` (always: the crossover probability is the caller's
@@ -125,6 +172,16 @@ pub fn next_generation_with_lineage(
 /// # Panics
 /// If the parents differ in length.
 pub fn recombine(crossover: &CrossoverSpec, x: &Genome, y: &Genome, rng: &mut Rng) -> Genome {
+    recombine_from(crossover, x, y, rng)
+}
+
+/// [`recombine`] drawing from any generator (the buffered words of the stream).
+fn recombine_from(
+    crossover: &CrossoverSpec,
+    x: &Genome,
+    y: &Genome,
+    rng: &mut impl RngCore,
+) -> Genome {
     assert_eq!(
         x.parameters.len(),
         y.parameters.len(),
@@ -169,6 +226,33 @@ pub fn recombine(crossover: &CrossoverSpec, x: &Genome, y: &Genome, rng: &mut Rn
 /// self-adaptation the genome's step size is cleared; with it, a genome without a step size
 /// starts from `mutation.sigma`.
 pub fn mutate(genome: &mut Genome, mutation: &MutationSpec, rng: &mut Rng) {
+    draw_mutation(genome, mutation, rng).apply(genome);
+}
+
+/// A genome's mutation as drawn: the step size and, for each gene that mutates, its index
+/// and the two `unit()` draws its normal draw is made of.
+struct DrawnMutation {
+    sigma: f64,
+    genes: Vec<(usize, f64, f64)>,
+}
+
+impl DrawnMutation {
+    /// Adds σ' · g to each drawn gene, g = [`gaussian_from`] its two draws: what
+    /// `gene += sigma * gaussian(rng)` would have added.
+    fn apply(&self, genome: &mut Genome) {
+        for &(i, a, b) in &self.genes {
+            genome.parameters[i] += self.sigma * gaussian_from(a, b);
+        }
+    }
+}
+
+/// Draws `genome`'s mutation as step 4 of the module documentation says and sets its step
+/// size; the genes change when the result is applied.
+fn draw_mutation(
+    genome: &mut Genome,
+    mutation: &MutationSpec,
+    rng: &mut impl RngCore,
+) -> DrawnMutation {
     let sigma = match &mutation.self_adaptive {
         Some(adaptation) => {
             let tau = adaptation.tau_for(genome.parameters.len());
@@ -185,9 +269,15 @@ pub fn mutate(genome: &mut Genome, mutation: &MutationSpec, rng: &mut Rng) {
             mutation.sigma
         }
     };
-    for gene in &mut genome.parameters {
+    // About probability × genes entries: reserved once rather than grown.
+    let expected = (mutation.probability.clamp(0.0, 1.0) * genome.parameters.len() as f64) as usize;
+    let mut genes = Vec::with_capacity(expected + expected / 8 + 16);
+    for i in 0..genome.parameters.len() {
         if chance(rng, mutation.probability) {
-            *gene += sigma * gaussian(rng);
+            let a = unit(rng);
+            let b = unit(rng);
+            genes.push((i, a, b));
         }
     }
+    DrawnMutation { sigma, genes }
 }

@@ -18,6 +18,7 @@ mod map_elites;
 mod motion_measures;
 mod novelty;
 mod overflowing_brains;
+mod parallel_draws;
 mod pgpe;
 mod predator_ends_life;
 mod run_guarantees;

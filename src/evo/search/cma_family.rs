@@ -5,6 +5,7 @@
 //! distribution on the best individual when a checkpoint holds none of their state, and offer
 //! only the mean as champion; what differs is the distribution itself ([`Distribution`]).
 
+use super::draws;
 use super::{centre_candidate, improved_centre, own_state, Search, SearchState, Unevaluated};
 use crate::brain::genome::Genome;
 use crate::evo::lineage::{Birth, Lineage};
@@ -12,7 +13,7 @@ use crate::evo::state::{Champion, EvaluatedGeneration, GenerationSummary};
 use crate::evo::validation::Candidate;
 use crate::experiment::evolution::CmaEsSpec;
 use crate::experiment::Experiment;
-use crate::seed::{gaussian, stream, Generation, IndividualId, Purpose, Seed, TrialIndex};
+use crate::seed::{stream, Generation, IndividualId, Purpose, Seed, TrialIndex};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 use std::fmt::Debug;
@@ -68,9 +69,7 @@ pub fn noises(
         IndividualId(0),
         TrialIndex(0),
     );
-    (0..lambda)
-        .map(|_| (0..parameters).map(|_| gaussian(&mut rng)).collect())
-        .collect()
+    draws::gaussian_rows(&mut rng, lambda, parameters)
 }
 
 /// A CMA-ES search as a [`Search`]: θ_g, the generation it samples, where its mean came from.
@@ -87,6 +86,8 @@ pub struct CmaSearch<D: Distribution> {
     state: Option<D::State>,
     /// The individual of generation g − 1 the mean came from (`None` for generation 0).
     mean_parent: Option<usize>,
+    /// The noises the last `ask` drew, for `tell`.
+    noises: draws::NoiseCache,
 }
 
 impl<D: Distribution> CmaSearch<D> {
@@ -102,6 +103,7 @@ impl<D: Distribution> CmaSearch<D> {
             generation: 0,
             state: Some(D::initial(&spec, parameters)),
             mean_parent: None,
+            noises: draws::NoiseCache::default(),
         }
     }
 
@@ -152,8 +154,28 @@ impl<D: Distribution> Search for CmaSearch<D> {
             Some(p) => Lineage::of(Birth::CmaMean, &[p]),
             None => Lineage::orphan(Birth::CmaMean),
         });
+        let lambda = self.lambda();
+        let initial;
+        let state = match &self.state {
+            Some(state) => state,
+            None => {
+                initial = D::initial(&self.spec, self.parameters);
+                &initial
+            }
+        };
+        // Kept for `tell`, which updates θ with the same noises.
+        let z = self
+            .noises
+            .get_or_draw((self.generation, lambda, Vec::new()), || {
+                noises(
+                    self.seed,
+                    Generation(self.generation),
+                    self.parameters,
+                    lambda,
+                )
+            });
         Unevaluated {
-            genomes: self.sample(self.lambda()),
+            genomes: D::individuals(state, &z),
             lineage,
         }
     }
@@ -166,12 +188,16 @@ impl<D: Distribution> Search for CmaSearch<D> {
         let lambda = self.lambda();
         let (next, parent) = match &self.state {
             Some(state) if fitness.len() == lambda + 1 => {
-                let z = noises(
-                    self.seed,
-                    Generation(evaluated.generation),
-                    self.parameters,
-                    lambda,
-                );
+                // The noises `ask` drew for this generation, or drawn again (after a resume).
+                let key = (evaluated.generation, lambda, Vec::new());
+                let z = self.noises.take_or_draw(key, || {
+                    noises(
+                        self.seed,
+                        Generation(evaluated.generation),
+                        self.parameters,
+                        lambda,
+                    )
+                });
                 (
                     D::update(&self.constants, state, &z, &fitness[..lambda]),
                     lambda,

@@ -24,6 +24,7 @@
 //! `"search": {"map_elites": {"elites": [...]}}`, so a resumed run is the same bytes.
 
 use super::descriptors::Descriptors;
+use super::draws;
 use super::grid::{
     cell_of, enters, flat_index, ArchiveView, Dimension, Elite, EliteView, GridArchive,
 };
@@ -75,13 +76,14 @@ pub fn iso_line(
     rng: &mut Rng,
 ) -> Vec<f64> {
     let line = gaussian(rng);
-    let isotropic: Vec<f64> = xi.iter().map(|_| gaussian(rng)).collect();
+    let isotropic = draws::gaussians(rng, xi.len());
     iso_line_with(xi, xj, iso_sigma, line_sigma, line, &isotropic)
 }
 
 /// The Gaussian offspring of `x`: x + σ · N(0, I), one `gaussian` per gene from `rng`.
 pub fn gaussian_offspring(x: &[f64], sigma: f64, rng: &mut Rng) -> Vec<f64> {
-    x.iter().map(|&a| a + sigma * gaussian(rng)).collect()
+    let z = draws::gaussians(rng, x.len());
+    x.iter().zip(&z).map(|(&a, &z)| a + sigma * z).collect()
 }
 
 /// MAP-Elites: its grid archive and what asks and tells need.

@@ -43,6 +43,7 @@
 pub mod cma_es;
 pub mod cma_family;
 pub mod descriptors;
+pub mod draws;
 pub mod factory;
 pub mod ga;
 pub mod grid;

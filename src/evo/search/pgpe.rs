@@ -54,6 +54,7 @@
 //! fitness, the checkpoint holds θ_g as `"search": {"pgpe": {...}}`, the champion is always
 //! the centre, and validation always considers the centre too.
 
+use super::draws;
 use super::{centre_candidate, improved_centre, own_state, Search, SearchState, Unevaluated};
 use crate::brain::genome::Genome;
 use crate::evo::lineage::{Birth, Lineage};
@@ -61,7 +62,8 @@ use crate::evo::state::{Champion, EvaluatedGeneration, GenerationSummary};
 use crate::evo::validation::Candidate;
 use crate::experiment::evolution::{PgpeSpec, MAX_MAGNITUDE};
 use crate::experiment::Experiment;
-use crate::seed::{gaussian, stream, Generation, IndividualId, Purpose, Rng, Seed, TrialIndex};
+use crate::seed::{stream, Generation, IndividualId, Purpose, Rng, Seed, TrialIndex};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// The smallest standard deviation: far below any useful step, it only keeps σ positive (the
@@ -144,15 +146,15 @@ pub fn noises(
     population: usize,
 ) -> Vec<Vec<f64>> {
     let mut rng = noise_stream(seed, generation);
-    (0..population / 2)
-        .map(|_| {
-            state
-                .stdev
-                .iter()
-                .map(|&s| s * gaussian(&mut rng))
-                .collect()
-        })
-        .collect()
+    // The draws in parallel, then ε = σ ⊙ z as `s * gaussian()` would make it.
+    let mut noises = draws::gaussian_rows(&mut rng, population / 2, state.stdev.len());
+    noises.par_iter_mut().for_each(|z| {
+        for (x, &s) in z.iter_mut().zip(&state.stdev) {
+            // x · s is s · x to the bit (IEEE multiplication commutes).
+            *x *= s;
+        }
+    });
+    noises
 }
 
 /// The individuals of a generation sampled with `noises`: c + ε_k and c − ε_k for each k in
@@ -237,20 +239,33 @@ pub fn gradients(u: &[f64], noises: &[Vec<f64>], stdev: &[f64]) -> (Vec<f64>, Ve
         sum += x;
     }
     let baseline = sum / (2 * pairs) as f64;
-    for (k, e) in noises.iter().enumerate() {
-        let (plus, minus) = (u[2 * k], u[2 * k + 1]);
-        let difference = plus - minus;
-        let average = (plus + minus) / 2.0;
-        for j in 0..n {
-            grad_centre[j] += e[j] * difference * 0.5;
-            grad_stdev[j] += (average - baseline) * (e[j] * e[j] - stdev[j] * stdev[j]) / stdev[j];
-        }
-    }
     let k = pairs as f64;
-    for j in 0..n {
-        grad_centre[j] /= k;
-        grad_stdev[j] /= k;
-    }
+    // Blocks of parameters in parallel: each parameter's sums still run over the pairs in
+    // order, so the bits do not depend on the blocks or the threads.
+    const BLOCK: usize = 1024;
+    grad_centre
+        .par_chunks_mut(BLOCK)
+        .zip(grad_stdev.par_chunks_mut(BLOCK))
+        .enumerate()
+        .for_each(|(block, (centre, spread))| {
+            let lo = block * BLOCK;
+            let stdev = &stdev[lo..lo + centre.len()];
+            for (pair, e) in noises.iter().enumerate() {
+                let (plus, minus) = (u[2 * pair], u[2 * pair + 1]);
+                let difference = plus - minus;
+                let average = (plus + minus) / 2.0;
+                let e = &e[lo..lo + centre.len()];
+                for j in 0..centre.len() {
+                    centre[j] += e[j] * difference * 0.5;
+                    spread[j] +=
+                        (average - baseline) * (e[j] * e[j] - stdev[j] * stdev[j]) / stdev[j];
+                }
+            }
+            for j in 0..centre.len() {
+                centre[j] /= k;
+                spread[j] /= k;
+            }
+        });
     (grad_centre, grad_stdev)
 }
 
@@ -351,6 +366,17 @@ pub struct Pgpe {
     /// (index N), or its best individual when the search was (re)started there; `None` for
     /// generation 0.
     centre_parent: Option<usize>,
+    /// The noises the last `ask` drew, for `tell`.
+    noises: draws::NoiseCache,
+}
+
+/// What generation `generation`'s `pairs` noises drawn for `state` are looked up by.
+fn noise_key(generation: u64, pairs: usize, state: &PgpeState) -> draws::NoiseKey {
+    (
+        generation,
+        pairs,
+        state.stdev.iter().map(|s| s.to_bits()).collect(),
+    )
 }
 
 impl Pgpe {
@@ -366,6 +392,7 @@ impl Pgpe {
             generation: 0,
             state: Some(PgpeState::initial(&spec, parameters)),
             centre_parent: None,
+            noises: draws::NoiseCache::default(),
         }
     }
 
@@ -407,12 +434,19 @@ impl Search for Pgpe {
 
     fn ask(&self) -> Unevaluated {
         let genomes = match &self.state {
-            Some(state) => sample(
-                self.seed,
-                Generation(self.generation),
-                state,
-                self.population,
-            ),
+            Some(state) => {
+                // Kept for `tell`, which updates θ with the same noises.
+                let key = noise_key(self.generation, self.population / 2, state);
+                let noises = self.noises.get_or_draw(key, || {
+                    noises(
+                        self.seed,
+                        Generation(self.generation),
+                        state,
+                        self.population,
+                    )
+                });
+                individuals(state, &noises)
+            }
             None => sample(
                 self.seed,
                 Generation(self.generation),
@@ -433,16 +467,19 @@ impl Search for Pgpe {
         let fitness = evaluated.selection_fitness();
         let population = self.population;
         let (next, centre_parent) = match &self.state {
-            Some(state) if fitness.len() == population + 1 => (
-                step(
-                    self.seed,
-                    &self.spec,
-                    state,
-                    Generation(evaluated.generation),
-                    &fitness[..population],
-                ),
-                population,
-            ),
+            Some(state) if fitness.len() == population + 1 => {
+                // The noises `ask` drew for this generation, or drawn again (after a resume):
+                // [`step`]'s.
+                let generation = Generation(evaluated.generation);
+                let key = noise_key(generation.0, population / 2, state);
+                let noises = self
+                    .noises
+                    .take_or_draw(key, || noises(self.seed, generation, state, population));
+                (
+                    update(&self.spec, state, &noises, &fitness[..population]),
+                    population,
+                )
+            }
             _ => {
                 let best = evaluated.summary().best_individual.unwrap_or(0);
                 (
