@@ -351,8 +351,32 @@ impl Mlp {
     }
 
     /// A plastic network's weight update after the forward pass of `inputs` gave `outputs`
-    /// (see [`crate::brain::plasticity`] for the rule and its order).
+    /// (see [`crate::brain::plasticity`] for the rule and its order), compiled for AVX2 when
+    /// the CPU has it: the same separate multiplies and adds, so the same bits.
+    #[inline]
     fn learn(&mut self, inputs: &[f64], outputs: &[f64]) {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: `learn_avx2` only requires AVX2, checked just above.
+            unsafe { self.learn_avx2(inputs, outputs) };
+            return;
+        }
+        self.learn_portable(inputs, outputs);
+    }
+
+    /// [`Mlp::learn_portable`] compiled for AVX2 (without FMA).
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn learn_avx2(&mut self, inputs: &[f64], outputs: &[f64]) {
+        self.learn_portable(inputs, outputs);
+    }
+
+    /// The weight update for any CPU.
+    #[inline(always)]
+    fn learn_portable(&mut self, inputs: &[f64], outputs: &[f64]) {
         let (Some(plastic), Numbers::F64 { buffers, .. }) = (&mut self.plastic, &mut self.numbers)
         else {
             return;

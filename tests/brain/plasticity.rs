@@ -51,9 +51,15 @@ fn rule(
     g: f64,
     [lo, hi]: [f64; 2],
 ) -> f64 {
-    let s = (((a * pre) * post + b * pre) + c * post) + d;
-    let dw = (eta * s) * g;
-    (w + dw).max(lo).min(hi)
+    let s = ((a * pre) * post + b * pre) + (c * post + d);
+    let dw = (eta * g) * s;
+    let w = w + dw;
+    let w = if w > lo { w } else { lo };
+    if w < hi {
+        w
+    } else {
+        hi
+    }
 }
 
 /// Each coefficient alone, over four ticks: D adds η·D, B adds η·B·pre, C adds η·C·post, A
