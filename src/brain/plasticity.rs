@@ -609,6 +609,8 @@ impl Plastic {
         weights.copy_from_slice(&self.start);
         self.previous = 0.0;
         self.has_previous = false;
+        // Scratch only, cleared so that a reset brain equals a new one.
+        self.post_terms.fill(0.0);
     }
 
     /// The tick's modulatory signal m from the observation `inputs` and `source` (the last
