@@ -335,7 +335,7 @@ impl PlasticSettings {
 
     /// The number of rule coefficient genes for weight layers of `sizes` ((units, inputs)
     /// per layer).
-    fn rule_genes(&self, sizes: &[(usize, usize)]) -> usize {
+    pub(crate) fn rule_genes(&self, sizes: &[(usize, usize)]) -> usize {
         match self.granularity {
             Granularity::Network => 5,
             Granularity::Layer => 5 * sizes.len(),

@@ -197,7 +197,7 @@ pub struct BrainSpec {
     /// `creature.inputs.shock`), `"metabolism_change"` (the change since the last tick of the
     /// metabolic vector's weighted sum, four genes; needs `creature.inputs.metabolism`) and
     /// `"neurons"` (evolved modulatory neurons on the last hidden layer, each adding its tanh
-    /// activation). At least one; none twice.
+    /// activation). At least one for a neuromodulated rule, none twice (default: `[]`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub modulators: Option<Vec<Modulator>>,
     /// mlp with `modulators` naming `"neurons"`: how many modulatory neurons, 1 to 64

@@ -496,3 +496,75 @@ fn bad_plasticity_tables_are_refused_naming_the_key() {
     );
     Experiment::from_toml(&text, &path).expect("metabolism on");
 }
+
+/// Plastic brains keep state, so evaluation runs them on the single-trial path (never in
+/// lockstep): the population's evaluation on 1 and on 2 threads equals living every group's
+/// trials one by one, bit for bit, with evolved and with random initial weights (whose
+/// per-life draws thus do not depend on threads either), with common random numbers on and
+/// off.
+#[test]
+fn plastic_evaluation_is_the_single_trial_path_on_any_thread_count() {
+    use berry_evolve::evo::evaluate::{evaluate_group, evaluate_population, Evaluation};
+    use berry_evolve::evo::lockstep;
+    use berry_evolve::evo::search::ga::first_population;
+    let bits = |evaluations: &[Evaluation]| -> Vec<(Option<u64>, [u64; 4])> {
+        evaluations
+            .iter()
+            .map(|e| (e.fitness.map(f64::to_bits), e.metabolism.map(f64::to_bits)))
+            .collect()
+    };
+    for (table, crn) in [
+        (
+            "plasticity = \"neuromodulated\"\nmodulators = [\"food_a\", \"shock\", \"neurons\"]",
+            true,
+        ),
+        (
+            "plasticity = \"hebbian\"\ninitial_weights = \"random\"",
+            true,
+        ),
+        (
+            "plasticity = \"hebbian\"\ninitial_weights = \"random\"",
+            false,
+        ),
+    ] {
+        let experiment = foraging(table)
+            .with_overrides()
+            .edit(|c| c.evolution.population = 6)
+            .trials(3)
+            .ticks(150)
+            .common_random_numbers(crn)
+            .build()
+            .unwrap();
+        let topology = experiment.topology();
+        assert!(!lockstep::stateless(&topology), "{table}");
+        let population = first_population(&experiment, &topology);
+        let serial: Vec<Evaluation> = population
+            .iter()
+            .enumerate()
+            .flat_map(|(g, genome)| {
+                evaluate_group(
+                    &experiment,
+                    &topology,
+                    std::slice::from_ref(genome),
+                    Generation(2),
+                    g as u64,
+                )
+                .unwrap()
+            })
+            .collect();
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let parallel = pool
+                .install(|| evaluate_population(&experiment, &topology, &population, Generation(2)))
+                .unwrap();
+            assert_eq!(
+                bits(&parallel),
+                bits(&serial),
+                "{table}: {threads} thread(s)"
+            );
+        }
+    }
+}
