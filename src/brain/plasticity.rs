@@ -40,7 +40,7 @@
 //! x86-64 CPUs with AVX2 the update is compiled for AVX2 (4 synapses per instruction, still
 //! without FMA), which gives the same bits as the portable build.
 //!
-//! m is summed from 0 in the order of `modulators`: `m = m + gene·signal` for a food detector
+//! m is summed from 0 in the order of `modulators`: `m += gene·signal` for a food detector
 //! (`"food_a"` … `"food_d"`) or the shock sensor (`"shock"`), read from the observation the
 //! brain was given (their indices found once, when the brain is built); for
 //! `"metabolism_change"`, s_t = Σ_k g_k·x_k (the four metabolism inputs, left to right, with
@@ -619,12 +619,12 @@ impl Plastic {
         let mut m = 0.0;
         for term in &self.terms {
             match term {
-                Term::Signal { index, gene } => m = m + gene * inputs[*index],
+                Term::Signal { index, gene } => m += gene * inputs[*index],
                 Term::Metabolism { start, genes } => {
                     let x = &inputs[*start..*start + 4];
                     let s = genes[0] * x[0] + genes[1] * x[1] + genes[2] * x[2] + genes[3] * x[3];
                     if self.has_previous {
-                        m = m + (s - self.previous);
+                        m += s - self.previous;
                     }
                     self.previous = s;
                     self.has_previous = true;
@@ -640,9 +640,9 @@ impl Plastic {
                     for k in 0..*neurons {
                         let mut s = b[k];
                         for (wkj, hj) in w[k * width..(k + 1) * width].iter().zip(source) {
-                            s = s + wkj * hj;
+                            s += wkj * hj;
                         }
-                        m = m + tanh(s);
+                        m += tanh(s);
                     }
                 }
             }
