@@ -19,22 +19,28 @@ use serde::{Deserialize, Serialize};
 pub type Rng = ChaCha8Rng;
 
 /// The experiment's master seed. Kept below 2^63 because TOML integers are signed 64-bit.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
 #[serde(transparent)]
 pub struct Seed(pub u64);
 
 /// A generation number, counted from 0 (the random initial population).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize, Default,
+)]
 #[serde(transparent)]
 pub struct Generation(pub u64);
 
 /// The index of an individual within its generation's population.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize, Default,
+)]
 #[serde(transparent)]
 pub struct IndividualId(pub u64);
 
 /// The index of a trial (one world, one life) within an evaluation.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize, Default,
+)]
 #[serde(transparent)]
 pub struct TrialIndex(pub u64);
 
@@ -70,6 +76,10 @@ pub enum Purpose {
     /// Novelty search's probabilistic archive addition: one draw per individual of
     /// generation g, in index order (`[evolution.novelty] archive_probability`).
     Novelty = 9,
+    /// A plastic brain's random initial weights (`brain.initial_weights = "random"`): one
+    /// stream per life, keyed like the life's trial world but with the individual's own
+    /// index (see [`crate::brain::plasticity::LifeKey`]).
+    PlasticWeights = 10,
 }
 
 /// SplitMix64's output function: a bijective 64-bit mixer with full avalanche.

@@ -57,6 +57,7 @@ use super::activation::{
     affine_batch_portable, kernel_portable, transpose, Activation, Real, BATCH_TILE,
 };
 use super::lanes::{self, Lanes, Stage, LANES};
+use super::plasticity::{LifeKey, Plastic, PlasticSettings, SignalInputs};
 use super::spec::Precision;
 use std::ops::Range;
 
@@ -139,6 +140,12 @@ pub struct Mlp {
     hidden: Vec<Layer>,
     output: Layer,
     numbers: Numbers,
+    /// The rule, modulation and per-life state of a plastic network (`None`: fixed weights,
+    /// and then nothing below runs). Boxed, so that a fixed brain stays small to move.
+    plastic: Option<Box<Plastic>>,
+    /// A plastic network's whole genome (`parameters` then holds only the network's weights
+    /// and biases, zeros for random initial weights).
+    genome: Option<Vec<f64>>,
 }
 
 impl Mlp {
@@ -225,12 +232,87 @@ impl Mlp {
             hidden: layers,
             output,
             numbers,
+            plastic: None,
+            genome: None,
         }
     }
 
-    /// The parameters, exactly as given.
+    /// A plastic network (`precision = "f64"` only, checked by the spec): `genome` is the
+    /// whole parameter vector, `base` the weights and biases to build the network from (the
+    /// genome's, or zeros for random initial weights, which the first reset draws) and `genes`
+    /// the plasticity genes (see [`crate::brain::plasticity`]). A plastic network never takes
+    /// the batch passes (its weights belong to one life), so it keeps no lane copy.
+    pub(crate) fn new_plastic(
+        (inputs, hidden, outputs): (usize, &[usize], usize),
+        activation: Activation,
+        settings: &PlasticSettings,
+        signals: &SignalInputs,
+        (genome, base, genes): (&[f64], &[f64], &[f64]),
+    ) -> Mlp {
+        let mut mlp = Mlp::new(inputs, hidden, outputs, activation, Precision::F64, base);
+        let sizes: Vec<(usize, usize)> = mlp
+            .hidden
+            .iter()
+            .chain([&mlp.output])
+            .map(|layer| (layer.units, layer.weights.len() / layer.units.max(1)))
+            .collect();
+        let source = mlp.hidden.last().map_or(inputs, |layer| layer.units);
+        if let Numbers::F64 { buffers, lanes } = &mut mlp.numbers {
+            *lanes = None;
+            let plastic = Plastic::new(
+                settings,
+                &sizes,
+                source,
+                signals,
+                genes,
+                &mut buffers.transposed,
+            );
+            mlp.plastic = Some(Box::new(plastic));
+        }
+        mlp.genome = Some(genome.to_vec());
+        mlp
+    }
+
+    /// True when the weights change during a life (`brain.plasticity`).
+    pub fn is_plastic(&self) -> bool {
+        self.plastic.is_some()
+    }
+
+    /// The start of a life: a plastic network's weights back to where a life starts (see
+    /// [`crate::brain::plasticity`]); nothing for a fixed one.
+    pub(crate) fn reset(&mut self) {
+        if let (Some(plastic), Numbers::F64 { buffers, .. }) =
+            (&mut self.plastic, &mut self.numbers)
+        {
+            plastic.reset(&mut buffers.transposed);
+        }
+    }
+
+    /// Sets which life a plastic network with random initial weights lives, and resets it
+    /// (see [`LifeKey`]); nothing for other networks.
+    pub(crate) fn start_life(&mut self, life: LifeKey) {
+        if let (Some(plastic), Numbers::F64 { buffers, .. }) =
+            (&mut self.plastic, &mut self.numbers)
+        {
+            plastic.start_life(life, &mut buffers.transposed);
+        }
+    }
+
+    /// The live weights of every layer, input-major (hidden layers then the output layer,
+    /// each `inputs × units` with the weights leaving input i contiguous): what the forward
+    /// pass reads, which a plastic network changes every tick.
+    pub fn live_weights(&self) -> Vec<f64> {
+        match &self.numbers {
+            Numbers::F64 { buffers, .. } => buffers.transposed.clone(),
+            Numbers::F32 { buffers, .. } => {
+                buffers.transposed.iter().map(|&w| f64::from(w)).collect()
+            }
+        }
+    }
+
+    /// The parameters, exactly as given (a plastic network's whole genome).
     pub fn parameters(&self) -> &[f64] {
-        &self.parameters
+        self.genome.as_deref().unwrap_or(&self.parameters)
     }
 
     /// Number of inputs.
@@ -263,6 +345,72 @@ impl Mlp {
     /// [`super::activation`] and the tests below).
     pub(crate) fn activate(&mut self, inputs: &[f64], outputs: &mut [f64]) {
         self.dispatch(inputs, outputs, 1);
+        if self.plastic.is_some() {
+            self.learn(inputs, outputs);
+        }
+    }
+
+    /// A plastic network's weight update after the forward pass of `inputs` gave `outputs`
+    /// (see [`crate::brain::plasticity`] for the rule and its order), compiled for AVX2 when
+    /// the CPU has it: the same separate multiplies and adds, so the same bits.
+    #[inline]
+    fn learn(&mut self, inputs: &[f64], outputs: &[f64]) {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: `learn_avx2` only requires AVX2, checked just above.
+            unsafe { self.learn_avx2(inputs, outputs) };
+            return;
+        }
+        self.learn_portable(inputs, outputs);
+    }
+
+    /// [`Mlp::learn_portable`] compiled for AVX2 (without FMA).
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn learn_avx2(&mut self, inputs: &[f64], outputs: &[f64]) {
+        self.learn_portable(inputs, outputs);
+    }
+
+    /// The weight update for any CPU.
+    #[inline(always)]
+    fn learn_portable(&mut self, inputs: &[f64], outputs: &[f64]) {
+        let (Some(plastic), Numbers::F64 { buffers, .. }) = (&mut self.plastic, &mut self.numbers)
+        else {
+            return;
+        };
+        let Buffers {
+            transposed,
+            activations,
+            ..
+        } = buffers;
+        let activations: &[f64] = activations;
+        let hidden = &self.hidden;
+        let values = |l: usize| -> &[f64] {
+            if l == 0 {
+                inputs
+            } else {
+                &activations[hidden[l - 1].out.clone()]
+            }
+        };
+        let layers = hidden
+            .iter()
+            .enumerate()
+            .map(|(l, layer)| {
+                (
+                    layer.weights.clone(),
+                    values(l),
+                    &activations[layer.out.clone()],
+                )
+            })
+            .chain([(
+                self.output.weights.clone(),
+                values(hidden.len()),
+                &outputs[..self.output.units],
+            )]);
+        plastic.update(transposed, layers, inputs, values(hidden.len()));
     }
 
     /// [`Mlp::activate`] for n samples at once: `inputs` holds n input vectors one after

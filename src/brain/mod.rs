@@ -41,6 +41,7 @@ pub mod ctrnn;
 pub mod genome;
 mod lanes;
 pub mod mlp;
+pub mod plasticity;
 pub mod recurrent;
 pub mod spec;
 pub mod summary;
@@ -50,6 +51,7 @@ pub use controller::{output_count, BrainController};
 pub use ctrnn::Ctrnn;
 pub use genome::Genome;
 pub use mlp::Mlp;
+pub use plasticity::{LifeKey, Plasticity, SignalInputs};
 pub use recurrent::Elman;
 pub use spec::{BrainKind, BrainSpec, Precision, Topology};
 
@@ -133,7 +135,39 @@ impl Brain {
                 hidden,
                 activation,
                 precision,
-            } => Brain::Mlp(Mlp::new(n, &hidden, m, activation, precision, parameters)),
+            } => match topology.spec.plastic_settings() {
+                None => Brain::Mlp(Mlp::new(n, &hidden, m, activation, precision, parameters)),
+                Some(settings) => {
+                    // The fixed network's share of the genome (none with random initial
+                    // weights: zeros stand in, the first reset draws the weights).
+                    let fixed = Topology {
+                        spec: BrainSpec {
+                            hidden: Some(hidden.clone()),
+                            activation: Some(activation),
+                            ..BrainSpec::default()
+                        },
+                        inputs: n,
+                        outputs: m,
+                        signals: SignalInputs::default(),
+                    }
+                    .parameter_count();
+                    let zeros;
+                    let (base, genes) = match settings.initial {
+                        plasticity::InitialWeights::Evolved => parameters.split_at(fixed),
+                        plasticity::InitialWeights::Random => {
+                            zeros = vec![0.0; fixed];
+                            (&zeros[..], parameters)
+                        }
+                    };
+                    Brain::Mlp(Mlp::new_plastic(
+                        (n, &hidden, m),
+                        activation,
+                        &settings,
+                        &topology.signals,
+                        (parameters, base, genes),
+                    ))
+                }
+            },
             Architecture::Recurrent { hidden, activation } => {
                 Brain::Recurrent(Elman::new(n, hidden, m, activation, parameters))
             }
@@ -182,11 +216,13 @@ impl Brain {
         }
     }
 
-    /// Clears the recurrent state (Elman context units and CTRNN states to 0), as at the start
-    /// of a trial. An MLP has no state.
+    /// The start of a life: clears the recurrent state (Elman context units and CTRNN states
+    /// to 0) and restores a plastic MLP's weights (the genome's, or its life's random draw,
+    /// see [`plasticity`]). Nothing else restores plastic weights, so a brain that lives
+    /// several episodes keeps what it learned between them. A fixed MLP has no state.
     pub fn reset(&mut self) {
         match self {
-            Brain::Mlp(_) => {}
+            Brain::Mlp(b) => b.reset(),
             Brain::Recurrent(b) => b.reset(),
             Brain::Ctrnn(b) => b.reset(),
         }
@@ -196,7 +232,16 @@ impl Brain {
     /// can then drive the creatures of several trial worlds at once with
     /// [`Brain::activate_batch`].
     pub fn is_stateless(&self) -> bool {
-        matches!(self, Brain::Mlp(_))
+        matches!(self, Brain::Mlp(b) if !b.is_plastic())
+    }
+
+    /// Tells a plastic brain with random initial weights which life it lives (its weights
+    /// are drawn from that life's stream, see [`LifeKey`]) and resets it; other brains
+    /// ignore it (their reset does not depend on the life).
+    pub fn start_life(&mut self, life: LifeKey) {
+        if let Brain::Mlp(b) = self {
+            b.start_life(life);
+        }
     }
 
     /// [`Brain::activate`] for `n` observations at once: `inputs` holds n × inputs values (one
@@ -218,8 +263,8 @@ impl Brain {
         assert_eq!(inputs.len(), n * n_in, "brain batch input count");
         assert_eq!(outputs.len(), n * n_out, "brain batch output count");
         match self {
-            Brain::Mlp(b) => b.activate_batch(inputs, outputs),
-            Brain::Recurrent(_) | Brain::Ctrnn(_) => {
+            Brain::Mlp(b) if !b.is_plastic() => b.activate_batch(inputs, outputs),
+            Brain::Mlp(_) | Brain::Recurrent(_) | Brain::Ctrnn(_) => {
                 panic!("a recurrent brain's state belongs to one life: it cannot run a batch")
             }
         }

@@ -23,6 +23,10 @@
 //! user who writes `neurons = 32` on an MLP learns that it has no effect.
 
 use super::activation::Activation;
+use super::plasticity::{
+    Granularity, InitialWeights, Modulator, PlasticSettings, Plasticity, SignalInputs,
+    DEFAULT_MODULATORY_NEURONS, DEFAULT_WEIGHT_BOUNDS,
+};
 use crate::validate::{count_within, finite, positive, InvalidValue, Valid};
 use schemars::JsonSchema;
 use serde::{de::Error as _, Deserialize, Deserializer, Serialize};
@@ -158,6 +162,48 @@ pub struct BrainSpec {
         deserialize_with = "range"
     )]
     pub gain: Option<[f64; 2]>,
+    /// mlp: whether the weights change during a life, `"none"` (default), `"hebbian"` or
+    /// `"neuromodulated"`. After every tick each weight w changes by
+    /// Δw = η·(A·pre·post + B·pre + C·post + D), times tanh(m/2) when neuromodulated (m: the
+    /// tick's modulatory signal, see `modulators`), then is clamped to `weight_bounds`; the
+    /// coefficients are evolved genes (see `granularity`), biases stay fixed, and the weights
+    /// start each life afresh (`initial_weights`). Recurrent and ctrnn brains are not
+    /// supported yet, nor `precision = "f32"`. Plastic brains run the single-trial path, not
+    /// lockstep batches (docs/learning.md, "Plastic brains").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub plasticity: Option<Plasticity>,
+    /// mlp with plasticity: how many sets of rule coefficients (η, A, B, C, D) evolve:
+    /// `"network"` (one set, the default), `"layer"` (one per weight layer) or `"synapse"`
+    /// (one per weight: 5 genes per weight).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub granularity: Option<Granularity>,
+    /// mlp with plasticity: the range [w_min, w_max] every plastic weight is clamped to after
+    /// each change, w_min < w_max (default: `[-4.0, 4.0]`).
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "range"
+    )]
+    pub weight_bounds: Option<[f64; 2]>,
+    /// mlp with plasticity: where the weights start each life: `"evolved"` (the genome's
+    /// weights, the default) or `"random"` (drawn anew for each life, uniform in [-1, 1] and
+    /// clamped to `weight_bounds`, biases 0, from the life's own seed stream; the genome then
+    /// holds only the rule's and the modulation's genes).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub initial_weights: Option<InitialWeights>,
+    /// mlp with `plasticity = "neuromodulated"`: the signals summed, each with an evolved
+    /// weight, into the modulatory signal m: `"food_a"` … `"food_d"` (the food detectors;
+    /// need `creature.inputs.food`), `"shock"` (the shock sensor; needs
+    /// `creature.inputs.shock`), `"metabolism_change"` (the change since the last tick of the
+    /// metabolic vector's weighted sum, four genes; needs `creature.inputs.metabolism`) and
+    /// `"neurons"` (evolved modulatory neurons on the last hidden layer, each adding its tanh
+    /// activation). At least one for a neuromodulated rule, none twice (default: `[]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modulators: Option<Vec<Modulator>>,
+    /// mlp with `modulators` naming `"neurons"`: how many modulatory neurons, 1 to 64
+    /// (default: 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub modulatory_neurons: Option<usize>,
 }
 
 /// Reads a `[min, max]` range. serde's own `[f64; 2]` lets the `toml` crate pass a longer
@@ -250,6 +296,7 @@ impl BrainSpec {
                 return Err(not_applicable(field, "kind = \"ctrnn\""));
             }
         }
+        self.validate_plasticity()?;
 
         match self.architecture() {
             Architecture::Mlp { hidden, .. } => validate_layers(&hidden, MAX_HIDDEN_LAYERS),
@@ -324,6 +371,74 @@ impl BrainSpec {
         }
     }
 
+    /// The plasticity keys: only on an f64 MLP, the settings' own keys only with a rule, and
+    /// the settings valid (see [`PlasticSettings::validate`]).
+    fn validate_plasticity(&self) -> Valid {
+        let rule = self.plasticity.unwrap_or_default();
+        if rule != Plasticity::None && self.kind != BrainKind::Mlp {
+            return Err(InvalidValue::new(
+                "brain.plasticity",
+                format!(
+                    "plastic weights are supported for kind = \"mlp\" only (recurrent and \
+                     ctrnn brains are not supported yet), but this brain is kind = \"{}\"; \
+                     remove it or use kind = \"mlp\"",
+                    self.kind.name()
+                ),
+            ));
+        }
+        if rule != Plasticity::None && self.precision == Some(Precision::F32) {
+            return Err(InvalidValue::new(
+                "brain.plasticity",
+                format!(
+                    "\"{}\" needs precision = \"f64\" (the rule is computed in f64); remove \
+                     `brain.precision = \"f32\"`",
+                    rule.name()
+                ),
+            ));
+        }
+        let keys = [
+            ("granularity", self.granularity.is_some()),
+            ("weight_bounds", self.weight_bounds.is_some()),
+            ("initial_weights", self.initial_weights.is_some()),
+            ("modulators", self.modulators.is_some()),
+            ("modulatory_neurons", self.modulatory_neurons.is_some()),
+        ];
+        match self.plastic_settings() {
+            None => match keys.iter().find(|(_, given)| *given) {
+                Some((key, _)) => Err(InvalidValue::new(
+                    format!("brain.{key}"),
+                    "applies only to a plastic brain: set `brain.plasticity = \"hebbian\"` \
+                     or \"neuromodulated\", or remove it (it would have no effect)",
+                )),
+                None => Ok(()),
+            },
+            Some(settings) => settings.validate(self.modulatory_neurons.is_some()),
+        }
+    }
+
+    /// The plasticity settings with defaults filled in, or `None` for fixed weights.
+    pub fn plastic_settings(&self) -> Option<PlasticSettings> {
+        let rule = self.plasticity.unwrap_or_default();
+        if rule == Plasticity::None {
+            return None;
+        }
+        let modulators = self.modulators.clone().unwrap_or_default();
+        let neurons = if modulators.contains(&Modulator::Neurons) {
+            self.modulatory_neurons
+                .unwrap_or(DEFAULT_MODULATORY_NEURONS)
+        } else {
+            0
+        };
+        Some(PlasticSettings {
+            rule,
+            granularity: self.granularity.unwrap_or_default(),
+            bounds: self.weight_bounds.unwrap_or(DEFAULT_WEIGHT_BOUNDS),
+            initial: self.initial_weights.unwrap_or_default(),
+            modulators,
+            neurons,
+        })
+    }
+
     /// The spec with its kind's defaults filled in; fields that do not apply are dropped
     /// (they are reported by [`BrainSpec::validate`]).
     pub(crate) fn architecture(&self) -> Architecture {
@@ -393,6 +508,15 @@ fn validate_layers(layers: &[usize], max_layers: usize) -> Valid {
 ///   included), the biases `bias[i]` (θ), the time-constant genes `tau[i]` and the gain
 ///   genes `gain[i]` (mapped into their ranges, see [`crate::brain::ctrnn`]).
 ///   Count: N n + N² + 3 N.
+/// - **plastic mlp** (`plasticity` not `"none"`, see [`crate::brain::plasticity`]): the mlp's
+///   weights and biases as above (left out with `initial_weights = "random"`), then the rule's
+///   coefficients: `rule_eta`, `rule_a`, `rule_b`, `rule_c`, `rule_d` (granularity
+///   `"network"`); the same five suffixed `_h0`, …, `_out` for each weight layer in order
+///   (`"layer"`); or, for each weight layer, five blocks `rule_eta_h0[j][i]`, `rule_a_h0[j][i]`,
+///   … laid out like the layer's weights (`"synapse"`). Then one group per modulator in
+///   `modulators` order: `mod_food_a` (one gene; likewise the other food types and
+///   `mod_shock`), `mod_metabolism[k]` (four), or the modulatory neurons' weights
+///   `w_mod[k][j]` (from the last hidden layer, or the inputs) followed by `b_mod[k]`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Topology {
     /// The `[brain]` table.
@@ -401,6 +525,9 @@ pub struct Topology {
     pub inputs: usize,
     /// Number of outputs, each in [-1, 1].
     pub outputs: usize,
+    /// Where the signals a neuromodulated brain's `modulators` read sit in the observation
+    /// ([`SignalInputs::from_layout`]; the default, none, suits every other brain).
+    pub signals: SignalInputs,
 }
 
 impl Topology {
@@ -410,15 +537,25 @@ impl Topology {
             spec,
             inputs,
             outputs,
+            signals: SignalInputs::default(),
         };
         topology.validate()?;
         Ok(topology)
     }
 
+    /// The topology with the modulators' signals located in `signals` (see
+    /// [`Topology::signals`]).
+    pub fn with_signals(mut self, signals: SignalInputs) -> Topology {
+        self.signals = signals;
+        self
+    }
+
     /// Validates the spec, then what depends on the inputs and outputs too: a CTRNN needs at
-    /// least one neuron per output, and no topology may exceed [`MAX_PARAMETERS`].
+    /// least one neuron per output, every modulator has its signal, and no topology may
+    /// exceed [`MAX_PARAMETERS`].
     pub fn validate(&self) -> Valid {
         self.spec.validate()?;
+        self.check_signals()?;
         let architecture = self.spec.architecture();
         let key = match &architecture {
             Architecture::Ctrnn(c) => {
@@ -450,6 +587,30 @@ impl Topology {
         Ok(())
     }
 
+    /// Every modulator of a neuromodulated brain has its signal in the observation, or the
+    /// error names `brain.modulators` and the sensor to switch on.
+    pub fn check_signals(&self) -> Valid {
+        match self.spec.plastic_settings() {
+            Some(settings) => self.signals.check(&settings.modulators),
+            None => Ok(()),
+        }
+    }
+
+    /// An MLP's weight layers as (units, inputs), hidden layers then the output layer, and
+    /// the width of the last hidden layer (or of the inputs): what plasticity genes count.
+    pub(crate) fn weight_layers(&self) -> (Vec<(usize, usize)>, usize) {
+        let mut sizes = Vec::new();
+        let mut previous = self.inputs;
+        if let Architecture::Mlp { hidden, .. } = self.spec.architecture() {
+            for units in hidden {
+                sizes.push((units, previous));
+                previous = units;
+            }
+        }
+        sizes.push((self.outputs, previous));
+        (sizes, previous)
+    }
+
     /// The number of parameters a genome for this topology carries (formulas in the type's
     /// docs). Saturates at `usize::MAX` instead of overflowing; meaningful for a topology that
     /// passes [`Topology::validate`].
@@ -465,7 +626,18 @@ impl Topology {
                     total = total.saturating_add(layer(previous, units));
                     previous = units;
                 }
-                total.saturating_add(layer(previous, m))
+                total = total.saturating_add(layer(previous, m));
+                match self.spec.plastic_settings() {
+                    None => total,
+                    Some(settings) => {
+                        let (sizes, source) = self.weight_layers();
+                        let genes = settings.gene_count(&sizes, source);
+                        match settings.initial {
+                            InitialWeights::Evolved => total.saturating_add(genes),
+                            InitialWeights::Random => genes,
+                        }
+                    }
+                }
             }
             Architecture::Recurrent { hidden: h, .. } => {
                 layer(n.saturating_add(h), h).saturating_add(layer(h, m))
@@ -496,14 +668,29 @@ impl Topology {
         };
         match self.spec.architecture() {
             Architecture::Mlp { hidden, .. } => {
+                let settings = self.spec.plastic_settings();
+                let random = settings
+                    .as_ref()
+                    .is_some_and(|s| s.initial == InitialWeights::Random);
                 let mut previous = n;
+                let mut layer_names = Vec::with_capacity(hidden.len() + 1);
                 for (l, units) in hidden.iter().enumerate() {
-                    matrix(&mut names, &format!("w_h{l}"), *units, previous);
-                    vector(&mut names, &format!("b_h{l}"), *units);
+                    if !random {
+                        matrix(&mut names, &format!("w_h{l}"), *units, previous);
+                        vector(&mut names, &format!("b_h{l}"), *units);
+                    }
+                    layer_names.push(format!("h{l}"));
                     previous = *units;
                 }
-                matrix(&mut names, "w_out", m, previous);
-                vector(&mut names, "b_out", m);
+                if !random {
+                    matrix(&mut names, "w_out", m, previous);
+                    vector(&mut names, "b_out", m);
+                }
+                layer_names.push("out".to_string());
+                if let Some(settings) = settings {
+                    let (sizes, source) = self.weight_layers();
+                    settings.gene_names(&sizes, &layer_names, source, &mut names);
+                }
             }
             Architecture::Recurrent { hidden: h, .. } => {
                 for j in 0..h {

@@ -40,6 +40,11 @@ pub struct BrainSummary {
     /// ctrnn: the gains' range [min, max].
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gain: Option<[f64; 2]>,
+    /// mlp with `plasticity`: the rule and the genome's share of it in words, e.g.
+    /// "neuromodulated plasticity per synapse, weights within [-4, 4] starting from the
+    /// genome's, modulated by food_a, shock: 2080 rule genes, 2 modulation genes".
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub plasticity: Option<String>,
     /// Parameters a genome carries.
     pub parameters: usize,
 }
@@ -59,8 +64,34 @@ impl Topology {
             substeps: None,
             tau: None,
             gain: None,
+            plasticity: None,
             parameters: self.parameter_count(),
         };
+        if let Some(p) = self.spec.plastic_settings() {
+            let (sizes, source) = self.weight_layers();
+            let rule = p.rule_genes(&sizes);
+            let modulation = p.gene_count(&sizes, source) - rule;
+            let start = match p.initial {
+                super::plasticity::InitialWeights::Evolved => "starting from the genome's",
+                super::plasticity::InitialWeights::Random => {
+                    "drawn anew each life (not in the genome)"
+                }
+            };
+            let modulators: Vec<&str> = p.modulators.iter().map(|m| m.name()).collect();
+            let modulated = if modulators.is_empty() {
+                String::new()
+            } else {
+                format!(", modulated by {}", modulators.join(", "))
+            };
+            s.plasticity = Some(format!(
+                "{} plasticity per {}, weights within [{}, {}] {start}{modulated}: {rule} rule \
+                 genes, {modulation} modulation genes",
+                p.rule.name(),
+                p.granularity.name(),
+                p.bounds[0],
+                p.bounds[1],
+            ));
+        }
         match self.spec.architecture() {
             Architecture::Mlp {
                 hidden,
@@ -142,6 +173,9 @@ impl fmt::Display for BrainSummary {
                 }
             }
         }
+        if let Some(p) = &self.plasticity {
+            write!(f, ", {p}")?;
+        }
         write!(f, ", {} parameters", self.parameters)
     }
 }
@@ -185,6 +219,17 @@ mod tests {
             kind: BrainKind::Ctrnn,
             ..BrainSpec::default()
         };
+        let plastic = BrainSpec {
+            plasticity: Some(crate::brain::Plasticity::Hebbian),
+            granularity: Some(crate::brain::plasticity::Granularity::Layer),
+            ..BrainSpec::default()
+        };
+        assert_eq!(
+            line(plastic, 24, 2),
+            "MLP 24 → 16 → 2, tanh hidden units, tanh outputs, f64 sums, hebbian plasticity \
+             per layer, weights within [-4, 4] starting from the genome's: 10 rule genes, 0 \
+             modulation genes, 444 parameters"
+        );
         assert_eq!(
             line(ctrnn, 24, 2),
             "CTRNN of 8 fully connected neurons, 24 inputs, 2 outputs read from the first \

@@ -206,7 +206,9 @@ fn pool(threads: usize) -> anyhow::Result<rayon::ThreadPool> {
 
 /// Creature-ticks per second for `worlds` one-creature worlds of `spec` on `threads`
 /// threads, all driven by one genome and run as evolution runs trials: in lockstep chunks
-/// of [`lockstep::CHUNK_TRIALS`] worlds, one rayon job and one brain per chunk. Worlds and
+/// of [`lockstep::CHUNK_TRIALS`] worlds, one rayon job and one brain per chunk (a brain that
+/// keeps state, such as a plastic MLP, gets one brain per world, each world stepped alone,
+/// as evolution's single-trial path does). Worlds and
 /// brains are built before the clock starts: placement is not what is measured.
 fn sim_rate(
     experiment: &Experiment,
@@ -217,19 +219,27 @@ fn sim_rate(
 ) -> anyhow::Result<f64> {
     let topology = experiment.topology();
     let genome = random_genomes(experiment, Generation(0), 1).swap_remove(0);
-    anyhow::ensure!(
-        lockstep::stateless(&topology),
-        "the simulator benchmark runs worlds in lockstep and needs a stateless brain (an MLP)"
-    );
+    // A brain that keeps state (a plastic MLP) cannot serve several worlds: each world gets
+    // its own and steps alone, as evolution runs such brains (one trial at a time).
+    let stateless = lockstep::stateless(&topology);
     let pool = pool(threads)?;
     let mut jobs = Vec::new();
     for chunk in lockstep::chunks(worlds) {
-        let brain = Brain::new(&topology, &genome.parameters)?;
-        let controllers = [BrainController::new(
-            brain,
-            experiment.creature.max_rpt,
-            experiment.creature.eats_by_action(),
-        )];
+        let brains = if stateless {
+            1
+        } else {
+            chunk.end - chunk.start
+        };
+        let controllers = (0..brains)
+            .map(|_| {
+                let brain = Brain::new(&topology, &genome.parameters)?;
+                Ok(BrainController::new(
+                    brain,
+                    experiment.creature.max_rpt,
+                    experiment.creature.eats_by_action(),
+                ))
+            })
+            .collect::<anyhow::Result<Vec<_>>>()?;
         let mut chunk_worlds = Vec::with_capacity((chunk.end - chunk.start) as usize);
         for w in chunk {
             let rng = stream(
@@ -249,12 +259,20 @@ fn sim_rate(
             .with_max_len(berry_evolve::evo::evaluate::JOBS_APART)
             .flat_map_iter(|(worlds, controllers)| {
                 let n = worlds.len();
-                let width = worlds[0].layout().len();
-                let mut lockstep = Lockstep::new(n, 1, width);
-                let running = vec![true; n];
-                let mut invalid = vec![false; n];
-                for _ in 0..ticks {
-                    lockstep.tick(worlds, &running, controllers, &mut invalid);
+                if stateless {
+                    let width = worlds[0].layout().len();
+                    let mut lockstep = Lockstep::new(n, 1, width);
+                    let running = vec![true; n];
+                    let mut invalid = vec![false; n];
+                    for _ in 0..ticks {
+                        lockstep.tick(worlds, &running, controllers, &mut invalid);
+                    }
+                } else {
+                    for (world, controller) in worlds.iter_mut().zip(controllers.iter_mut()) {
+                        for _ in 0..ticks {
+                            world.step(std::slice::from_mut(controller));
+                        }
+                    }
                 }
                 worlds.iter().map(|w| w.creatures()[0].travelled)
             })

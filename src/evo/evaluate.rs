@@ -83,10 +83,11 @@ fn run_trial_in(
     experiment: &Experiment,
     topology: &Topology,
     genomes: &[Genome],
-    group: u64,
+    (generation, group, trial): (Generation, u64, TrialIndex),
     world: World,
 ) -> Result<Vec<TrialOutcome>, EvaluationError> {
-    let mut controllers = checked_controllers(experiment, topology, genomes, group)?;
+    let life = (generation, trial);
+    let mut controllers = checked_controllers(experiment, topology, genomes, group, life)?;
     Ok(trial::live(
         experiment,
         world,
@@ -327,7 +328,7 @@ impl<'a> PopulationJobs<'a> {
                             self.experiment,
                             self.topology,
                             genomes,
-                            *group as u64,
+                            (self.generation, *group as u64, TrialIndex(*trial)),
                             world,
                         )
                     }
@@ -543,7 +544,7 @@ pub fn evaluate_in_worlds(
                     experiment,
                     topology,
                     std::slice::from_ref(&genomes[g]),
-                    g as u64,
+                    (Generation(0), g as u64, TrialIndex(t as u64)),
                     worlds[t].clone(),
                 )
                 .map(|o| o[0])

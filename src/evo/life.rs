@@ -7,7 +7,7 @@
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
-use crate::brain::{Brain, BrainController};
+use crate::brain::{Brain, BrainController, LifeKey};
 use crate::evo::fitness::{LifePlan, LifeScore, MEASURE_COUNT};
 use crate::experiment::Experiment;
 use crate::seed::{stream, Generation, IndividualId, Purpose, Rng, TrialIndex};
@@ -260,18 +260,31 @@ pub(crate) fn outcomes(
         .collect()
 }
 
-/// One [`CheckedController`] per genome of group `group`.
+/// One [`CheckedController`] per genome of group `group`, each told which life it lives
+/// (trial `trial` of generation `generation`): a plastic brain with random initial weights
+/// draws them from that life's stream ([`crate::brain::LifeKey`]); other brains ignore it.
 pub(crate) fn checked_controllers(
     experiment: &Experiment,
     topology: &Topology,
     genomes: &[Genome],
     group: u64,
+    (generation, trial): (Generation, TrialIndex),
 ) -> Result<Vec<CheckedController<BrainController>>, EvaluationError> {
+    let first = group * genomes.len() as u64;
     Ok(controllers(experiment, topology, genomes, group)?
         .into_iter()
-        .map(|inner| CheckedController {
-            inner,
-            non_finite: false,
+        .enumerate()
+        .map(|(k, mut inner)| {
+            inner.brain_mut().start_life(LifeKey {
+                seed: experiment.seed(),
+                generation,
+                individual: IndividualId(first + k as u64),
+                trial,
+            });
+            CheckedController {
+                inner,
+                non_finite: false,
+            }
         })
         .collect())
 }

@@ -94,7 +94,8 @@ pub fn run_trial<O: TickObserver>(
 ) -> Result<Vec<TrialOutcome>, EvaluationError> {
     // The brains first, then the world, so that a bad genome is reported before a world
     // that cannot be built, as everywhere.
-    let mut controllers = checked_controllers(experiment, topology, genomes, group)?;
+    let mut controllers =
+        checked_controllers(experiment, topology, genomes, group, (generation, trial))?;
     let world = trial_world(experiment, genomes.len(), generation, group, trial)?;
     let id = TrialId {
         generation,
@@ -117,7 +118,8 @@ pub fn run_trial_in_world<O: TickObserver>(
     world: World,
     mut observer: O,
 ) -> Result<Vec<TrialOutcome>, EvaluationError> {
-    let mut controllers = checked_controllers(experiment, topology, genomes, id.group)?;
+    let life = (id.generation, id.trial);
+    let mut controllers = checked_controllers(experiment, topology, genomes, id.group, life)?;
     observer.start(id, &world);
     Ok(live(experiment, world, &mut controllers, observer))
 }

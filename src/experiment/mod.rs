@@ -31,6 +31,7 @@ pub use tables::{
 
 use crate::brain::output_count;
 use crate::brain::spec::{BrainSpec, Topology};
+use crate::brain::SignalInputs;
 use crate::seed::Seed;
 use crate::sim::controller::ObservationLayout;
 use crate::sim::scripted::DemoSpec;
@@ -353,6 +354,8 @@ impl ExperimentConfig {
         self.creature.validate()?;
         self.world.validate(&self.creature)?;
         self.brain.validate()?;
+        // A modulator must read a sensor the creature has (`brain.modulators`).
+        self.topology().check_signals()?;
         self.evolution.validate()?;
         self.evaluation.validate()?;
         self.fitness.validate()?;
@@ -404,10 +407,12 @@ impl ExperimentConfig {
 
     /// The network topology: the brain table plus the sizes the creature implies.
     pub fn topology(&self) -> Topology {
+        let layout = self.layout();
         Topology {
             spec: self.brain.clone(),
-            inputs: self.layout().len(),
+            inputs: layout.len(),
             outputs: output_count(self.creature.eats_by_action()),
+            signals: SignalInputs::from_layout(&layout),
         }
     }
 

@@ -183,6 +183,7 @@ impl GenomeFile {
             spec: file.brain.clone(),
             inputs: file.inputs.len(),
             outputs: file.outputs.len(),
+            signals: Default::default(),
         };
         if topology.parameter_count() != file.parameters.len() {
             return Err(mismatch(format!(
@@ -237,6 +238,7 @@ impl GenomeFile {
             spec: self.brain.clone(),
             inputs: self.inputs.len(),
             outputs: self.outputs.len(),
+            signals: crate::brain::SignalInputs::from_layout(&layout),
         })
     }
 

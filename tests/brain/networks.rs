@@ -561,6 +561,7 @@ fn parameter_counts_follow_the_documented_formulas() {
                 },
                 inputs: n,
                 outputs: m,
+                signals: Default::default(),
             };
             // Σ_l (H_{l-1} + 1) H_l + (H_{L-1} + 1) m, with H_{-1} = n.
             let mut expected = 0;
@@ -593,6 +594,7 @@ fn parameter_counts_follow_the_documented_formulas() {
         spec: BrainSpec::default(),
         inputs: 24,
         outputs: 3,
+        signals: Default::default(),
     };
     assert_eq!(standard.parameter_count(), 25 * 16 + 17 * 3);
 }
@@ -817,6 +819,7 @@ fn invalid_topology_is_an_error_not_a_panic() {
         spec: spec("kind = \"ctrnn\"\nneurons = 2"),
         inputs: 4,
         outputs: 3,
+        signals: Default::default(),
     };
     let err = Brain::new(&t, &[]).expect_err("2 neurons cannot give 3 outputs");
     match err {
@@ -1016,6 +1019,7 @@ fn topology_checks_what_needs_inputs_and_outputs() {
         spec: BrainSpec::default(),
         inputs: usize::MAX,
         outputs: 3,
+        signals: Default::default(),
     };
     assert_eq!(t.parameter_count(), usize::MAX);
     assert!(t.validate().is_err());

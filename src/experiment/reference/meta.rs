@@ -5,6 +5,7 @@
 //! names a key that is gone, and that each range is the one validation refuses outside of.
 //! Limits are the code's own constants, so a changed limit changes the page.
 
+use crate::brain::plasticity::MAX_MODULATORY_NEURONS;
 use crate::brain::spec::{MAX_HIDDEN_LAYERS, MAX_SUBSTEPS, MAX_UNITS};
 use crate::experiment::evolution::{
     DEFAULT_ARCHIVE_PROBABILITY, DEFAULT_GAUSSIAN_SIGMA, DEFAULT_ISO_SIGMA, DEFAULT_LINE_SIGMA,
@@ -339,6 +340,12 @@ pub fn keys() -> Vec<KeyMeta> {
         k("BrainSpec.substeps", "", Range::between(1.0, MAX_SUBSTEPS as f64), NET),
         k("BrainSpec.tau", "CTRNN time units", gt0().note("min ≤ max"), NET),
         k("BrainSpec.gain", "", ge0().note("min ≤ max"), NET),
+        k("BrainSpec.plasticity", "", any().note("mlp with precision = \"f64\" only"), NET),
+        k("BrainSpec.granularity", "", any(), NET),
+        k("BrainSpec.weight_bounds", "", any().note("min < max"), NET),
+        k("BrainSpec.initial_weights", "", any(), NET),
+        k("BrainSpec.modulators", "", any().note("neuromodulated only; each needs its sensor in [creature.inputs]"), NET),
+        k("BrainSpec.modulatory_neurons", "", Range::between(1.0, MAX_MODULATORY_NEURONS as f64).note("with \"neurons\" in modulators"), NET),
         // [evolution]
         kd("EvolutionSpec.algorithm", "", any(), GA, Algorithm::default()),
         k("EvolutionSpec.population", "individuals", Range::between(2.0, MAX_POPULATION as f64).note(format!("even for pgpe; population × brain parameters at most {MAX_GENERATION_PARAMETERS}")), GA),
