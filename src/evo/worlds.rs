@@ -14,6 +14,7 @@
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
+use crate::evo::episodes::LifeOrigin;
 use crate::evo::evaluate::{aggregate, evaluate_population, run_trial, Evaluation, JOBS_APART};
 use crate::evo::life::{EvaluationError, TrialOutcome};
 use crate::evo::trial::{run_trial_in_world, NoObserver, TrialId};
@@ -230,7 +231,9 @@ fn life(
                 trial,
             };
             let world = worlds[t as usize].clone();
-            run_trial_in_world(experiment, topology, genomes, id, world, NoObserver)?
+            // Built worlds are the validation worlds (see `WorldSet::built_worlds`).
+            let origin = LifeOrigin::validation(trial);
+            run_trial_in_world(experiment, topology, genomes, id, origin, world, NoObserver)?
         }
         None => run_trial(experiment, topology, genomes, generation, 0, trial)?,
     };
