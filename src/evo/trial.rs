@@ -136,6 +136,22 @@ pub fn run_trial_in_world<O: TickObserver>(
     .0)
 }
 
+/// Lives the life at `origin` for `genomes` (one creature each), `first` its first world when
+/// built beforehand, showing each episode to `observer`: each creature's life outcome and
+/// its episodes (what `compare --json` reports per episode).
+pub fn run_life<O: TickObserver>(
+    experiment: &Experiment,
+    topology: &Topology,
+    genomes: &[Genome],
+    id: TrialId,
+    origin: LifeOrigin,
+    first: Option<World>,
+    observer: O,
+) -> Result<(Vec<TrialOutcome>, LifeEpisodes), EvaluationError> {
+    let mut controllers = checked_controllers(experiment, topology, genomes, id.group)?;
+    live_life(experiment, first, origin, id, &mut controllers, observer)
+}
+
 /// Every creature's episodes of one life, in order: each episode's outcome and its bites of
 /// the switch kinds.
 pub type LifeEpisodes = Vec<Vec<(TrialOutcome, Option<EpisodeChoices>)>>;
