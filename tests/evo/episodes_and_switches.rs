@@ -12,6 +12,7 @@ use berry_evolve::evo::evaluate::{evaluate_group, evaluate_population, run_trial
 use berry_evolve::evo::fitness::{LifePlan, LifeScore};
 use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::lockstep;
+use berry_evolve::evo::trial::{TickObserver, TrialId};
 use berry_evolve::experiment::{Experiment, Measure};
 use berry_evolve::seed::{stream, uniform, Generation, IndividualId, Purpose, TrialIndex};
 use berry_evolve::sim::world::World;
@@ -515,4 +516,51 @@ fn t_maze_switch_runs_are_the_same_bytes_on_any_thread_count_and_resumed() {
     );
     let fitness = std::fs::read_to_string(one.join("fitness.csv")).unwrap();
     assert!(fitness.contains("best_adapted_choice"), "{fitness}");
+}
+
+/// Counts what a trial observer is shown.
+#[derive(Default)]
+struct Shown {
+    starts: Vec<TrialId>,
+    ticks: Vec<u64>,
+    finished: Vec<f64>,
+}
+
+impl TickObserver for Shown {
+    fn start(&mut self, trial: TrialId, _world: &World) {
+        self.starts.push(trial);
+    }
+    fn tick(&mut self, _world: &World, tick: u64) {
+        self.ticks.push(tick);
+    }
+    fn finish(&mut self, _world: &World, outcomes: &[TrialOutcome]) {
+        self.finished.push(outcomes[0].score);
+    }
+}
+
+/// An observer (the trace, `replay`) sees each episode of a life as a trial of its own, with
+/// its ticks from 1, and the episodes' scores add up to the life's.
+#[test]
+fn an_observer_sees_each_episode_as_a_trial() {
+    let e = load(&world(SWITCHED));
+    let topology = e.topology();
+    let mut shown = Shown::default();
+    let g = [genome(&e, 1)];
+    let life = berry_evolve::evo::trial::run_trial(
+        &e,
+        &topology,
+        &g,
+        Generation(1),
+        0,
+        TrialIndex(2),
+        &mut shown,
+    )
+    .unwrap()[0];
+    assert_eq!(shown.starts.len(), 4);
+    assert_eq!(shown.finished.len(), 4);
+    assert_eq!(shown.ticks.iter().filter(|&&t| t == 1).count(), 4);
+    let sum = shown.finished.iter().fold(0.0, |a, s| a + s);
+    assert_eq!(sum.to_bits(), life.score.to_bits());
+    let alone = run_trial(&e, &topology, &g, Generation(1), 0, TrialIndex(2)).unwrap()[0];
+    same(&alone, &life, "watched and not");
 }
