@@ -191,8 +191,15 @@ fn a_recurrent_brain_carries_its_state_across_episodes_not_across_lives() {
         let topology = e.topology();
         let g = genome(&e, 3);
         for t in [0u64, 1] {
-            let life =
-                run_trial(&e, &topology, &[g.clone()], Generation(2), 0, TrialIndex(t)).unwrap()[0];
+            let life = run_trial(
+                &e,
+                &topology,
+                std::slice::from_ref(&g),
+                Generation(2),
+                0,
+                TrialIndex(t),
+            )
+            .unwrap()[0];
             let origin = LifeOrigin::trial(&e, Generation(2), 0, TrialIndex(t));
             let worlds = Life::new(&e, origin);
             let by_hand = |reset: bool| {
