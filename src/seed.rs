@@ -80,6 +80,12 @@ pub enum Purpose {
     /// stream per life, keyed like the life's trial world but with the individual's own
     /// index (see [`crate::brain::plasticity::LifeKey`]).
     PlasticWeights = 10,
+    /// A life's switch draws (`[evaluation.switch]`): whether its payoffs start exchanged and
+    /// before which episodes they are exchanged again, from the coordinates of the life's
+    /// first world's stream (its purpose absorbed as an extra coordinate, see
+    /// [`sub_stream`]), so every life draws its own, the same every time. 12, leaving 10 and
+    /// 11 to purposes being added on other branches.
+    Switch = 12,
 }
 
 /// SplitMix64's output function: a bijective 64-bit mixer with full avalanche.
@@ -103,8 +109,25 @@ pub fn stream(
     individual: IndividualId,
     trial: TrialIndex,
 ) -> Rng {
+    sub_stream(seed, purpose, generation, individual, trial, &[])
+}
+
+/// [`stream`] with more coordinates absorbed after the five (the same way): a family of
+/// streams below one stream, e.g. the worlds of episodes 2, 3, ... of a life whose first
+/// world is `stream(...)`. With no extra coordinate it is [`stream`], bit for bit.
+pub fn sub_stream(
+    seed: Seed,
+    purpose: Purpose,
+    generation: Generation,
+    individual: IndividualId,
+    trial: TrialIndex,
+    extra: &[u64],
+) -> Rng {
     let mut h = mix64(seed.0.wrapping_add(GOLDEN_GAMMA));
-    for x in [purpose as u64, generation.0, individual.0, trial.0] {
+    for &x in [purpose as u64, generation.0, individual.0, trial.0]
+        .iter()
+        .chain(extra)
+    {
         h = mix64((h ^ x).wrapping_add(GOLDEN_GAMMA));
     }
     let mut key = [0u8; 32];

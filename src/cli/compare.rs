@@ -13,7 +13,7 @@ use anyhow::Context;
 use berry_evolve::evo::evaluate::aggregate;
 use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::stats::FitnessStats;
-use berry_evolve::evo::worlds::{self, alone, lives};
+use berry_evolve::evo::worlds::{self, alone, lives, lives_by_episode};
 use berry_evolve::experiment::{Aggregate, Experiment, Measure, MEASURES};
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::sim::world::World;
@@ -132,6 +132,22 @@ pub struct TrialReport {
     pub non_finite: bool,
     /// The experiment's behaviour measures in this trial.
     pub measures: Named<f64>,
+    /// With lives of several episodes (`compare --json` of a genome file): the life's
+    /// episodes, for a curve of the correct-choice share per episode.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub episodes: Option<EpisodesReport>,
+}
+
+/// One life's episodes (`[evaluation] episodes_per_life` > 1), each list in episode order.
+#[derive(Debug, Serialize)]
+pub struct EpisodesReport {
+    /// The episodes (numbered from 1) a switch came before.
+    pub switches: Vec<u64>,
+    /// Per episode: were the switch kinds' payoffs exchanged (relative to `[world.kinds]`)?
+    pub exchanged: Vec<bool>,
+    /// Per episode: was its first bite of a switch kind of the kind that paid then (false
+    /// when it bit neither)? Empty without `[evaluation.switch]`.
+    pub correct_first_choice: Vec<bool>,
 }
 
 impl TrialReport {
@@ -144,6 +160,7 @@ impl TrialReport {
             shocked_ticks: o.shocked_ticks,
             non_finite: o.non_finite,
             measures: named_measures(experiment, &o.measures),
+            episodes: None,
         }
     }
 }
@@ -192,6 +209,30 @@ impl GenomeReport {
                 .map(|(o, t)| TrialReport::new(experiment, t, o))
                 .collect(),
         }
+    }
+
+    /// `correct first choice by episode: 0.50 0.70 ...`: per episode, the share of lives whose
+    /// first choice was correct (None without per-episode choices).
+    fn choices_text(&self) -> Option<String> {
+        let lives: Vec<&Vec<bool>> = self
+            .trials
+            .iter()
+            .filter_map(|t| t.episodes.as_ref())
+            .map(|e| &e.correct_first_choice)
+            .filter(|c| !c.is_empty())
+            .collect();
+        let k = lives.first()?.len();
+        let shares: Vec<String> = (0..k)
+            .map(|e| {
+                let right = lives.iter().filter(|c| c[e]).count();
+                format!("{:.2}", right as f64 / lives.len() as f64)
+            })
+            .collect();
+        Some(format!(
+            "correct first choice by episode ({} lives): {}",
+            lives.len(),
+            shares.join(" ")
+        ))
     }
 
     /// `46.0000  (A 22.000, B 10.000, C 8.000, D 6.000)  distinct_food 7.6667`.
@@ -259,6 +300,10 @@ pub struct RandomReport {
     pub genomes: Vec<GenomeReport>,
 }
 
+fn is_one(x: &u64) -> bool {
+    *x == 1
+}
+
 /// What `compare` prints (as text, or as JSON with `--json`).
 #[derive(Debug, Serialize)]
 pub struct CompareReport {
@@ -272,8 +317,11 @@ pub struct CompareReport {
     pub seed: u64,
     /// Trials per genome.
     pub trials: u64,
-    /// Ticks per trial.
+    /// Ticks per trial (per episode with lives of several).
     pub ticks: u64,
+    /// Episodes per life (absent when 1).
+    #[serde(skip_serializing_if = "is_one")]
+    pub episodes_per_life: u64,
     /// How a genome's trial scores become its fitness.
     pub aggregate: Aggregate,
     /// Whose worlds.
@@ -287,8 +335,13 @@ pub struct CompareReport {
 impl CompareReport {
     /// Prints the report as the text lines `compare` has always printed.
     fn print_text(&self) {
+        let episodes = if self.episodes_per_life > 1 {
+            format!(" x {} episodes", self.episodes_per_life)
+        } else {
+            String::new()
+        };
         outln!(
-            "experiment `{}`: {} trials x {} ticks on {}",
+            "experiment `{}`: {} trials{episodes} x {} ticks on {}",
             self.experiment,
             self.trials,
             self.ticks,
@@ -296,6 +349,9 @@ impl CompareReport {
         );
         for g in &self.genomes {
             outln!("{}: fitness {}", g.path.as_deref().unwrap_or("?"), g.text());
+            if let Some(line) = g.choices_text() {
+                outln!("  {line}");
+            }
         }
         if let Some(r) = &self.random {
             let s = &r.fitness;
@@ -354,12 +410,28 @@ pub(crate) fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
         let file = GenomeFile::load(path)?;
         let topology = file.topology_for(&experiment, path)?;
         warn_other_experiment(&file, path, &experiment, &experiment_path);
+        let path = Some(path.display().to_string());
+        if experiment.evaluation.episodes_per_life > 1 {
+            let lived = lives_by_episode(&experiment, &topology, &file.genome(), set, built)?;
+            let o: Vec<TrialOutcome> = lived.iter().map(|(o, _)| *o).collect();
+            let mut report = GenomeReport::new(&experiment, path, &o);
+            let switch = experiment.evaluation.switch.is_some();
+            for (trial, (_, c)) in report.trials.iter_mut().zip(lived) {
+                trial.episodes = Some(EpisodesReport {
+                    switches: c.switches,
+                    exchanged: c.exchanged,
+                    correct_first_choice: if switch {
+                        c.correct_first_choice
+                    } else {
+                        Vec::new()
+                    },
+                });
+            }
+            genomes.push(report);
+            continue;
+        }
         let o = lives(&experiment, &topology, &file.genome(), set, built)?;
-        genomes.push(GenomeReport::new(
-            &experiment,
-            Some(path.display().to_string()),
-            &o,
-        ));
+        genomes.push(GenomeReport::new(&experiment, path, &o));
     }
     let random = (args.random > 0)
         .then(|| random_genomes(&experiment, set, built, args.random))
@@ -371,6 +443,7 @@ pub(crate) fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
         seed: experiment.seed,
         trials: set.trials(&experiment),
         ticks: experiment.evaluation.ticks,
+        episodes_per_life: experiment.evaluation.episodes_per_life,
         aggregate: experiment.evaluation.aggregate,
         worlds: Worlds::of(set),
         genomes,

@@ -15,6 +15,7 @@ use crate::cli::worlds::{
 use anyhow::Context;
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::brain::spec::Topology;
+use berry_evolve::evo::episodes::LifeOrigin;
 use berry_evolve::evo::evaluate::aggregate;
 use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::trace::{TraceRecorder, TrialTrace};
@@ -214,7 +215,9 @@ impl Replay {
                     group,
                     trial,
                 };
-                trial::run_trial_in_world(e, topology, genomes, id, world, observer)?
+                // Built worlds are the validation worlds (`WorldSet::built_worlds`).
+                let origin = LifeOrigin::validation(trial);
+                trial::run_trial_in_world(e, topology, genomes, id, origin, world, observer)?
             }
             None => trial::run_trial(e, topology, genomes, generation, group, trial, observer)?,
         })

@@ -11,6 +11,8 @@ use crate::cli::json::{self, Named};
 use crate::cli::worlds::{warn_other_experiment, WorldSet, WorldSetArgs, WorldsChoice};
 
 use anyhow::Context;
+use berry_evolve::evo::episodes::LifeOrigin;
+use berry_evolve::seed::TrialIndex;
 use berry_evolve::evo::evaluate::{evaluate_in_worlds, worlds_from, Evaluation};
 use berry_evolve::evo::worlds::random_genomes;
 use berry_evolve::evo::life::trial_stream;
@@ -250,17 +252,20 @@ fn held_out(
     let generation = set.generation();
     // The worlds compare uses: the validation worlds, or group 0 of the generation, one
     // creature each.
-    let worlds = match set.built_worlds(experiment)? {
-        Some(worlds) => worlds,
-        None => worlds_from(experiment, experiment.evaluation.trials, generation, |t| {
-            trial_stream(experiment, generation, 0, t)
-        })?,
+    let (worlds, origin) = match set.built_worlds(experiment)? {
+        Some(worlds) => (worlds, LifeOrigin::validation(TrialIndex(0))),
+        None => (
+            worlds_from(experiment, experiment.evaluation.trials, generation, |t| {
+                trial_stream(experiment, generation, 0, t)
+            })?,
+            LifeOrigin::trial(experiment, generation, 0, TrialIndex(0)),
+        ),
     };
     let evaluate_file = |path: &PathBuf| -> anyhow::Result<Evaluation> {
         let file = GenomeFile::load(path)?;
         let topology = file.topology_for(experiment, path)?;
         warn_other_experiment(&file, path, experiment, experiment_path);
-        Ok(evaluate_in_worlds(experiment, &topology, &[file.genome()], &worlds)?.remove(0))
+        Ok(evaluate_in_worlds(experiment, &topology, &[file.genome()], &worlds, origin)?.remove(0))
     };
     let mut out = Vec::new();
     let mut without_best = Vec::new();
@@ -283,7 +288,7 @@ fn held_out(
     if args.random > 0 {
         let topology = experiment.topology();
         let genomes = random_genomes(experiment, generation, args.random as usize);
-        let evaluations = evaluate_in_worlds(experiment, &topology, &genomes, &worlds)?;
+        let evaluations = evaluate_in_worlds(experiment, &topology, &genomes, &worlds, origin)?;
         let fitness: Vec<f64> = evaluations.iter().filter_map(|e| e.fitness).collect();
         let measure =
             |k: usize| -> Vec<f64> { evaluations.iter().map(|e| e.measures[k]).collect() };

@@ -56,6 +56,13 @@ impl Episode {
         generation: Generation,
         trial: TrialIndex,
     ) -> Result<Episode, EvaluationError> {
+        let episodes = experiment.evaluation.episodes_per_life;
+        if episodes > 1 {
+            return Err(EvaluationError::Episodes {
+                episodes,
+                path: "the step-by-step episode (the Python package's environments)",
+            });
+        }
         let world = trial_world(experiment, 1, generation, 0, trial)?;
         Ok(Episode::in_world(experiment, world))
     }

@@ -14,6 +14,7 @@
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
+use crate::evo::episodes::LifeOrigin;
 use crate::evo::life::{
     build_trial_world, checked_controllers, valid_specs, world_error, EvaluationError, TrialOutcome,
 };
@@ -78,16 +79,40 @@ pub fn run_trial(
     )
 }
 
-/// [`run_trial`] in a given world: a clone of the trial's world from [`shared_worlds`].
+/// [`run_trial`] in a given world: a clone of the trial's world from [`shared_worlds`], or a
+/// world built beforehand from the stream at `origin` (the first of the life's worlds).
 fn run_trial_in(
     experiment: &Experiment,
     topology: &Topology,
     genomes: &[Genome],
-    (generation, group, trial): (Generation, u64, TrialIndex),
+    group: u64,
+    origin: LifeOrigin,
     world: World,
 ) -> Result<Vec<TrialOutcome>, EvaluationError> {
-    let life = (generation, trial);
-    let mut controllers = checked_controllers(experiment, topology, genomes, group, life)?;
+    let mut controllers = checked_controllers(
+        experiment,
+        topology,
+        genomes,
+        group,
+        (origin.generation, origin.trial),
+    )?;
+    if experiment.evaluation.episodes_per_life > 1 {
+        let id = trial::TrialId {
+            generation: origin.generation,
+            group,
+            trial: origin.trial,
+        };
+        let observer = trial::NoObserver;
+        return Ok(trial::live_life(
+            experiment,
+            Some(world),
+            origin,
+            id,
+            &mut controllers,
+            observer,
+        )?
+        .0);
+    }
     Ok(trial::live(
         experiment,
         world,
@@ -318,17 +343,27 @@ impl<'a> PopulationJobs<'a> {
                 *group as u64,
                 trials.clone(),
                 shared,
+                LifeOrigin::trial(
+                    self.experiment,
+                    self.generation,
+                    *group as u64,
+                    TrialIndex(0),
+                ),
             ),
             Job::Trial { group, trial } => {
                 let genomes = &self.population[group * k..(group + 1) * k];
                 let lives = match shared {
                     Some(worlds) => {
                         let world = worlds[*trial as usize].clone();
+                        let (generation, trial) = (self.generation, TrialIndex(*trial));
+                        let origin =
+                            LifeOrigin::trial(self.experiment, generation, *group as u64, trial);
                         run_trial_in(
                             self.experiment,
                             self.topology,
                             genomes,
-                            (self.generation, *group as u64, TrialIndex(*trial)),
+                            *group as u64,
+                            origin,
                             world,
                         )
                     }
@@ -499,12 +534,15 @@ pub fn worlds_from(
 /// Evaluates each of `genomes` alone in every one of `worlds` (built for one creature, e.g.
 /// by [`worlds_from`]), in parallel on the current rayon pool, with the same trial path as
 /// evolution (lockstep for stateless brains). Results in genome order, each aggregated
-/// serially over the worlds in order: the same bits for any number of threads.
+/// serially over the worlds in order: the same bits for any number of threads. `origin` is
+/// where the first world came from (world t's is `origin.with_trial(t)`), whence the later
+/// episodes of lives of several.
 pub fn evaluate_in_worlds(
     experiment: &Experiment,
     topology: &Topology,
     genomes: &[Genome],
     worlds: &[World],
+    origin: LifeOrigin,
 ) -> Result<Vec<Evaluation>, EvaluationError> {
     let trials = worlds.len() as u64;
     let per_genome: Vec<Vec<TrialOutcome>> = if lockstep::stateless(topology) {
@@ -524,6 +562,7 @@ pub fn evaluate_in_worlds(
                     *g as u64,
                     chunk.clone(),
                     Some(worlds),
+                    origin,
                 )
             })
             .collect::<Result<_, _>>()?;
@@ -544,7 +583,8 @@ pub fn evaluate_in_worlds(
                     experiment,
                     topology,
                     std::slice::from_ref(&genomes[g]),
-                    (Generation(0), g as u64, TrialIndex(t as u64)),
+                    g as u64,
+                    origin.with_trial(TrialIndex(t as u64)),
                     worlds[t].clone(),
                 )
                 .map(|o| o[0])

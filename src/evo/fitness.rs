@@ -7,6 +7,7 @@
 //! tick costs what it always did, and a world query is made only for a term or measure that
 //! needs it.
 
+use crate::evo::episodes::{ChoicePlan, ChoiceTrack, EpisodeChoices};
 use crate::experiment::tables::{area_index, FORWARD_STEP, STILL_STEP};
 use crate::experiment::terms::{self, Quantity, Sign, TERMS, TERM_COUNT};
 use crate::experiment::{Balance, Experiment, FitnessMode, FitnessSpec, GoalAt, Measure, MEASURES};
@@ -127,6 +128,8 @@ pub struct LifePlan {
     watches_places: bool,
     /// Some term or measure needs the food objects each creature eats from.
     bites: bool,
+    /// The switch measures' objects (`adapted_choice`, `good_bite_share`).
+    choices: Option<ChoicePlan>,
 }
 
 impl LifePlan {
@@ -152,6 +155,7 @@ impl LifePlan {
             per_tick: false,
             watches_places: false,
             bites: spec.distinct_food_bonus != 0.0,
+            choices: None,
         }
     }
 
@@ -181,12 +185,16 @@ impl LifePlan {
         plan.measures = behaviour.measures.clone();
         plan.behaviour_area = area(&behaviour.area);
         plan.threat_radius = behaviour.threat_radius;
+        if plan.measures.iter().any(|m| m.needs_switch()) {
+            plan.choices = ChoicePlan::new(experiment, world);
+        }
         plan.counts_threats = plan.weight(Quantity::ShelteredThreatTicks) != 0.0
             || plan.measures.contains(&Measure::ShelterWhileThreat);
         let closest = matches!(plan.goal, Some((_, _, _, GoalAt::Closest)));
         plan.watches_places = plan.area_bonus.is_some()
             || closest
             || plan.counts_threats
+            || plan.choices.is_some()
             || plan.measures.iter().any(|m| {
                 matches!(
                     m,
@@ -202,6 +210,7 @@ impl LifePlan {
         plan.tracks_pose = plan.weight(Quantity::ForwardDistance) != 0.0 || plan.follows_motion;
         plan.per_tick = plan.watches_places || plan.tracks_pose;
         plan.bites = plan.weight(Quantity::DistinctFood) != 0.0
+            || plan.choices.is_some()
             || plan.measures.iter().any(|m| {
                 matches!(
                     m,
@@ -349,6 +358,8 @@ pub struct LifeScore {
     still_ticks: u64,
     path_length: f64,
     side_choice: Option<SideChoice>,
+    /// The bites of the switch kinds (`adapted_choice`, `good_bite_share`).
+    choices: Option<ChoiceTrack>,
 }
 
 impl LifeScore {
@@ -389,6 +400,7 @@ impl LifeScore {
             still_ticks: 0,
             path_length: 0.0,
             side_choice: None,
+            choices: None,
         }
     }
 
@@ -417,6 +429,7 @@ impl LifeScore {
         if plan.measures.contains(&Measure::RichestSideFirst) {
             score.side_choice = SideChoice::start(world, creature);
         }
+        score.choices = plan.choices.as_ref().map(ChoiceTrack::new);
         score
     }
 
@@ -482,6 +495,9 @@ impl LifeScore {
             self.area_reached |= inside;
             self.ticks_in_area += u64::from(inside);
         }
+        if let (Some(track), Some(choices)) = (&mut self.choices, &plan.choices) {
+            track.record(choices, world.bitten(creature));
+        }
         if plan.counts_threats {
             let r = plan.threat_radius;
             let ground = world.actors().iter().any(|a| {
@@ -539,6 +555,11 @@ impl LifeScore {
     /// Ticks on which the creature was shocked.
     pub fn shocked_ticks(&self) -> u64 {
         self.shocked_ticks
+    }
+
+    /// The episode's bites of the switch kinds (None when no switch measure is reported).
+    pub fn choices(&self) -> Option<EpisodeChoices> {
+        self.choices.as_ref().map(ChoiceTrack::choices)
     }
 
     /// Ticks recorded (the creature alive at their end).
@@ -665,6 +686,19 @@ impl LifeScore {
                 Measure::RichestSideFirst => match &self.side_choice {
                     Some(s) => f64::from(u8::from(bitten.get(s.food) == Some(&true) && !s.strayed)),
                     None => 0.0,
+                },
+                // One episode's values; a life of several combines its episodes' bites
+                // (`evo::episodes::Life::outcome`).
+                Measure::AdaptedChoice => {
+                    let first = self.choices().and_then(|c| c.first);
+                    f64::from(u8::from(first == Some(true)))
+                }
+                Measure::GoodBiteShare => match self.choices() {
+                    Some(c) if c.bites > 1 => {
+                        let first = u64::from(c.first == Some(true));
+                        (c.good - first) as f64 / (c.bites - 1) as f64
+                    }
+                    _ => 0.0,
                 },
             };
         }

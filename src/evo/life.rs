@@ -38,6 +38,17 @@ pub enum EvaluationError {
         /// The placement failure.
         error: crate::sim::PlacementError,
     },
+    /// A trial path that lives one episode per life was asked for lives of several.
+    #[error(
+        "evaluation.episodes_per_life = {episodes}: {path} lives one episode per life; set \
+         episodes_per_life = 1 for it"
+    )]
+    Episodes {
+        /// The experiment's episodes per life.
+        episodes: u64,
+        /// The path that cannot (e.g. "the step-by-step episode of the Python package").
+        path: &'static str,
+    },
     /// Another process (an MPI rank) could not evaluate its share, or could not take part.
     #[error("rank {rank} {what}")]
     Rank {

@@ -14,11 +14,13 @@
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
 use crate::brain::{Brain, BrainController};
+use crate::evo::episodes::{EpisodeChoices, Life, LifeOrigin};
 use crate::evo::fitness::{LifePlan, LifeScore};
 use crate::evo::life::{
     build_trial_world, controllers, finite_command, outcomes, record_tick, start_scores,
     valid_specs, EvaluationError, TrialOutcome,
 };
+use crate::evo::trial::LifeEpisodes;
 use crate::experiment::Experiment;
 use crate::seed::{Generation, TrialIndex};
 use crate::sim::controller::MotorCommand;
@@ -187,13 +189,16 @@ pub fn run_trials(
     group: u64,
     trials: Range<u64>,
 ) -> Result<Vec<Vec<TrialOutcome>>, EvaluationError> {
+    let origin = LifeOrigin::trial(experiment, generation, group, TrialIndex(0));
     run_trials_in(
-        experiment, topology, genomes, generation, group, trials, None,
+        experiment, topology, genomes, generation, group, trials, None, origin,
     )
 }
 
 /// [`run_trials`], cloning the trials' worlds from `shared` (evaluation's shared worlds: the
-/// same worlds, built once for every group) when given, else building them.
+/// same worlds, built once for every group) when given, else building them. Trial t's life
+/// is at `origin.with_trial(t)` (its later episodes' worlds come from there).
+#[allow(clippy::too_many_arguments)] // the trial coordinates, each needed
 pub(crate) fn run_trials_in(
     experiment: &Experiment,
     topology: &Topology,
@@ -202,8 +207,23 @@ pub(crate) fn run_trials_in(
     group: u64,
     trials: Range<u64>,
     shared: Option<&[World]>,
+    origin: LifeOrigin,
 ) -> Result<Vec<Vec<TrialOutcome>>, EvaluationError> {
     let mut controllers = controllers(experiment, topology, genomes, group)?;
+    if experiment.evaluation.episodes_per_life > 1 {
+        let lives: Vec<Life<'_>> = trials
+            .clone()
+            .map(|t| Life::new(experiment, origin.with_trial(TrialIndex(t))))
+            .collect();
+        let firsts: Vec<Option<World>> = match shared {
+            Some(worlds) => worlds[trials.start as usize..trials.end as usize]
+                .iter()
+                .map(|w| Some(w.clone()))
+                .collect(),
+            None => vec![None; lives.len()],
+        };
+        return live_lives(experiment, &lives, firsts, &mut controllers);
+    }
     let worlds = match shared {
         Some(worlds) => worlds[trials.start as usize..trials.end as usize].to_vec(),
         None => {
@@ -219,14 +239,70 @@ pub(crate) fn run_trials_in(
     Ok(live_trials(experiment, worlds, &mut controllers))
 }
 
+/// Lives `lives` (of several episodes each) in lockstep, episode by episode: episode e of
+/// every life still going (a non-finite output ends a life) in one [`live_trials`], `firsts`
+/// the lives' first worlds when built beforehand. The brains are stateless, so living the
+/// episodes of other lives in between changes nothing: each life gets the bits of
+/// [`crate::evo::trial::run_trial`]'s.
+pub(crate) fn live_lives<B: BatchController>(
+    experiment: &Experiment,
+    lives: &[Life<'_>],
+    mut firsts: Vec<Option<World>>,
+    controllers: &mut [B],
+) -> Result<Vec<Vec<TrialOutcome>>, EvaluationError> {
+    let k = controllers.len();
+    let mut episodes: Vec<LifeEpisodes> = vec![vec![Vec::new(); k]; lives.len()];
+    let mut going = vec![true; lives.len()];
+    let count = lives.iter().map(Life::episodes).max().unwrap_or(0);
+    for e in 0..count {
+        let now: Vec<usize> = (0..lives.len())
+            .filter(|&w| going[w] && e < lives[w].episodes())
+            .collect();
+        let worlds = now
+            .iter()
+            .map(|&w| lives[w].world_or(&mut firsts[w], k, e))
+            .collect::<Result<Vec<_>, _>>()?;
+        let (outcomes, choices) = live_trials_scored(experiment, worlds, controllers);
+        for ((&w, outcomes), choices) in now.iter().zip(outcomes).zip(choices) {
+            going[w] = !outcomes.iter().all(|o| o.non_finite);
+            for ((lived, o), c) in episodes[w].iter_mut().zip(outcomes).zip(choices) {
+                lived.push((o, c));
+            }
+        }
+    }
+    let measures = &experiment.behaviour.measures;
+    Ok(lives
+        .iter()
+        .zip(&episodes)
+        .map(|(life, creatures)| {
+            creatures
+                .iter()
+                .map(|e| life.outcome(measures, e))
+                .collect()
+        })
+        .collect())
+}
+
 /// Steps `worlds` in lockstep for at most `ticks` ticks with `controllers` (one per
 /// creature); each world stops after the first tick in which none of its creatures recorded
 /// a score, as [`crate::evo::trial::run_trial`]'s does.
 pub(crate) fn live_trials<B: BatchController>(
     experiment: &Experiment,
-    mut worlds: Vec<World>,
+    worlds: Vec<World>,
     controllers: &mut [B],
 ) -> Vec<Vec<TrialOutcome>> {
+    live_trials_scored(experiment, worlds, controllers).0
+}
+
+/// Per world, each creature's bites of the switch kinds.
+type WorldChoices = Vec<Vec<Option<EpisodeChoices>>>;
+
+/// [`live_trials`], also returning each creature's bites of the switch kinds.
+fn live_trials_scored<B: BatchController>(
+    experiment: &Experiment,
+    mut worlds: Vec<World>,
+    controllers: &mut [B],
+) -> (Vec<Vec<TrialOutcome>>, WorldChoices) {
     let k = controllers.len();
     let n = worlds.len();
     let width = worlds.first().map_or(0, |w| w.layout().len());
@@ -259,14 +335,19 @@ pub(crate) fn live_trials<B: BatchController>(
             }
         }
     }
-    worlds
+    let lives = worlds
         .iter()
         .enumerate()
         .map(|(w, world)| {
             let range = w * k..(w + 1) * k;
             outcomes(world, &scores[range.clone()], &invalid[range], &plans[w])
         })
-        .collect()
+        .collect();
+    let choices = scores
+        .chunks(k.max(1))
+        .map(|s| s.iter().map(LifeScore::choices).collect())
+        .collect();
+    (lives, choices)
 }
 
 #[cfg(test)]

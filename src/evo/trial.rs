@@ -16,6 +16,7 @@
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
+use crate::evo::episodes::{EpisodeChoices, Life, LifeOrigin};
 use crate::evo::life::{
     checked_controllers, outcomes, record_tick, start_scores, trial_world, CheckedController,
     EvaluationError, TrialOutcome,
@@ -94,14 +95,23 @@ pub fn run_trial<O: TickObserver>(
 ) -> Result<Vec<TrialOutcome>, EvaluationError> {
     // The brains first, then the world, so that a bad genome is reported before a world
     // that cannot be built, as everywhere.
-    let mut controllers =
-        checked_controllers(experiment, topology, genomes, group, (generation, trial))?;
-    let world = trial_world(experiment, genomes.len(), generation, group, trial)?;
+    let mut controllers = checked_controllers(
+        experiment,
+        topology,
+        genomes,
+        group,
+        (generation, trial),
+    )?;
     let id = TrialId {
         generation,
         group,
         trial,
     };
+    if experiment.evaluation.episodes_per_life > 1 {
+        let origin = LifeOrigin::trial(experiment, generation, group, trial);
+        return Ok(live_life(experiment, None, origin, id, &mut controllers, observer)?.0);
+    }
+    let world = trial_world(experiment, genomes.len(), generation, group, trial)?;
     observer.start(id, &world);
     Ok(live(experiment, world, &mut controllers, observer))
 }
@@ -109,19 +119,110 @@ pub fn run_trial<O: TickObserver>(
 /// Lives one trial in a `world` built beforehand for `genomes.len()` creatures (e.g. a
 /// validation world of [`crate::evo::validation::validation_worlds`], which no generation's
 /// stream builds), showing every tick to `observer`: the life evaluation in those worlds
-/// scores. `id` only names the trial to the observer (and numbers individuals in errors).
+/// scores. `id` only names the trial to the observer (and numbers individuals in errors);
+/// `origin` is where `world` came from, whence the later episodes of a life of several.
 pub fn run_trial_in_world<O: TickObserver>(
     experiment: &Experiment,
     topology: &Topology,
     genomes: &[Genome],
     id: TrialId,
+    origin: LifeOrigin,
     world: World,
-    mut observer: O,
+    observer: O,
 ) -> Result<Vec<TrialOutcome>, EvaluationError> {
-    let life = (id.generation, id.trial);
-    let mut controllers = checked_controllers(experiment, topology, genomes, id.group, life)?;
-    observer.start(id, &world);
-    Ok(live(experiment, world, &mut controllers, observer))
+    let mut controllers = checked_controllers(
+        experiment,
+        topology,
+        genomes,
+        id.group,
+        (origin.generation, origin.trial),
+    )?;
+    Ok(live_life(
+        experiment,
+        Some(world),
+        origin,
+        id,
+        &mut controllers,
+        observer,
+    )?
+    .0)
+}
+
+/// Lives the life at `origin` for `genomes` (one creature each), `first` its first world when
+/// built beforehand, showing each episode to `observer`: each creature's life outcome and
+/// its episodes (what `compare --json` reports per episode).
+pub fn run_life<O: TickObserver>(
+    experiment: &Experiment,
+    topology: &Topology,
+    genomes: &[Genome],
+    id: TrialId,
+    origin: LifeOrigin,
+    first: Option<World>,
+    observer: O,
+) -> Result<(Vec<TrialOutcome>, LifeEpisodes), EvaluationError> {
+    let mut controllers = checked_controllers(
+        experiment,
+        topology,
+        genomes,
+        id.group,
+        (origin.generation, origin.trial),
+    )?;
+    live_life(experiment, first, origin, id, &mut controllers, observer)
+}
+
+/// Every creature's episodes of one life, in order: each episode's outcome and its bites of
+/// the switch kinds.
+pub type LifeEpisodes = Vec<Vec<(TrialOutcome, Option<EpisodeChoices>)>>;
+
+/// Lives the life at `origin` (`[evaluation] episodes_per_life` episodes; `first`, when
+/// given, is its first world built beforehand) with `controllers`, built once for the whole
+/// life: their state carries over from one episode to the next. Each episode is shown to
+/// `observer` as a trial of its own (`start`, every tick, `finish` with the episode's
+/// outcomes). Returns each creature's life outcome and its episodes. A life of one episode is
+/// the trial [`live`] lives, bit for bit.
+pub(crate) fn live_life<C: Controller, O: TickObserver>(
+    experiment: &Experiment,
+    first: Option<World>,
+    origin: LifeOrigin,
+    id: TrialId,
+    controllers: &mut [CheckedController<C>],
+    mut observer: O,
+) -> Result<(Vec<TrialOutcome>, LifeEpisodes), EvaluationError> {
+    let life = Life::new(experiment, origin);
+    let n = controllers.len();
+    if life.episodes() <= 1 {
+        let world = match first {
+            Some(world) => world,
+            None => life.world(n, 0)?,
+        };
+        observer.start(id, &world);
+        let (outcomes, choices) = live_episode(experiment, world, controllers, observer);
+        let episodes = outcomes
+            .iter()
+            .copied()
+            .zip(choices)
+            .map(|e| vec![e])
+            .collect();
+        return Ok((outcomes, episodes));
+    }
+    let mut episodes: LifeEpisodes = vec![Vec::new(); n];
+    let mut first = first;
+    for e in 0..life.episodes() {
+        let world = life.world_or(&mut first, n, e)?;
+        observer.start(id, &world);
+        let (outcomes, choices) = live_episode(experiment, world, controllers, &mut observer);
+        // A non-finite output ends the life (its creature stood still since).
+        let over = outcomes.iter().all(|o| o.non_finite);
+        for ((lived, o), c) in episodes.iter_mut().zip(outcomes).zip(choices) {
+            lived.push((o, c));
+        }
+        if over {
+            break;
+        }
+    }
+    let measures = &experiment.behaviour.measures;
+    let outcomes = episodes.iter().map(|e| life.outcome(measures, e)).collect();
+    Ok((outcomes, episodes))
 }
 
 /// Steps `world` for at most `ticks` ticks with `controllers` (one per creature), showing
@@ -129,10 +230,20 @@ pub fn run_trial_in_world<O: TickObserver>(
 /// score (nothing it could still record).
 pub(crate) fn live<C: Controller, O: TickObserver>(
     experiment: &Experiment,
+    world: World,
+    controllers: &mut [CheckedController<C>],
+    observer: O,
+) -> Vec<TrialOutcome> {
+    live_episode(experiment, world, controllers, observer).0
+}
+
+/// [`live`], also returning each creature's bites of the switch kinds.
+fn live_episode<C: Controller, O: TickObserver>(
+    experiment: &Experiment,
     mut world: World,
     controllers: &mut [CheckedController<C>],
     mut observer: O,
-) -> Vec<TrialOutcome> {
+) -> (Vec<TrialOutcome>, Vec<Option<EpisodeChoices>>) {
     let (plan, mut scores) = start_scores(experiment, &mut world);
     let mut invalid = vec![false; controllers.len()];
     for _ in 0..experiment.evaluation.ticks {
@@ -147,5 +258,5 @@ pub(crate) fn live<C: Controller, O: TickObserver>(
     }
     let outcomes = outcomes(&world, &scores, &invalid, &plan);
     observer.finish(&world, &outcomes);
-    outcomes
+    (outcomes, scores.iter().map(|s| s.choices()).collect())
 }

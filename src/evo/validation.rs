@@ -12,11 +12,12 @@
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
+use crate::evo::episodes::LifeOrigin;
 use crate::evo::evaluate::{evaluate_in_worlds, worlds_from, Evaluation};
 use crate::evo::life::EvaluationError;
 use crate::evo::state::{EvaluatedGeneration, GenerationSummary};
 use crate::experiment::{Experiment, ValidationSpec};
-use crate::seed::{stream, Generation, IndividualId, Purpose};
+use crate::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
 use crate::sim::metabolism::Metabolism;
 use crate::sim::world::World;
 use serde::{Deserialize, Serialize};
@@ -137,7 +138,8 @@ pub fn validate(
     worlds: &[World],
 ) -> Result<Option<ValidatedChampion>, EvaluationError> {
     let genomes: Vec<Genome> = candidates.iter().map(|c| c.genome.clone()).collect();
-    let evaluations = evaluate_in_worlds(experiment, topology, &genomes, worlds)?;
+    let origin = LifeOrigin::validation(TrialIndex(0));
+    let evaluations = evaluate_in_worlds(experiment, topology, &genomes, worlds, origin)?;
     let mut best: Option<usize> = None;
     for (k, e) in evaluations.iter().enumerate() {
         if let Some(f) = e.fitness {

@@ -14,9 +14,10 @@
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
+use crate::evo::episodes::{Life, LifeOrigin};
 use crate::evo::evaluate::{aggregate, evaluate_population, run_trial, Evaluation, JOBS_APART};
 use crate::evo::life::{EvaluationError, TrialOutcome};
-use crate::evo::trial::{run_trial_in_world, NoObserver, TrialId};
+use crate::evo::trial::{run_life, run_trial_in_world, NoObserver, TrialId};
 use crate::evo::validation::validation_worlds;
 use crate::experiment::Experiment;
 use crate::evo::init::initial_population;
@@ -263,11 +264,64 @@ fn life(
                 trial,
             };
             let world = worlds[t as usize].clone();
-            run_trial_in_world(experiment, topology, genomes, id, world, NoObserver)?
+            // Built worlds are the validation worlds (see `WorldSet::built_worlds`).
+            let origin = LifeOrigin::validation(trial);
+            run_trial_in_world(experiment, topology, genomes, id, origin, world, NoObserver)?
         }
         None => run_trial(experiment, topology, genomes, generation, 0, trial)?,
     };
     Ok(lives[0])
+}
+
+/// One life's episodes as `compare --json` reports them (lives of several episodes).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct LifeChoices {
+    /// The episodes (numbered from 1) a switch came before.
+    pub switches: Vec<u64>,
+    /// Per episode: were the switch kinds' payoffs exchanged (relative to `[world.kinds]`)?
+    pub exchanged: Vec<bool>,
+    /// Per episode: was the first bite of a switch kind of the paying one? (false when it bit
+    /// neither, or the life had ended)
+    pub correct_first_choice: Vec<bool>,
+}
+
+/// [`lives`], also returning each life's episodes (one list per trial, in trial order).
+pub fn lives_by_episode(
+    experiment: &Experiment,
+    topology: &Topology,
+    genome: &Genome,
+    set: WorldSet,
+    built: Option<&[World]>,
+) -> Result<Vec<(TrialOutcome, LifeChoices)>, EvaluationError> {
+    (0..trial_count(experiment, built))
+        .into_par_iter()
+        .map(|t| {
+            let trial = TrialIndex(t);
+            let generation = set.generation();
+            let id = TrialId {
+                generation,
+                group: 0,
+                trial,
+            };
+            let (origin, first) = match built {
+                Some(worlds) => (
+                    LifeOrigin::validation(trial),
+                    Some(worlds[t as usize].clone()),
+                ),
+                None => (LifeOrigin::trial(experiment, generation, 0, trial), None),
+            };
+            let genomes = std::slice::from_ref(genome);
+            let (outcomes, episodes) =
+                run_life(experiment, topology, genomes, id, origin, first, NoObserver)?;
+            let life = Life::new(experiment, origin);
+            let choices = LifeChoices {
+                switches: life.schedule().switches(),
+                exchanged: life.schedule().exchanged.clone(),
+                correct_first_choice: life.correct_choices(&episodes[0]),
+            };
+            Ok((outcomes[0], choices))
+        })
+        .collect()
 }
 
 /// How many trials `genome` lives in `set`: the `built` worlds when given, else the

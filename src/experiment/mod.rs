@@ -26,7 +26,7 @@ pub use evolution::{
 
 pub use tables::{
     Aggregate, Balance, BehaviourSpec, EvaluationSpec, FitnessMode, FitnessSpec, GoalAt, Measure,
-    OutputSpec, ValidationSpec, MEASURES,
+    OutputSpec, SwitchSpec, SwitchStart, ValidationSpec, MEASURES,
 };
 
 use crate::brain::output_count;
@@ -358,6 +358,25 @@ impl ExperimentConfig {
         self.topology().check_signals()?;
         self.evolution.validate()?;
         self.evaluation.validate()?;
+        if let Some(switch) = &self.evaluation.switch {
+            switch.validate(
+                &self.world,
+                &self.fitness.weights,
+                self.evaluation.episodes_per_life,
+            )?;
+        }
+        if let Some(m) = self.behaviour.measures.iter().find(|m| m.needs_switch()) {
+            if self.evaluation.switch.is_none() {
+                return Err(InvalidValue::new(
+                    "behaviour.measures",
+                    format!(
+                        "`{}` needs [evaluation.switch] (which two kinds' payoffs are \
+                         exchanged): add the table or remove the measure",
+                        m.name()
+                    ),
+                ));
+            }
+        }
         self.fitness.validate()?;
         self.fitness.validate_against_world(&self.world)?;
         self.behaviour.validate(&self.world)?;

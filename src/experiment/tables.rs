@@ -45,6 +45,146 @@ pub struct EvaluationSpec {
     /// Individuals that share one world (default: 1). With k > 1 the population is cut into
     /// groups of k consecutive individuals that live together; it must divide the population.
     pub group_size: u64,
+    /// Episodes per life, K (default: 1). A life is K consecutive episodes, each a fresh trial
+    /// world (positions, food and creatures reset; episode 1 is the world a life of one
+    /// episode meets, the later ones come from their own seed streams), while the creature's
+    /// brain (recurrent state, plastic weights) carries over: it is built and reset once per
+    /// life, never between episodes. `ticks` is per episode; the life's score is the sum over
+    /// its episodes of the episode scores under `[fitness]`, and the behaviour measures are
+    /// per life (the mean over its episodes, except the switch measures `adapted_choice` and
+    /// `good_bite_share`, which are taken over the life). Death or a non-finite output ends
+    /// an episode; a non-finite output also ends the life. Only with `group_size = 1`.
+    #[serde(skip_serializing_if = "is_one")]
+    pub episodes_per_life: u64,
+    /// `[evaluation.switch]`: what changes between the episodes of a life (default: absent,
+    /// nothing changes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub switch: Option<SwitchSpec>,
+}
+
+fn is_one(x: &u64) -> bool {
+    *x == 1
+}
+
+/// Whether a life's payoffs start as written or are drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum SwitchStart {
+    /// Each kind pays as `[world.kinds]` writes it in episode 1 (default).
+    #[default]
+    AsWritten,
+    /// Per life, 50:50 from the life's seed stream, the payoffs start exchanged.
+    Random,
+}
+
+/// `[evaluation.switch]`: the payoffs of two object kinds are exchanged at switches during a
+/// life, while their look (odour, intensity, range, colour, height, radius, positions)
+/// stays, so that which kind pays must be learnt, and learnt again after each switch.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SwitchSpec {
+    /// Two distinct food kinds of `[world.kinds]`, e.g. `["left_goal", "right_goal"]`, whose
+    /// payoffs (substance, capacity, bite, regen, depletes) are exchanged at each switch. The
+    /// kind whose substance has the larger fitness-weighted value (`[fitness] weights`) pays.
+    pub kinds: Vec<String>,
+    /// `"as_written"` or `"random"` (default: as_written): see [`SwitchStart`].
+    #[serde(default)]
+    pub start: SwitchStart,
+    /// One `[lo, hi]` pair per switch: the switch comes before an episode drawn uniformly
+    /// in lo..=hi (episodes numbered from 1; lo = hi: always that episode), per life, from
+    /// the life's seed stream. Ranges lie within 2..=episodes_per_life, in order, without
+    /// overlap (default: none).
+    #[serde(default)]
+    pub at: Vec<[u64; 2]>,
+}
+
+impl SwitchSpec {
+    /// Checks the table against the world's kinds and the life's `episodes` (K).
+    pub fn validate(&self, world: &WorldSpec, fitness_weights: &[f64; 4], episodes: u64) -> Valid {
+        if episodes < 2 {
+            return Err(InvalidValue::new(
+                "evaluation.switch",
+                "needs evaluation.episodes_per_life of at least 2 (a switch happens between \
+                 episodes); set episodes_per_life or remove [evaluation.switch]",
+            ));
+        }
+        let key = "evaluation.switch.kinds";
+        if self.kinds.len() != 2 || self.kinds[0] == self.kinds[1] {
+            return Err(InvalidValue::new(
+                key,
+                format!(
+                    "must name two distinct kinds of [world.kinds], got {:?}",
+                    self.kinds
+                ),
+            ));
+        }
+        let mut values = [0.0; 2];
+        for (value, name) in values.iter_mut().zip(&self.kinds) {
+            match world.kinds.get(name) {
+                None => {
+                    let names: Vec<&str> = world.kinds.keys().map(String::as_str).collect();
+                    return Err(InvalidValue::new(
+                        key,
+                        format!(
+                            "`{name}` is not a kind of [world.kinds] (kinds: {})",
+                            names.join(", ")
+                        ),
+                    ));
+                }
+                Some(crate::sim::spec::KindSpec::Food(f)) => {
+                    // The dot product evo's fitness takes (`evo::fitness::weighted`).
+                    let (w, m) = (fitness_weights, &f.substance);
+                    *value = w[0] * m[0] + w[1] * m[1] + w[2] * m[2] + w[3] * m[3];
+                }
+                Some(_) => {
+                    return Err(InvalidValue::new(
+                        key,
+                        format!(
+                            "`{name}` is not a food kind: only food kinds have a payoff to \
+                             exchange"
+                        ),
+                    ));
+                }
+            }
+        }
+        if values[0] == values[1] {
+            return Err(InvalidValue::new(
+                key,
+                format!(
+                    "the two kinds' substances have the same fitness-weighted value ({}): one \
+                     must pay more than the other",
+                    values[0]
+                ),
+            ));
+        }
+        let mut after = 1;
+        for (i, &[lo, hi]) in self.at.iter().enumerate() {
+            let what = if lo > hi {
+                Some(format!("lo {lo} > hi {hi}"))
+            } else if lo < 2 || hi > episodes {
+                Some(format!(
+                    "lies outside 2..={episodes} (a switch comes before one of the episodes \
+                     2..=episodes_per_life)"
+                ))
+            } else if lo <= after {
+                Some(
+                    "overlaps or comes before the previous range: give the ranges in order, \
+                      without overlap"
+                        .to_string(),
+                )
+            } else {
+                None
+            };
+            if let Some(what) = what {
+                return Err(InvalidValue::new(
+                    "evaluation.switch.at",
+                    format!("range {} ([{lo}, {hi}]): {what}", i + 1),
+                ));
+            }
+            after = hi;
+        }
+        Ok(())
+    }
 }
 
 impl Default for EvaluationSpec {
@@ -55,6 +195,8 @@ impl Default for EvaluationSpec {
             aggregate: Aggregate::Mean,
             common_random_numbers: true,
             group_size: 1,
+            episodes_per_life: 1,
+            switch: None,
         }
     }
 }
@@ -83,6 +225,23 @@ impl EvaluationSpec {
             1_000,
             "creatures per world",
         )?;
+        count_within(
+            "evaluation.episodes_per_life",
+            self.episodes_per_life,
+            1,
+            MAX_TRIALS,
+            "episodes per life",
+        )?;
+        if self.episodes_per_life > 1 && self.group_size > 1 {
+            return Err(InvalidValue::new(
+                "evaluation.episodes_per_life",
+                format!(
+                    "lives of several episodes ({}) are for creatures alone: set \
+                     evaluation.group_size = 1 (got {}) or episodes_per_life = 1",
+                    self.episodes_per_life, self.group_size
+                ),
+            ));
+        }
         Ok(())
     }
 
@@ -100,12 +259,13 @@ impl EvaluationSpec {
         }
         let work = population
             .saturating_mul(self.trials)
+            .saturating_mul(self.episodes_per_life)
             .saturating_mul(self.ticks);
         if work > MAX_CREATURE_TICKS_PER_GENERATION {
             return Err(InvalidValue::new(
                 "evaluation.ticks",
                 format!(
-                    "population × trials × ticks = {work} creature-ticks per generation exceeds \
+                    "population × trials × episodes × ticks = {work} creature-ticks per generation exceeds \
                      the limit of {MAX_CREATURE_TICKS_PER_GENERATION} (about a day of one core)"
                 ),
             ));
@@ -460,6 +620,16 @@ pub enum Measure {
     /// by more than half as far as that food lies on its own side; else 0. A food on the
     /// start line has no other side: eating it counts.
     RichestSideFirst,
+    /// With `[evaluation.switch]`: the share of correct first choices over the episodes that
+    /// are not the first of their phase (a phase starts at episode 1 and at each switch). An
+    /// episode's first choice is correct when its first bite of an object of the two switch
+    /// kinds is of the kind that pays now; an episode without such a bite counts as wrong.
+    /// With one episode per life: 1 when that first bite is of the paying kind, else 0.
+    AdaptedChoice,
+    /// With `[evaluation.switch]`: of the bites of the two switch kinds after the first such
+    /// bite of each phase, the share of the kind that pays now (0 without such bites). A bite
+    /// is the first taking from an object in an episode (each object counts once).
+    GoodBiteShare,
 }
 
 /// The smallest displacement along its heading, in LU, that makes a tick count as forward
@@ -474,7 +644,7 @@ pub const FORWARD_STEP: f64 = 0.01;
 pub const STILL_STEP: f64 = 0.05;
 
 /// Every measure, in the order their columns and lines appear.
-pub const MEASURES: [Measure; 18] = [
+pub const MEASURES: [Measure; 20] = [
     Measure::TicksAlive,
     Measure::DistinctFood,
     Measure::FoodTypes,
@@ -493,6 +663,8 @@ pub const MEASURES: [Measure; 18] = [
     Measure::Eaten,
     Measure::StillShare,
     Measure::RichestSideFirst,
+    Measure::AdaptedChoice,
+    Measure::GoodBiteShare,
 ];
 
 impl Measure {
@@ -517,6 +689,8 @@ impl Measure {
             Measure::Eaten => "eaten",
             Measure::StillShare => "still_share",
             Measure::RichestSideFirst => "richest_side_first",
+            Measure::AdaptedChoice => "adapted_choice",
+            Measure::GoodBiteShare => "good_bite_share",
         }
     }
 
@@ -535,6 +709,11 @@ impl Measure {
                 | Measure::FinalY
                 | Measure::StillShare
         )
+    }
+
+    /// Does it need `[evaluation.switch]` (which kinds' payoffs are exchanged)?
+    pub fn needs_switch(self) -> bool {
+        matches!(self, Measure::AdaptedChoice | Measure::GoodBiteShare)
     }
 
     /// Does it need `[behaviour] area`?

@@ -30,7 +30,9 @@ fn an_episode_stepped_by_a_brain_is_the_scored_trial() {
     for path in experiments() {
         let name = path.display().to_string();
         let experiment = Experiment::load(&path).unwrap();
-        if experiment.evaluation.group_size != 1 {
+        // Step-by-step episodes live one episode per life (lives of several are refused, see
+        // `Episode::new`).
+        if experiment.evaluation.group_size != 1 || experiment.evaluation.episodes_per_life > 1 {
             continue;
         }
         let experiment = experiment

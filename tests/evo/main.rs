@@ -7,6 +7,7 @@ mod cli_common;
 mod cma_es;
 mod eating_and_choice_measures;
 mod episode_steps;
+mod episodes_and_switches;
 mod experiment_files;
 mod experiment_limits;
 mod fitness_terms_and_measures;

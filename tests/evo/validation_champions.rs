@@ -3,6 +3,7 @@
 //! their own set; results do not depend on threads or on stopping and resuming.
 
 use berry_evolve::brain::genome::Genome;
+use berry_evolve::evo::episodes::LifeOrigin;
 use berry_evolve::evo::evaluate::{evaluate_in_worlds, Evaluation};
 use berry_evolve::evo::life::trial_stream;
 use berry_evolve::evo::search::ga::first_population;
@@ -48,7 +49,7 @@ fn validation_chooses_by_validation_score_not_training_luck() {
     let worlds = validation_worlds(&e).unwrap();
     // The random genome of generation 0 that eats most on the validation worlds.
     let population = first_population(&e, &topology);
-    let scores = evaluate_in_worlds(&e, &topology, &population, &worlds).unwrap();
+    let scores = evaluate_in_worlds(&e, &topology, &population, &worlds, origin()).unwrap();
     let (forager, best_score) = scores
         .iter()
         .enumerate()
@@ -167,7 +168,7 @@ fn a_run_keeps_the_validation_champion_as_best_json() {
     assert_eq!(champion.generation, first as u64);
     // Re-evaluating best.json on the validation worlds gives its validation fitness.
     let worlds = validation_worlds(&e).unwrap();
-    let again = evaluate_in_worlds(&e, &e.topology(), &[best.genome()], &worlds).unwrap();
+    let again = evaluate_in_worlds(&e, &e.topology(), &[best.genome()], &worlds, origin()).unwrap();
     assert_eq!(again[0].fitness, champion.validation.fitness);
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -246,4 +247,9 @@ fn copy_dir(from: &Path, to: &Path) {
             std::fs::copy(entry.path(), target).unwrap();
         }
     }
+}
+
+/// Where the validation worlds come from (their later episodes' worlds, with several).
+fn origin() -> LifeOrigin {
+    LifeOrigin::validation(berry_evolve::seed::TrialIndex(0))
 }

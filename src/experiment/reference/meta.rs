@@ -399,10 +399,15 @@ pub fn keys() -> Vec<KeyMeta> {
         k("PgpeSpec.stdev_max_change", "", Range::ge(0.0).lt(1.0), GA),
         // [evaluation]
         k("EvaluationSpec.trials", "trials", Range::between(1.0, MAX_TRIALS as f64), EVAL),
-        k("EvaluationSpec.ticks", "ticks", Range::between(1.0, MAX_TICKS as f64).note(format!("population × trials × ticks at most {MAX_CREATURE_TICKS_PER_GENERATION} a generation")), "§2 (time), §9"),
+        k("EvaluationSpec.ticks", "ticks", Range::between(1.0, MAX_TICKS as f64).note(format!("population × trials × episodes × ticks at most {MAX_CREATURE_TICKS_PER_GENERATION} a generation")), "§2 (time), §9"),
         k("EvaluationSpec.aggregate", "", any(), EVAL),
         k("EvaluationSpec.common_random_numbers", "", any(), EVAL),
         k("EvaluationSpec.group_size", "creatures", Range::between(1.0, 1000.0).note("divides the population"), "§5.1 (other creatures)"),
+        kd("EvaluationSpec.episodes_per_life", "episodes", Range::between(1.0, MAX_TRIALS as f64).note("above 1 only with group_size = 1"), EVAL, 1u64),
+        k("EvaluationSpec.switch", "", any(), EVAL),
+        k("SwitchSpec.kinds", "", any().note("two distinct food kinds of [world.kinds]"), EVAL),
+        k("SwitchSpec.start", "", any(), EVAL),
+        k("SwitchSpec.at", "episodes", any().note("each [lo, hi] within 2..=episodes_per_life, in order, without overlap"), EVAL),
         // [fitness]
         k("FitnessSpec.weights", "", any(), EVAL),
         k("FitnessSpec.mode", "", any(), EVAL),
