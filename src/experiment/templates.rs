@@ -49,7 +49,9 @@ pub const TEMPLATES: &[Template] = shipped!("":
     "predator-arena",
     "shock-avoidance",
     "t-maze",
+    "t-maze-switch",
     "walled-arena",
+    "which-food",
 );
 
 /// `bench`'s default simulator worlds (`experiments/bench/`): the standard world, which is
