@@ -590,7 +590,8 @@ fn evolution(source: &Source, generations: u64, repeat: u32) -> anyhow::Result<E
     let search = search::factory::of(experiment, &experiment.topology());
     let per_generation = search.evaluated_per_generation() as f64
         * experiment.evaluation.trials as f64
-        * experiment.evaluation.ticks as f64;
+        * experiment.evaluation.ticks as f64
+        * experiment.evaluation.episodes_per_life as f64;
     let gens = generations as f64;
     // Rounds of 1 thread then 2 threads, as for the simulator.
     let mut timings: [Vec<EvolutionTiming>; 2] = [Vec::new(), Vec::new()];

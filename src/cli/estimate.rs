@@ -61,8 +61,12 @@ pub fn workload_lines(w: &Workload) -> Vec<String> {
         1 => String::new(),
         k => format!(", {k} creatures per world"),
     };
+    let episodes = match w.episodes {
+        1 => String::new(),
+        k => format!(" × {k} episodes"),
+    };
     let mut lines = vec![format!(
-        "workload: {} individuals × {} trials × {} ticks = {} creature-ticks per generation{world}",
+        "workload: {} individuals × {} trials{episodes} × {} ticks = {} creature-ticks per generation{world}",
         count(w.individuals),
         count(w.trials),
         count(w.ticks),
@@ -70,7 +74,7 @@ pub fn workload_lines(w: &Workload) -> Vec<String> {
     )];
     if w.validations > 0 {
         lines.push(format!(
-            "validation: {} rounds × up to {} candidates × {} worlds × {} ticks = {} creature-ticks",
+            "validation: {} rounds × up to {} candidates × {} worlds{episodes} × {} ticks = {} creature-ticks",
             count(w.validations),
             count(w.validation_candidates),
             count(w.validation_trials),
@@ -100,6 +104,10 @@ pub fn time_lines(e: &Estimate) -> Vec<String> {
     } else {
         String::new()
     };
+    let episodes = match e.workload.episodes {
+        1 => String::new(),
+        k => format!(" × {k} episodes"),
+    };
     vec![
         format!(
             "estimated wall time: {} ({} per generation) on {} worker thread{}",
@@ -110,7 +118,7 @@ pub fn time_lines(e: &Estimate) -> Vec<String> {
         ),
         format!(
             "  based on {} creature-ticks per second measured just now on this machine: \
-             generation 0's first {} individuals × {} trials × {} ticks{shortened}, in {:.2} s; \
+             generation 0's first {} individuals × {} trials{episodes} × {} ticks{shortened}, in {:.2} s; \
              evaluation only, and evolved creatures may live longer or shorter lives than \
              random ones",
             count(c.rate().round() as u64),

@@ -12,16 +12,16 @@ use crate::cli::worlds::{warn_other_experiment, WorldSet, WorldSetArgs, WorldsCh
 
 use anyhow::Context;
 use berry_evolve::evo::episodes::LifeOrigin;
-use berry_evolve::seed::TrialIndex;
 use berry_evolve::evo::evaluate::{evaluate_in_worlds, worlds_from, Evaluation};
-use berry_evolve::evo::worlds::random_genomes;
 use berry_evolve::evo::life::trial_stream;
+use berry_evolve::evo::worlds::random_genomes;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::record::summary::{
     self, held_out_bytes, quartiles, read_seeds, seed_folders, summary_bytes, HeldOutRow,
     SummaryRow, HELD_OUT_FILE, SUMMARY_FILE,
 };
+use berry_evolve::seed::TrialIndex;
 use clap::Args;
 use serde::Serialize;
 use std::path::{Path, PathBuf};

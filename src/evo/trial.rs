@@ -95,13 +95,8 @@ pub fn run_trial<O: TickObserver>(
 ) -> Result<Vec<TrialOutcome>, EvaluationError> {
     // The brains first, then the world, so that a bad genome is reported before a world
     // that cannot be built, as everywhere.
-    let mut controllers = checked_controllers(
-        experiment,
-        topology,
-        genomes,
-        group,
-        (generation, trial),
-    )?;
+    let mut controllers =
+        checked_controllers(experiment, topology, genomes, group, (generation, trial))?;
     let id = TrialId {
         generation,
         group,

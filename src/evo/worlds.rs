@@ -16,11 +16,11 @@ use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
 use crate::evo::episodes::{Life, LifeOrigin};
 use crate::evo::evaluate::{aggregate, evaluate_population, run_trial, Evaluation, JOBS_APART};
+use crate::evo::init::initial_population;
 use crate::evo::life::{EvaluationError, TrialOutcome};
 use crate::evo::trial::{run_life, run_trial_in_world, NoObserver, TrialId};
 use crate::evo::validation::validation_worlds;
 use crate::experiment::Experiment;
-use crate::evo::init::initial_population;
 use crate::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
 use crate::sim::world::World;
 use crate::validate::InvalidValue;
@@ -221,7 +221,11 @@ impl WorldSet {
 /// as an initial population is, from the [`Purpose::Baseline`] stream of `generation` (a
 /// set's [`WorldSet::generation`]), so that `compare` and `summary` on one set draw the very
 /// same genomes.
-pub fn random_genomes(experiment: &Experiment, generation: Generation, count: usize) -> Vec<Genome> {
+pub fn random_genomes(
+    experiment: &Experiment,
+    generation: Generation,
+    count: usize,
+) -> Vec<Genome> {
     let mut rng = stream(
         experiment.seed(),
         Purpose::Baseline,

@@ -32,11 +32,13 @@ pub struct Workload {
     pub individuals: u64,
     /// Trials per individual.
     pub trials: u64,
-    /// Ticks per trial.
+    /// Ticks per trial (per episode, when a life has several).
     pub ticks: u64,
+    /// Episodes per life (`evaluation.episodes_per_life`; 1: a trial is one world).
+    pub episodes: u64,
     /// Creatures sharing one trial world (`evaluation.group_size`).
     pub creatures_per_world: u64,
-    /// individuals × trials × ticks.
+    /// individuals × trials × episodes × ticks.
     pub creature_ticks_per_generation: u64,
     /// Validation rounds among the generations (`[validation]`; 0 when off).
     pub validations: u64,
@@ -60,7 +62,11 @@ impl Workload {
         let e = &experiment.evaluation;
         let search = search::factory::of(experiment, &experiment.topology());
         let individuals = search.evaluated_per_generation() as u64;
-        let per_generation = individuals.saturating_mul(e.trials).saturating_mul(e.ticks);
+        // A life of several episodes lives `ticks` in each of them.
+        let life_ticks = e.ticks.saturating_mul(e.episodes_per_life);
+        let per_generation = individuals
+            .saturating_mul(e.trials)
+            .saturating_mul(life_ticks);
         let v = &experiment.validation;
         let validations = if v.enabled() && count > 0 {
             // Rounds after every `every`-th generation, and after the run's last one.
@@ -78,12 +84,13 @@ impl Workload {
         let validation_ticks = validations
             .saturating_mul(candidates)
             .saturating_mul(v.trials)
-            .saturating_mul(e.ticks);
+            .saturating_mul(life_ticks);
         Workload {
             generations: count,
             individuals,
             trials: e.trials,
             ticks: e.ticks,
+            episodes: e.episodes_per_life,
             creatures_per_world: e.group_size,
             creature_ticks_per_generation: per_generation,
             validations,
@@ -266,7 +273,8 @@ fn measure(
         let grow = (target / seconds.max(1e-6)).clamp(2.0, 8.0);
         let late = started.elapsed().as_secs_f64() + seconds * grow > CALIBRATION_BUDGET;
         if seconds >= target || n == groups || late {
-            let creature_ticks = (n * k) as u64 * trials * ticks;
+            let episodes = timed.evaluation.episodes_per_life;
+            let creature_ticks = (n * k) as u64 * trials * episodes * ticks;
             return Ok(Calibration {
                 threads: 0,
                 individuals: (n * k) as u64,

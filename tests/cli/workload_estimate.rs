@@ -321,3 +321,22 @@ fn the_calibration_changes_no_output_file() {
         );
     }
 }
+
+/// A life of several episodes lives `ticks` in each: the workload counts every episode (a
+/// t-maze-switch life is 10 episodes of 180 ticks), in the text and in the JSON.
+#[test]
+fn the_workload_counts_every_episode_of_a_life() {
+    let file = experiment("t-maze-switch.toml");
+    let text = stdout_of(&["inspect", &file, "--no-estimate"]);
+    assert!(
+        text.contains("workload: 128 individuals × 4 trials × 10 episodes × 180 ticks = 921,600 creature-ticks per generation"),
+        "{text}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&stdout_of(&["inspect", &file, "--json", "--no-estimate"])).unwrap();
+    assert_eq!(json["workload"]["episodes"], 10, "{json}");
+    assert_eq!(
+        json["workload"]["creature_ticks_per_generation"], 921_600,
+        "{json}"
+    );
+}
