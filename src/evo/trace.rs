@@ -753,6 +753,10 @@ fn effect_name(effect: Effect) -> &'static str {
 }
 
 impl TickObserver for TraceRecorder {
+    fn listens(&self) -> bool {
+        true
+    }
+
     fn start(&mut self, trial: TrialId, world: &World) {
         let world_description = self.describe(trial, world);
         self.trials.push(TrialTrace {
@@ -763,7 +767,6 @@ impl TickObserver for TraceRecorder {
             events: Vec::new(),
             outcomes: Vec::new(),
         });
-        world.set_event_log(true);
         self.previous = Previous::of(world);
     }
 

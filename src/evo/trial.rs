@@ -41,6 +41,13 @@ pub struct TrialId {
 
 /// Sees a trial tick by tick; every hook only reads the world.
 pub trait TickObserver {
+    /// Does it read the world's events ([`World::events`])? The trial then switches the
+    /// world's event log on before the first tick; off (the default), the world makes none.
+    #[inline(always)]
+    fn listens(&self) -> bool {
+        false
+    }
+
     /// The world as built, before its first tick.
     #[inline(always)]
     fn start(&mut self, _trial: TrialId, _world: &World) {}
@@ -64,6 +71,11 @@ impl TickObserver for NoObserver {
 }
 
 impl<O: TickObserver + ?Sized> TickObserver for &mut O {
+    #[inline(always)]
+    fn listens(&self) -> bool {
+        (**self).listens()
+    }
+
     #[inline(always)]
     fn start(&mut self, trial: TrialId, world: &World) {
         (**self).start(trial, world);
@@ -106,7 +118,8 @@ pub fn run_trial<O: TickObserver>(
         let origin = LifeOrigin::trial(experiment, generation, group, trial);
         return Ok(live_life(experiment, None, origin, id, &mut controllers, observer)?.0);
     }
-    let world = trial_world(experiment, genomes.len(), generation, group, trial)?;
+    let mut world = trial_world(experiment, genomes.len(), generation, group, trial)?;
+    world.set_event_log(observer.listens());
     observer.start(id, &world);
     Ok(live(experiment, world, &mut controllers, observer))
 }
@@ -186,10 +199,11 @@ pub(crate) fn live_life<C: Controller, O: TickObserver>(
     let life = Life::new(experiment, origin);
     let n = controllers.len();
     if life.episodes() <= 1 {
-        let world = match first {
+        let mut world = match first {
             Some(world) => world,
             None => life.world(n, 0)?,
         };
+        world.set_event_log(observer.listens());
         observer.start(id, &world);
         let (outcomes, choices) = live_episode(experiment, world, controllers, observer);
         let episodes = outcomes
@@ -203,7 +217,8 @@ pub(crate) fn live_life<C: Controller, O: TickObserver>(
     let mut episodes: LifeEpisodes = vec![Vec::new(); n];
     let mut first = first;
     for e in 0..life.episodes() {
-        let world = life.world_or(&mut first, n, e)?;
+        let mut world = life.world_or(&mut first, n, e)?;
+        world.set_event_log(observer.listens());
         observer.start(id, &world);
         let (outcomes, choices) = live_episode(experiment, world, controllers, &mut observer);
         // A non-finite output ends the life (its creature stood still since).

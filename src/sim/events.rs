@@ -10,7 +10,6 @@
 //! a reader looks them up in the world (the creature, the food object, the door).
 
 use crate::sim::spec::Effect;
-use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Who attacked: a ground predator (its index in `[[world.predators]]`) or an air predator
 /// (its index in `[[world.air_predators]]`).
@@ -106,37 +105,25 @@ pub enum WorldEvent {
     },
 }
 
-/// The events of a world's last tick, and whether anyone listens.
-///
-/// The switch is an atomic flag so that it can be turned on through a shared reference: a
-/// watcher of a trial sees the world only as `&World` (an observer cannot change a result,
-/// and the log changes none), yet must switch the log on before the first tick. It is read
-/// with relaxed ordering, a plain load.
-#[derive(Debug, Default)]
+/// The events of a world's last tick, and whether anyone listens (switched by the trial
+/// runner before the first tick, from its watcher's [`crate::evo::trial::TickObserver`]
+/// `listens`).
+#[derive(Debug, Clone, Default)]
 pub struct EventLog {
-    on: AtomicBool,
+    on: bool,
     list: Vec<WorldEvent>,
-}
-
-impl Clone for EventLog {
-    fn clone(&self) -> EventLog {
-        EventLog {
-            on: AtomicBool::new(self.on()),
-            list: self.list.clone(),
-        }
-    }
 }
 
 impl EventLog {
     /// Does anyone listen? Every push site asks first.
     #[inline(always)]
     pub fn on(&self) -> bool {
-        self.on.load(Ordering::Relaxed)
+        self.on
     }
 
     /// Switches the log on or off.
-    pub fn set(&self, on: bool) {
-        self.on.store(on, Ordering::Relaxed);
+    pub fn set(&mut self, on: bool) {
+        self.on = on;
     }
 
     /// A new tick begins: the last tick's events go (one store: the list keeps its room,

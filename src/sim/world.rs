@@ -1245,10 +1245,7 @@ impl World {
     /// Switches the event log on or off (default: off). On, each tick's [`World::events`]
     /// tell what the world decided in it; off, nothing is recorded and a tick costs what it
     /// did without the log. Neither changes any result.
-    ///
-    /// Takes `&self` so that a watcher that only reads the world (a trial observer's
-    /// `start`, which sees `&World`) can switch it on before the first tick.
-    pub fn set_event_log(&self, on: bool) {
+    pub fn set_event_log(&mut self, on: bool) {
         self.events.set(on);
     }
 

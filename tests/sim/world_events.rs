@@ -37,7 +37,7 @@ position = [50.0, 250.0]
 "#;
 
 fn listening(text: &str, creatures: usize) -> World {
-    let w = world(text, creatures, 1);
+    let mut w = world(text, creatures, 1);
     w.set_event_log(true);
     w
 }
