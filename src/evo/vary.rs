@@ -37,14 +37,17 @@
 //! is mutated at most once and each value is a pure function of its own two draws, so the
 //! bits are those of drawing and mutating gene after gene, on any number of threads.
 //! Crossover's and mutation's words themselves are read from a buffer of the same stream's
-//! words filled ahead in parallel ([`Words`]); selection draws from the stream moved to
-//! where the buffer stands, and the buffer continues after its words.
+//! words filled ahead in parallel ([`Words`]), uniform crossover's and mutation's read in
+//! place ([`Words::window`]) rather than by a call per word; selection draws from the stream
+//! moved to where the buffer stands, and the buffer continues after its words.
 
 use crate::brain::genome::Genome;
 use crate::evo::lineage::{Birth, Lineage};
 use crate::evo::search::draws::Words;
-use crate::evo::select::Selector;
-use crate::experiment::evolution::{CrossoverSpec, EvolutionSpec, MutationSpec, MAX_MAGNITUDE};
+use crate::evo::select::{ranking, truncation_count, Selector};
+use crate::experiment::evolution::{
+    CrossoverSpec, EvolutionSpec, MutationSpec, SelectionSpec, MAX_MAGNITUDE,
+};
 use crate::seed::{below, chance, gaussian, gaussian_from, unit, Rng};
 use rand_chacha::rand_core::RngCore;
 use rayon::prelude::*;
@@ -80,11 +83,6 @@ pub fn next_generation_with_lineage(
     fitness: &[f64],
     rng: &mut Rng,
 ) -> (Vec<Genome>, Vec<Lineage>) {
-    assert_eq!(
-        parents.len(),
-        fitness.len(),
-        "one fitness value per parent is needed"
-    );
     if let Some(first) = parents.first() {
         assert!(
             parents
@@ -93,6 +91,23 @@ pub fn next_generation_with_lineage(
             "all parents must have the same number of parameters"
         );
     }
+    vary(spec, parents, fitness, rng)
+}
+
+/// [`next_generation_with_lineage`] without its checks, for a caller that left out (as empty
+/// genomes) the parents that neither elitism nor selection can choose: the GA with
+/// truncation selection keeps only those it can (see [`choosable`]).
+pub(crate) fn vary(
+    spec: &EvolutionSpec,
+    parents: &[Genome],
+    fitness: &[f64],
+    rng: &mut Rng,
+) -> (Vec<Genome>, Vec<Lineage>) {
+    assert_eq!(
+        parents.len(),
+        fitness.len(),
+        "one fitness value per parent is needed"
+    );
     let mut next = Vec::with_capacity(spec.population);
     let mut lineage = Vec::with_capacity(spec.population);
     if spec.population == 0 {
@@ -122,7 +137,10 @@ pub fn next_generation_with_lineage(
                 let y = &parents[yi];
                 words.seek(rng.get_word_pos());
                 if chance(&mut words, crossover.probability()) {
-                    let mut child = recombine_from(&crossover, x, y, &mut words);
+                    let mut child = match crossover {
+                        CrossoverSpec::Uniform { .. } => uniform_from_words(x, y, &mut words),
+                        _ => recombine_from(&crossover, x, y, &mut words),
+                    };
                     if spec.mutation.self_adaptive.is_some() {
                         let sx = x.step_size.unwrap_or(spec.mutation.sigma);
                         let sy = y.step_size.unwrap_or(spec.mutation.sigma);
@@ -134,7 +152,11 @@ pub fn next_generation_with_lineage(
                 }
             }
         };
-        mutations.push(draw_mutation(&mut child, &spec.mutation, &mut words));
+        mutations.push(draw_mutation_from_words(
+            &mut child,
+            &spec.mutation,
+            &mut words,
+        ));
         next.push(child);
         lineage.push(born);
     }
@@ -152,7 +174,12 @@ pub fn next_generation_with_lineage(
 /// About how many 32-bit words of the stream the offspring will use (a little more), so that
 /// [`Words`] draws them in one or a few batches.
 fn expected_words(spec: &EvolutionSpec, parents: &[Genome], elites: usize) -> usize {
-    let genes = parents.first().map_or(0, |p| p.parameters.len()) as f64;
+    // The longest: parents left out are empty.
+    let genes = parents
+        .iter()
+        .map(|p| p.parameters.len())
+        .max()
+        .unwrap_or(0) as f64;
     let crossover = match spec.crossover {
         CrossoverSpec::None => 0.0,
         CrossoverSpec::Uniform { probability } => 1.0 + probability.clamp(0.0, 1.0) * genes,
@@ -222,6 +249,101 @@ fn recombine_from(
     }
 }
 
+/// The parents that elitism or selection can choose, by index: with truncation selection
+/// the elites and the truncated best (ranked as [`crate::evo::select::Selector`] ranks them),
+/// otherwise all of them. A caller keeping parents for [`vary`] need copy only these.
+pub(crate) fn choosable(spec: &EvolutionSpec, fitness: &[f64]) -> Vec<bool> {
+    match spec.selection {
+        SelectionSpec::Truncation { fraction } if !fitness.is_empty() => {
+            let kept = truncation_count(fraction, fitness.len())
+                .max(spec.elitism)
+                .min(fitness.len());
+            let mut choosable = vec![false; fitness.len()];
+            for &i in &ranking(fitness)[..kept] {
+                choosable[i] = true;
+            }
+            choosable
+        }
+        _ => vec![true; fitness.len()],
+    }
+}
+
+/// `unit()` of the 64-bit draw made of the words `lo` then `hi` (as ChaCha's `next_u64`).
+#[inline(always)]
+fn unit_of(lo: u32, hi: u32) -> f64 {
+    ((u64::from(hi) << 32 | u64::from(lo)) >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+}
+
+/// Uniform crossover of `x` and `y` exactly as [`recombine_from`] draws it (one
+/// `chance(0.5)` per gene, in gene order, true taking y's gene), reading the words in place
+/// rather than one call per gene.
+fn uniform_from_words(x: &Genome, y: &Genome, words: &mut Words) -> Genome {
+    assert_eq!(
+        x.parameters.len(),
+        y.parameters.len(),
+        "crossover parents must have the same number of parameters"
+    );
+    let n = x.parameters.len();
+    let mut parameters = Vec::with_capacity(n);
+    while parameters.len() < n {
+        let done = parameters.len();
+        let window = words.window(2);
+        let take = (window.len() / 2).min(n - done);
+        parameters.extend(
+            window[..2 * take]
+                .chunks_exact(2)
+                .zip(&x.parameters[done..done + take])
+                .zip(&y.parameters[done..done + take])
+                .map(|((w, &a), &b)| if unit_of(w[0], w[1]) < 0.5 { b } else { a }),
+        );
+        words.advance(2 * take);
+    }
+    Genome {
+        parameters,
+        step_size: x.step_size,
+    }
+}
+
+/// [`draw_mutation`] reading the words in place: the same draws (the step size's
+/// `gaussian`, then per gene one `chance` and, when true, two `unit()`), the same record.
+fn draw_mutation_from_words(
+    genome: &mut Genome,
+    mutation: &MutationSpec,
+    words: &mut Words,
+) -> DrawnMutation {
+    let sigma = draw_step_size(genome, mutation, words);
+    let p = mutation.probability;
+    let n = genome.parameters.len();
+    let expected = (p.clamp(0.0, 1.0) * n as f64) as usize;
+    let mut genes = Vec::with_capacity(expected + expected / 8 + 16);
+    // A gene uses at most 6 words; each is recorded into `staged` whether it mutates or not
+    // and counted only when it does, so the loop has no branch on the draw.
+    const STAGED: usize = 64;
+    let mut staged = [(0usize, 0.0f64, 0.0f64); STAGED];
+    let mut i = 0;
+    while i < n {
+        let window = words.window(6);
+        let mut k = 0;
+        let mut count = 0;
+        while i < n && k + 6 <= window.len() {
+            let w = &window[k..k + 6];
+            let hit = unit_of(w[0], w[1]) < p;
+            // `count` is below STAGED here; the mask only spares the bounds check.
+            staged[count % STAGED] = (i, unit_of(w[2], w[3]), unit_of(w[4], w[5]));
+            count += usize::from(hit);
+            k += 2 + 4 * usize::from(hit);
+            i += 1;
+            if count == STAGED {
+                genes.extend_from_slice(&staged);
+                count = 0;
+            }
+        }
+        genes.extend_from_slice(&staged[..count]);
+        words.advance(k);
+    }
+    DrawnMutation { sigma, genes }
+}
+
 /// Mutates `genome` in place as step 4 of the module documentation says. Without
 /// self-adaptation the genome's step size is cleared; with it, a genome without a step size
 /// starts from `mutation.sigma`.
@@ -253,7 +375,24 @@ fn draw_mutation(
     mutation: &MutationSpec,
     rng: &mut impl RngCore,
 ) -> DrawnMutation {
-    let sigma = match &mutation.self_adaptive {
+    let sigma = draw_step_size(genome, mutation, rng);
+    // About probability × genes entries: reserved once rather than grown.
+    let expected = (mutation.probability.clamp(0.0, 1.0) * genome.parameters.len() as f64) as usize;
+    let mut genes = Vec::with_capacity(expected + expected / 8 + 16);
+    for i in 0..genome.parameters.len() {
+        if chance(rng, mutation.probability) {
+            let a = unit(rng);
+            let b = unit(rng);
+            genes.push((i, a, b));
+        }
+    }
+    DrawnMutation { sigma, genes }
+}
+
+/// Draws and sets `genome`'s step size (step 4's first draw, with self-adaptation) and says
+/// the σ' its genes mutate with.
+fn draw_step_size(genome: &mut Genome, mutation: &MutationSpec, rng: &mut impl RngCore) -> f64 {
+    match &mutation.self_adaptive {
         Some(adaptation) => {
             let tau = adaptation.tau_for(genome.parameters.len());
             let old = genome.step_size.unwrap_or(mutation.sigma);
@@ -268,16 +407,59 @@ fn draw_mutation(
             genome.step_size = None;
             mutation.sigma
         }
-    };
-    // About probability × genes entries: reserved once rather than grown.
-    let expected = (mutation.probability.clamp(0.0, 1.0) * genome.parameters.len() as f64) as usize;
-    let mut genes = Vec::with_capacity(expected + expected / 8 + 16);
-    for i in 0..genome.parameters.len() {
-        if chance(rng, mutation.probability) {
-            let a = unit(rng);
-            let b = unit(rng);
-            genes.push((i, a, b));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::seed::{stream, Generation, IndividualId, Purpose, Seed, TrialIndex};
+
+    fn rng() -> Rng {
+        stream(
+            Seed(3),
+            Purpose::Variation,
+            Generation(2),
+            IndividualId(0),
+            TrialIndex(0),
+        )
+    }
+
+    #[test]
+    fn leaving_out_the_parents_truncation_cannot_choose_changes_nothing() {
+        let mut r = rng();
+        let parents: Vec<Genome> = (0..20)
+            .map(|_| Genome::new((0..500).map(|_| unit(&mut r)).collect()))
+            .collect();
+        // Ties, so that the ranking's order by index matters.
+        let fitness: Vec<f64> = (0..20).map(|i| ((i * 7) % 6) as f64).collect();
+        for (fraction, elitism) in [(0.2, 2), (0.1, 5), (1.0, 0)] {
+            let spec = EvolutionSpec {
+                population: 30,
+                elitism,
+                selection: SelectionSpec::Truncation { fraction },
+                crossover: CrossoverSpec::Uniform { probability: 0.5 },
+                ..EvolutionSpec::default()
+            };
+            let choosable = choosable(&spec, &fitness);
+            let kept = truncation_count(fraction, 20).max(elitism);
+            assert_eq!(choosable.iter().filter(|&&c| c).count(), kept);
+            let trimmed: Vec<Genome> = parents
+                .iter()
+                .zip(&choosable)
+                .map(|(g, &c)| {
+                    if c {
+                        g.clone()
+                    } else {
+                        Genome::new(Vec::new())
+                    }
+                })
+                .collect();
+            let (all, all_lineage) =
+                next_generation_with_lineage(&spec, &parents, &fitness, &mut rng());
+            let (some, some_lineage) = vary(&spec, &trimmed, &fitness, &mut rng());
+            assert_eq!(all, some, "fraction {fraction}, elitism {elitism}");
+            assert_eq!(all_lineage, some_lineage);
         }
     }
-    DrawnMutation { sigma, genes }
 }

@@ -16,6 +16,7 @@
 use crate::seed::{gaussian, Rng};
 use rand_chacha::rand_core::{impls, Error, RngCore};
 use rayon::prelude::*;
+use std::cell::Cell;
 use std::sync::{Arc, Mutex};
 
 /// The stream's 32-bit words one [`gaussian`] uses: two `next_u64`.
@@ -144,11 +145,17 @@ pub struct Words {
     base: Rng,
     /// The stream position, in 32-bit words, of `buffer[0]`.
     start: u128,
+    /// The words, valid up to `end` (the rest is room kept from an earlier fill).
     buffer: Vec<u32>,
+    end: usize,
     /// The next word to give, as an index into `buffer`.
     next: usize,
-    /// The words the next refill draws: few large batches mean few waits for the threads.
-    batch: usize,
+    /// The stream position, in 32-bit words, that the expected use was counted from.
+    origin: u128,
+    /// About how many words will be used from `origin` on: a refill draws what is left of
+    /// them (within limits), so that a large use takes few large batches, hence few waits
+    /// for the threads.
+    expected: usize,
 }
 
 impl Words {
@@ -157,16 +164,38 @@ impl Words {
         Words::expecting(rng, BATCH)
     }
 
-    /// [`Words::new`] for a use of about `expected` 32-bit words: the first batch holds that
-    /// many (within limits), later ones a sixteenth.
+    /// [`Words::new`] for a use of about `expected` 32-bit words: each batch holds what is
+    /// left of them (within limits).
     pub fn expecting(rng: &Rng, expected: usize) -> Words {
         Words {
             base: rng.clone(),
             start: rng.get_word_pos(),
-            buffer: Vec::new(),
+            // The last Words' room on this thread, if any: a fresh 16 MB each generation was
+            // paid in page faults and zeroing.
+            buffer: SPARE.take(),
+            end: 0,
             next: 0,
-            batch: expected.clamp(BATCH, MAX_BATCH),
+            origin: rng.get_word_pos(),
+            expected,
         }
+    }
+
+    /// The buffered words from the next one to give on, at least `min` of them (refilling
+    /// when fewer are left): hot loops read them in place and then say how many they used
+    /// with [`Words::advance`], which is exactly as drawing them one by one.
+    #[inline]
+    pub fn window(&mut self, min: usize) -> &[u32] {
+        if self.end - self.next < min {
+            self.refill(min);
+        }
+        &self.buffer[self.next..self.end]
+    }
+
+    /// Marks the next `used` words of [`Words::window`] as given.
+    #[inline]
+    pub fn advance(&mut self, used: usize) {
+        debug_assert!(self.next + used <= self.end);
+        self.next += used;
     }
 
     /// Where the stream would stand after the words given so far, in 32-bit words.
@@ -177,41 +206,67 @@ impl Words {
     /// Continues from stream position `position` (at or after [`Words::position`], where
     /// another generator on the same stream left off), keeping the buffer when it holds it.
     pub fn seek(&mut self, position: u128) {
-        let end = self.start + self.buffer.len() as u128;
+        let end = self.start + self.end as u128;
         if position >= self.start && position <= end {
             self.next = (position - self.start) as usize;
         } else {
             self.start = position;
-            self.buffer.clear();
+            self.end = 0;
             self.next = 0;
         }
     }
 
-    /// Fills the buffer with the next batch of the stream's words from the current position.
-    fn refill(&mut self) {
+    /// Fills the buffer with the next batch of the stream's words from the current position,
+    /// at least `min` of them.
+    fn refill(&mut self, min: usize) {
         let position = self.position();
         self.start = position;
         self.next = 0;
-        self.buffer.resize(self.batch, 0);
-        self.batch = (self.batch / 16).max(BATCH);
+        let used = usize::try_from(position.saturating_sub(self.origin)).unwrap_or(usize::MAX);
+        let left = self.expected.saturating_sub(used);
+        self.end = left.clamp(BATCH, MAX_BATCH).max(min);
+        if self.buffer.len() < self.end {
+            self.buffer.resize(self.end, 0);
+        }
         let base = &self.base;
-        self.buffer
+        self.buffer[..self.end]
             .par_chunks_mut(BATCH_CHUNK)
             .enumerate()
             .for_each(|(k, chunk)| {
                 let mut rng = base.clone();
                 rng.set_word_pos(position + (k * BATCH_CHUNK) as u128);
-                for w in chunk {
-                    *w = rng.next_u32();
+                // ChaCha's bytes are its words in little-endian order, word after word, so
+                // filling bytes gives the words `next_u32` would, without a call per word.
+                let mut bytes = [0u8; 4 * FILL];
+                for part in chunk.chunks_mut(FILL) {
+                    let bytes = &mut bytes[..4 * part.len()];
+                    rng.fill_bytes(bytes);
+                    for (w, b) in part.iter_mut().zip(bytes.chunks_exact(4)) {
+                        *w = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+                    }
                 }
             });
     }
 }
 
+/// 32-bit words a refill task converts from bytes at a time.
+const FILL: usize = 1024;
+
+thread_local! {
+    /// The buffer of the last [`Words`] dropped on this thread, for the next to fill again.
+    static SPARE: Cell<Vec<u32>> = const { Cell::new(Vec::new()) };
+}
+
+impl Drop for Words {
+    fn drop(&mut self) {
+        SPARE.set(std::mem::take(&mut self.buffer));
+    }
+}
+
 impl RngCore for Words {
     fn next_u32(&mut self) -> u32 {
-        if self.next >= self.buffer.len() {
-            self.refill();
+        if self.next >= self.end {
+            self.refill(1);
         }
         let w = self.buffer[self.next];
         self.next += 1;
@@ -221,7 +276,7 @@ impl RngCore for Words {
     #[inline]
     fn next_u64(&mut self) -> u64 {
         // As ChaCha's own next_u64: the lower word first.
-        if self.next + 2 <= self.buffer.len() {
+        if self.next + 2 <= self.end {
             let lo = u64::from(self.buffer[self.next]);
             let hi = u64::from(self.buffer[self.next + 1]);
             self.next += 2;

@@ -2,8 +2,9 @@
 //! "ga"`, the default): generation 0 drawn from the seed's initialisation stream
 //! ([`crate::evo::init`]), each next generation made from the last evaluated one by elitism,
 //! selection, crossover and mutation ([`crate::evo::vary`]) drawing from the variation stream
-//! of that generation. Its state is the last evaluated generation, which a checkpoint holds
-//! anyway, so it saves no [`SearchState`].
+//! of that generation. Its state is the last evaluated generation (of which it copies only
+//! the genomes the next generation can choose), which a checkpoint holds anyway, so it saves
+//! no [`SearchState`].
 
 use super::{Search, SearchState, Unevaluated};
 use crate::brain::genome::Genome;
@@ -11,7 +12,7 @@ use crate::brain::spec::Topology;
 use crate::evo::init::initial_population;
 use crate::evo::lineage::{Birth, Lineage};
 use crate::evo::state::EvaluatedGeneration;
-use crate::evo::vary::next_generation_with_lineage;
+use crate::evo::vary::{choosable, next_generation_with_lineage, vary};
 use crate::experiment::evolution::EvolutionSpec;
 use crate::experiment::Experiment;
 use crate::seed::{stream, Generation, IndividualId, Purpose, Rng, Seed, TrialIndex};
@@ -45,14 +46,36 @@ impl Ga {
     pub(super) fn tell_scores(&mut self, evaluated: &EvaluatedGeneration, scores: Vec<f64>) {
         self.parents = Some((
             evaluated.generation,
-            evaluated
-                .individuals
-                .iter()
-                .map(|i| i.genome.clone())
-                .collect(),
+            choosable_genomes(&self.spec, evaluated, &scores),
             scores,
         ));
     }
+}
+
+/// The evaluated generation's genomes, in order, copied only where the next generation can
+/// choose them ([`choosable`]; the others are left empty): with truncation selection most
+/// individuals cannot be parents, and copying every genome was much of a `tell`.
+fn choosable_genomes(
+    spec: &EvolutionSpec,
+    evaluated: &EvaluatedGeneration,
+    scores: &[f64],
+) -> Vec<Genome> {
+    let choosable = choosable(spec, scores);
+    evaluated
+        .individuals
+        .iter()
+        .zip(choosable)
+        .map(|(i, chosen)| {
+            if chosen {
+                i.genome.clone()
+            } else {
+                Genome {
+                    parameters: Vec::new(),
+                    step_size: None,
+                }
+            }
+        })
+        .collect()
 }
 
 impl Search for Ga {
@@ -83,7 +106,7 @@ impl Search for Ga {
                 }
             }
             Some((generation, genomes, fitness)) => {
-                let (genomes, lineage) = next_generation_with_lineage(
+                let (genomes, lineage) = vary(
                     &self.spec,
                     genomes,
                     fitness,
