@@ -7,7 +7,7 @@
 //! tick costs what it always did, and a world query is made only for a term or measure that
 //! needs it.
 
-use crate::evo::episodes::{ChoicePlan, ChoiceTrack, EpisodeChoices};
+use crate::evo::choices::{ChoicePlan, ChoiceTrack, EpisodeChoices};
 use crate::experiment::tables::{area_index, FORWARD_STEP, STILL_STEP};
 use crate::experiment::terms::{self, Quantity, Sign, TERMS, TERM_COUNT};
 use crate::experiment::{Balance, Experiment, FitnessMode, FitnessSpec, GoalAt, Measure, MEASURES};
@@ -22,11 +22,7 @@ use crate::sim::world::{Creature, World};
 /// array of this length, in that order.
 pub const MEASURE_COUNT: usize = MEASURES.len();
 
-/// `weights · m`.
-#[inline]
-pub fn weighted(weights: &[f64; 4], m: &[f64; 4]) -> f64 {
-    weights[0] * m[0] + weights[1] * m[1] + weights[2] * m[2] + weights[3] * m[3]
-}
+pub use crate::sim::metabolism::weighted;
 
 /// The metabolic gain `B(m)` of one metabolic vector (see [`FitnessSpec`]): `Σ wᵢ·mᵢ` or
 /// `min wᵢ·mᵢ` over the components with wᵢ ≠ 0, minus `imbalance_penalty × (max − min)` of

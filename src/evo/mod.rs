@@ -5,6 +5,7 @@
 //! [`crate::experiment::evolution`]. Every random draw comes from a stream passed in,
 //! in a documented order, so a run reproduces bit for bit from its seed.
 
+pub mod choices;
 pub mod episode;
 pub mod episodes;
 pub mod evaluate;

@@ -2,7 +2,6 @@
 //! the genetic algorithm: `[evaluation]`, `[fitness]`, `[behaviour]`, `[validation]` and
 //! `[output]`.
 
-use super::terms::{Sign, TERMS};
 use crate::sim::spec::{CreatureSpec, WorldSpec};
 use crate::validate::{
     all_finite, count_within, finite, non_negative, positive, InvalidValue, Valid,
@@ -443,14 +442,7 @@ impl FitnessSpec {
         non_negative("fitness.shock_penalty", self.shock_penalty)?;
         finite("fitness.shock_penalty", self.shock_penalty)?;
         non_negative("fitness.imbalance_penalty", self.imbalance_penalty)?;
-        for term in &TERMS {
-            let key = format!("fitness.{}", term.key);
-            let weight = (term.weight)(self);
-            match term.sign {
-                Sign::Add => finite(&key, weight)?,
-                Sign::Subtract => non_negative(&key, weight)?,
-            }
-        }
+        self.validate_terms()?;
         if let Some(p) = self.goal_point {
             all_finite("fitness.goal_point", &p)?;
         }
@@ -502,19 +494,15 @@ impl FitnessSpec {
             || !world.air_predators.is_empty()
             || world.wanderers.count > 0
             || (world.wall_shock && self.shock_penalty != 0.0);
-        let moving_counts = creature.decay_per_lu.iter().any(|&d| d != 0.0)
-            || TERMS
-                .iter()
-                .any(|t| t.pays_for_motion && (t.weight)(self) != 0.0);
+        let moving_counts =
+            creature.decay_per_lu.iter().any(|&d| d != 0.0) || self.pays_for_motion();
         world_holds_something || moving_counts
     }
 
     /// Is every term beyond the metabolic gain and the shock penalty off? Then a life's score
     /// needs nothing but the metabolism and the shock flag of each tick.
     pub fn is_plain(&self) -> bool {
-        self.balance == Balance::Sum
-            && self.imbalance_penalty == 0.0
-            && TERMS.iter().all(|t| (t.weight)(self) == 0.0)
+        self.balance == Balance::Sum && self.imbalance_penalty == 0.0 && self.terms_off()
     }
 }
 

@@ -6,10 +6,11 @@
 //! Adding a term (docs/fitness.md): a field in [`FitnessSpec`] (its doc comment, and the
 //! formula in the struct's doc) and one entry here. A term that counts something no term
 //! counts yet also adds a [`Quantity`], which the compiler then asks `evo::fitness` to
-//! accumulate. The tests below refuse a `*_bonus` or `*_penalty` field without an entry.
+//! accumulate. `experiment::reference`'s tests refuse a `*_bonus` or `*_penalty` field without an entry.
 
 use super::tables::FitnessSpec;
 use super::GoalAt;
+use crate::validate::{finite, non_negative, Valid};
 
 /// What a term multiplies its weight by, accumulated over a life by `evo::fitness`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -173,6 +174,33 @@ fn goal_words(f: &FitnessSpec) -> String {
     format!("× nearness to {goal} {when}")
 }
 
+impl FitnessSpec {
+    /// Checks each term's weight: finite, and not negative for a penalty.
+    pub fn validate_terms(&self) -> Valid {
+        for term in &TERMS {
+            let key = format!("fitness.{}", term.key);
+            let weight = (term.weight)(self);
+            match term.sign {
+                Sign::Add => finite(&key, weight)?,
+                Sign::Subtract => non_negative(&key, weight)?,
+            }
+        }
+        Ok(())
+    }
+
+    /// Does some term that is on pay for where the creature goes or how far it drives?
+    pub fn pays_for_motion(&self) -> bool {
+        TERMS
+            .iter()
+            .any(|t| t.pays_for_motion && (t.weight)(self) != 0.0)
+    }
+
+    /// Is every term off (weight 0)?
+    pub fn terms_off(&self) -> bool {
+        TERMS.iter().all(|t| (t.weight)(self) == 0.0)
+    }
+}
+
 /// Each term's weight in `spec`, in [`TERMS`] order.
 pub fn weights(spec: &FitnessSpec) -> [f64; TERM_COUNT] {
     std::array::from_fn(|i| (TERMS[i].weight)(spec))
@@ -181,42 +209,6 @@ pub fn weights(spec: &FitnessSpec) -> [f64; TERM_COUNT] {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::experiment::derived_schema;
-
-    /// The checklist's first step, enforced: every `*_bonus` and `*_penalty` number of
-    /// `[fitness]` is a term here (the shock and imbalance penalties belong to the gain), and
-    /// every term is a key of `[fitness]` that its formula names.
-    #[test]
-    fn every_bonus_and_penalty_key_is_a_declared_term() {
-        let schema = derived_schema();
-        let fitness = &schema["definitions"]["FitnessSpec"];
-        let properties = fitness["properties"]
-            .as_object()
-            .expect("FitnessSpec has keys");
-        let formula = fitness["description"].as_str().unwrap_or_default();
-        let gain = ["shock_penalty", "imbalance_penalty"];
-        for key in properties.keys() {
-            if (key.ends_with("_bonus") || key.ends_with("_penalty")) && !gain.contains(&&**key) {
-                assert!(
-                    TERMS.iter().any(|t| t.key == key),
-                    "[fitness] {key} has no entry in experiment::terms::TERMS"
-                );
-            }
-        }
-        for term in &TERMS {
-            assert!(
-                properties.contains_key(term.key),
-                "{} is not a [fitness] key",
-                term.key
-            );
-            assert_eq!(term.schema_key, format!("FitnessSpec.{}", term.key));
-            assert!(
-                formula.contains(term.key),
-                "the [fitness] formula leaves out {}",
-                term.key
-            );
-        }
-    }
 
     #[test]
     fn weights_follow_the_table_order() {

@@ -47,6 +47,14 @@ impl Decay {
     }
 }
 
+/// `weights · m`: a metabolic vector (or an amount per type A–D) weighted by `[fitness]
+/// weights`, summed left to right (the fitness's gain and the switch measures' paying kind use
+/// these very bits).
+#[inline]
+pub fn weighted(weights: &[f64; 4], m: &[f64; 4]) -> f64 {
+    weights[0] * m[0] + weights[1] * m[1] + weights[2] * m[2] + weights[3] * m[3]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

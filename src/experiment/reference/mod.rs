@@ -598,3 +598,44 @@ pub fn toml_literal(v: &Value) -> String {
         ),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::experiment::derived_schema;
+    use crate::experiment::terms::TERMS;
+
+    /// The checklist's first step, enforced: every `*_bonus` and `*_penalty` number of
+    /// `[fitness]` is a term here (the shock and imbalance penalties belong to the gain), and
+    /// every term is a key of `[fitness]` that its formula names.
+    #[test]
+    fn every_bonus_and_penalty_key_is_a_declared_term() {
+        let schema = derived_schema();
+        let fitness = &schema["definitions"]["FitnessSpec"];
+        let properties = fitness["properties"]
+            .as_object()
+            .expect("FitnessSpec has keys");
+        let formula = fitness["description"].as_str().unwrap_or_default();
+        let gain = ["shock_penalty", "imbalance_penalty"];
+        for key in properties.keys() {
+            if (key.ends_with("_bonus") || key.ends_with("_penalty")) && !gain.contains(&&**key) {
+                assert!(
+                    TERMS.iter().any(|t| t.key == key),
+                    "[fitness] {key} has no entry in experiment::terms::TERMS"
+                );
+            }
+        }
+        for term in &TERMS {
+            assert!(
+                properties.contains_key(term.key),
+                "{} is not a [fitness] key",
+                term.key
+            );
+            assert_eq!(term.schema_key, format!("FitnessSpec.{}", term.key));
+            assert!(
+                formula.contains(term.key),
+                "the [fitness] formula leaves out {}",
+                term.key
+            );
+        }
+    }
+}
