@@ -41,6 +41,23 @@ pub fn gaussians(rng: &mut Rng, count: usize) -> Vec<f64> {
     out
 }
 
+/// Moves `rng` past the `count` normal draws it would make next and returns the 32-bit word
+/// they start at, so that a caller can hand them out to be drawn later, in parallel, with
+/// [`gaussians_from`] (the draws after them then come from the same words as before).
+pub fn skip_gaussians(rng: &mut Rng, count: usize) -> u128 {
+    let start = rng.get_word_pos();
+    rng.set_word_pos(start + WORDS_PER_GAUSSIAN * count as u128);
+    start
+}
+
+/// The `count` normal draws of `base`'s stream from 32-bit word `start` on (a position
+/// [`skip_gaussians`] gave); `base` itself does not move.
+pub fn gaussians_from(base: &Rng, start: u128, count: usize) -> Vec<f64> {
+    let mut out = vec![0.0; count];
+    fill_gaussians_at(base, start, &mut out);
+    out
+}
+
 /// The `rows` vectors of `columns` normal draws each that `rows` times `columns` calls of
 /// [`gaussian`] on `rng` make, vector after vector (each vector itself drawn in parallel when
 /// long); `rng` is left where those calls would leave it.

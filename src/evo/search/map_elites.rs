@@ -12,7 +12,10 @@
 //!   uniformly (`below`) from the archive in cell order, all from the variation stream of
 //!   generation g − 1, offspring after offspring: the iso-line emitter draws elite i, elite j,
 //!   one `gaussian` for the line, then one per gene ([`iso_line`]); the Gaussian emitter draws
-//!   elite i, then one per gene ([`gaussian`]).
+//!   elite i, then one per gene ([`gaussian`]). The picks and the line are drawn in that
+//!   order first, noting where each offspring's per-gene draws start in the stream; then all
+//!   offspring's per-gene draws are made in one parallel pass ([`draws::gaussians_from`]),
+//!   the same values as drawing them offspring after offspring.
 //! - **Tell g.** Each individual with a finite fitness, in index order, enters the cell of its
 //!   descriptors when it is empty or when its fitness is strictly greater
 //!   ([`super::grid::enters`]).
@@ -38,6 +41,7 @@ use crate::experiment::Experiment;
 use crate::seed::{
     below, gaussian, stream, Generation, IndividualId, Purpose, Rng, Seed, TrialIndex,
 };
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -82,8 +86,23 @@ pub fn iso_line(
 
 /// The Gaussian offspring of `x`: x + σ · N(0, I), one `gaussian` per gene from `rng`.
 pub fn gaussian_offspring(x: &[f64], sigma: f64, rng: &mut Rng) -> Vec<f64> {
-    let z = draws::gaussians(rng, x.len());
-    x.iter().zip(&z).map(|(&a, &z)| a + sigma * z).collect()
+    gaussian_offspring_with(x, sigma, &draws::gaussians(rng, x.len()))
+}
+
+/// x + σ · z, given the draws z.
+fn gaussian_offspring_with(x: &[f64], sigma: f64, z: &[f64]) -> Vec<f64> {
+    x.iter().zip(z).map(|(&a, &z)| a + sigma * z).collect()
+}
+
+/// One offspring's parents and where its draws are: the sequential part of `ask`, which
+/// draws the picks and the line in stream order and only notes where each offspring's
+/// per-gene draws start, so that all of them are drawn afterwards in one parallel pass.
+struct Planned<'a> {
+    first: &'a Elite,
+    /// The iso-line emitter's second elite and its line draw.
+    second: Option<(&'a Elite, f64)>,
+    /// The stream word the per-gene draws start at.
+    draws_at: u128,
 }
 
 /// MAP-Elites: its grid archive and what asks and tells need.
@@ -230,43 +249,47 @@ impl Search for MapElites {
             TrialIndex(0),
         );
         let pick = |rng: &mut Rng| elites[below(rng, elites.len() as u64) as usize];
-        let mut genomes = Vec::with_capacity(n);
+        let mut planned = Vec::with_capacity(n);
         let mut lineage = Vec::with_capacity(n);
         for _ in 0..n {
-            let (parameters, born) = match self.settings.emitter {
+            let first = pick(&mut rng);
+            let second = match self.settings.emitter {
                 Emitter::IsoLine => {
-                    let (iso, line) = self.settings.iso_line_sigmas();
-                    let a = pick(&mut rng);
                     let b = pick(&mut rng);
-                    (
-                        iso_line(
-                            &a.genome.parameters,
-                            &b.genome.parameters,
-                            iso,
-                            line,
-                            &mut rng,
-                        ),
-                        Lineage::of_elites(Birth::IsoLine, &[a.id, b.id]),
-                    )
+                    lineage.push(Lineage::of_elites(Birth::IsoLine, &[first.id, b.id]));
+                    Some((b, gaussian(&mut rng)))
                 }
                 Emitter::Gaussian => {
-                    let a = pick(&mut rng);
-                    (
-                        gaussian_offspring(
-                            &a.genome.parameters,
-                            self.settings.gaussian_sigma(),
-                            &mut rng,
-                        ),
-                        Lineage::of_elites(Birth::Gaussian, &[a.id]),
-                    )
+                    lineage.push(Lineage::of_elites(Birth::Gaussian, &[first.id]));
+                    None
                 }
             };
-            genomes.push(Genome {
-                parameters,
-                step_size: None,
+            let draws_at = draws::skip_gaussians(&mut rng, first.genome.parameters.len());
+            planned.push(Planned {
+                first,
+                second,
+                draws_at,
             });
-            lineage.push(born);
         }
+        let (iso, line_sigma) = self.settings.iso_line_sigmas();
+        let sigma = self.settings.gaussian_sigma();
+        let genomes = planned
+            .par_iter()
+            .map(|p| {
+                let x = &p.first.genome.parameters;
+                let z = draws::gaussians_from(&rng, p.draws_at, x.len());
+                let parameters = match p.second {
+                    Some((b, line)) => {
+                        iso_line_with(x, &b.genome.parameters, iso, line_sigma, line, &z)
+                    }
+                    None => gaussian_offspring_with(x, sigma, &z),
+                };
+                Genome {
+                    parameters,
+                    step_size: None,
+                }
+            })
+            .collect();
         Unevaluated { genomes, lineage }
     }
 
