@@ -445,6 +445,7 @@ fn config_reference_schema_accepts_every_shipped_experiment_and_refuses_mistakes
         "experiments",
         "experiments/ablations",
         "experiments/bench",
+        "experiments/learning",
         "experiments/search",
     ] {
         for entry in std::fs::read_dir(root().join(dir)).unwrap() {

@@ -525,6 +525,19 @@ fn t_maze_switch_runs_are_the_same_bytes_on_any_thread_count_and_resumed() {
     assert!(fitness.contains("best_adapted_choice"), "{fitness}");
 }
 
+/// The same for a neuromodulated plastic brain (per-layer rules, its weights carried across
+/// the episodes of a life): 1 and 2 threads and a resumed run give the same bytes, and the
+/// rule's genes are in the champion (so the run did evolve a plastic brain).
+#[test]
+fn plastic_t_maze_switch_runs_are_the_same_bytes_on_any_thread_count_and_resumed() {
+    let (_dir, one) = crate::run_guarantees::same_bytes_on_any_thread_count_and_resumed(
+        "t-maze-switch-tiny-plastic.toml",
+        &[],
+    );
+    let best = std::fs::read_to_string(one.join("best.json")).unwrap();
+    assert!(best.contains("neuromodulated"), "{best}");
+}
+
 /// Counts what a trial observer is shown.
 #[derive(Default)]
 struct Shown {

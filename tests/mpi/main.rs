@@ -165,6 +165,9 @@ fn signal(pid: u32, name: &str) {
     assert!(status.success(), "kill {name} {pid}");
 }
 
+/// The `[brain]` lines that make t-maze-switch-tiny's MLP a neuromodulated plastic one.
+const PLASTIC: &str = "hidden = [8]\nplasticity = \"neuromodulated\"\ngranularity = \"layer\"\nmodulators = [\"food_a\", \"food_c\", \"neurons\"]\n";
+
 #[test]
 fn one_two_and_three_ranks_give_the_plain_bytes() {
     let tmp = tempfile::tempdir().unwrap();
@@ -200,6 +203,18 @@ fn one_two_and_three_ranks_give_the_plain_bytes() {
         (
             variant(t, "tests/fixtures/tiny-pgpe.toml", "tiny-pgpe.toml", |s| s),
             "4",
+        ),
+        // A plastic brain over lives of several episodes with a switch (issue 31): the
+        // weights it learns carry across episodes, so each life is one job; its ranks must
+        // give the plain bytes too.
+        (
+            variant(
+                t,
+                "tests/fixtures/t-maze-switch-tiny.toml",
+                "t-maze-switch-plastic.toml",
+                |s| s.replace("hidden = [8]\n", PLASTIC),
+            ),
+            "3",
         ),
         // Archive searches: the novelty archive and MAP-Elites' grid are told the
         // generation's behaviour measures, which each rank sends back with the fitness
