@@ -232,7 +232,9 @@ pub(crate) fn record_tick(
 }
 
 /// The plan of a trial in `world` and one fresh score per creature: what both evaluation
-/// paths set up before the first tick (bite tracking turned on in `world` when needed).
+/// paths set up before the first tick (bite tracking and the event log turned on in `world`
+/// when the plan needs them, [`LifePlan::prepare`]; the log only ever on, so a watcher's
+/// switch made before stands).
 pub(crate) fn start_scores(
     experiment: &Experiment,
     world: &mut World,

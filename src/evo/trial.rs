@@ -119,6 +119,7 @@ pub fn run_trial<O: TickObserver>(
         return Ok(live_life(experiment, None, origin, id, &mut controllers, observer)?.0);
     }
     let mut world = trial_world(experiment, genomes.len(), generation, group, trial)?;
+    // Before `start_scores`, which also switches the log on for a plan that reads events.
     world.set_event_log(observer.listens());
     observer.start(id, &world);
     Ok(live(experiment, world, &mut controllers, observer))

@@ -1249,6 +1249,11 @@ impl World {
         self.events.set(on);
     }
 
+    /// Is the event log on ([`World::set_event_log`])?
+    pub fn event_log_on(&self) -> bool {
+        self.events.on()
+    }
+
     /// The events of the last tick, in the order the world decided them (empty while the
     /// log is off; cleared when a tick begins). A [`World::kill`] between ticks is added to
     /// the list of the tick before.

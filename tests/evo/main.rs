@@ -16,6 +16,7 @@ mod jobs_counted_within_a_generation;
 mod known_functions;
 mod lockstep_vs_single_trials;
 mod map_elites;
+mod measures_from_events;
 mod motion_measures;
 mod novelty;
 mod overflowing_brains;
