@@ -1,7 +1,8 @@
 //! Plastic brains (`brain.plasticity`): the rule Δw = η·(A·pre·post + B·pre + C·post + D) on
 //! hand-computed single synapses (each coefficient alone, the tanh(m/2) gate, the clamp), the
 //! genome layout, frozen plasticity (η = 0) equal to the fixed MLP over a whole trial, reset,
-//! random initial weights per life, and bad tables refused naming the key.
+//! random initial weights per life, bad tables refused naming the key, and the ablations of
+//! `compare --ablate` (frozen, ungated).
 
 use crate::brain_common::spec;
 use berry_evolve::brain::activation::tanh;
