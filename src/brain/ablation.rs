@@ -19,7 +19,8 @@
 //!
 //! Holding g at a constant c (say its mean over a life) is the hebbian rule with every η
 //! multiplied by c: (η·c)·s is computed the same way either way. It needs the intact brain's
-//! g measured first, so it is not offered here (docs/learning.md, "Controls").
+//! g measured first, so it is not offered here (docs/learning.md, "Controls and the episode
+//! curve").
 
 use super::genome::Genome;
 use super::plasticity::{InitialWeights, Plasticity};

@@ -65,7 +65,8 @@ pub struct CompareArgs {
     /// `FILE (frozen)` and `FILE (ungated)`: `frozen`, plasticity off (the weights a life
     /// starts with never change: the fixed MLP of the genome's weights); `ungated`, the
     /// modulators cut (the neuromodulated rule run with g = 1 on every tick, as "hebbian").
-    /// `--ablate` alone gives both; `--ablate=frozen` one. See docs/learning.md, "Controls".
+    /// `--ablate` alone gives both; `--ablate=frozen` one. See docs/learning.md, "Controls
+    /// and the episode curve".
     #[arg(
         long,
         value_enum,
@@ -674,7 +675,7 @@ fn with_ablations(
         bail!(
             "--ablate: no genome file given has a plastic brain ({}); ablations take learning \
              away from a genome whose `[brain] plasticity` is \"hebbian\" or \"neuromodulated\" \
-             (see docs/learning.md, \"Controls\"), so give such a file or drop --ablate",
+             (see docs/learning.md, \"Controls and the episode curve\"), so give such a file or drop --ablate",
             if names.is_empty() {
                 "none given".to_string()
             } else {
