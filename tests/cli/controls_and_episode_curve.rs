@@ -279,3 +279,38 @@ fn the_episode_curve_draws_one_line_per_row_and_writes_its_numbers() {
         }
     }
 }
+
+/// The curve's numbers on two lives worked by hand: per episode, per episode since the last
+/// switch (0 = the first after it, counted only after a switch), and the switch strip; a life
+/// with too few choices is refused naming the row.
+#[test]
+fn the_episode_curve_numbers_are_those_worked_by_hand() {
+    use berry_evolve::view::episode_curve::{CurveRow, EpisodeCurve, LifeEpisodes};
+    let lives = [
+        LifeEpisodes {
+            switches: &[3],
+            correct: &[true, false, false, true],
+        },
+        LifeEpisodes {
+            switches: &[2],
+            correct: &[true, true, false, false],
+        },
+    ];
+    let row = CurveRow::new("g".into(), &lives, 4, false).unwrap();
+    assert_eq!(row.by_episode, [1.0, 0.5, 0.0, 0.5]);
+    assert_eq!(row.since_switch, [(0.5, 2), (0.5, 2), (0.0, 1)]);
+    let curve = EpisodeCurve::new("t".into(), 4, &lives, vec![row]).unwrap();
+    assert_eq!(curve.switched, [0.0, 0.5, 1.0, 1.0]);
+    assert!(curve.csv().contains("since_switch,g,2,0.000000,1,\n"));
+    let short = [LifeEpisodes {
+        switches: &[2],
+        correct: &[true],
+    }];
+    let message = CurveRow::new("g".into(), &short, 4, false)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains("row `g`") && message.contains("4 episodes"),
+        "{message}"
+    );
+}
