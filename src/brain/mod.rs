@@ -35,6 +35,7 @@
 //! The key belongs to the `[brain]` table, so genome files and checkpointed experiments
 //! carry it; left unset it is not written, so older files read and hash as before.
 
+pub mod ablation;
 pub mod activation;
 pub mod controller;
 pub mod ctrnn;

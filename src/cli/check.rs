@@ -268,6 +268,8 @@ pub fn held_out_check(
         random: CHECK_RANDOM,
         json: false,
         measures: Vec::new(),
+        ablate: Vec::new(),
+        episode_curve: None,
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs)

@@ -2,25 +2,32 @@
 //! same trial worlds of an experiment, so evolved and hand-designed controllers can be compared
 //! fairly. By default the worlds are a held-out set that evolution never saw; `--worlds`
 //! names another set (the experiment's validation worlds, or a generation's training worlds).
+//! `--ablate` adds the controls of a plastic genome (frozen, ungated) as rows of their own;
+//! `--episode-curve` draws every row's correct first choices per episode (docs/learning.md,
+//! "Controls and the episode curve").
 
-use crate::cli::console::outln;
+use crate::cli::console::{errln, outln};
 use crate::cli::json::{self, finite, Named};
 use crate::cli::worlds::{
     experiment_file, warn_other_experiment, WorldSet, WorldSetArgs, WorldsChoice,
 };
 
-use anyhow::Context;
+use anyhow::{bail, Context};
+use berry_evolve::brain::ablation::{ablate, Ablation, AblationError};
 use berry_evolve::evo::evaluate::aggregate;
 use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::stats::FitnessStats;
-use berry_evolve::evo::worlds::{self, alone, lives, lives_by_episode};
+use berry_evolve::evo::worlds::{self, alone, lives, lives_by_episode, LifeChoices};
 use berry_evolve::experiment::{Aggregate, Experiment, Measure, MEASURES};
+use berry_evolve::record::atomic::{refuse_output_over_input, write_atomic};
 use berry_evolve::record::genome_file::GenomeFile;
+use berry_evolve::record::plot::write_svg;
 use berry_evolve::sim::world::World;
-use clap::Args;
+use berry_evolve::view::episode_curve::{CurveRow, EpisodeCurve, LifeEpisodes};
+use clap::{Args, ValueEnum};
 use rayon::prelude::*;
 use serde::Serialize;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `compare`.
 #[derive(Debug, Args)]
@@ -54,6 +61,47 @@ pub struct CompareArgs {
     /// Measures never change fitness, so the experiment file need not change.
     #[arg(long = "measure", value_name = "NAME", value_delimiter = ',', value_parser = measure_name)]
     pub measures: Vec<Measure>,
+    /// Also evaluate each plastic genome file ablated, as extra rows labelled
+    /// `FILE (frozen)` and `FILE (ungated)`: `frozen`, plasticity off (the weights a life
+    /// starts with never change: the fixed MLP of the genome's weights); `ungated`, the
+    /// modulators cut (the neuromodulated rule run with g = 1 on every tick, as "hebbian").
+    /// `--ablate` alone gives both; `--ablate=frozen` one. See docs/learning.md, "Controls
+    /// and the episode curve".
+    #[arg(
+        long,
+        value_enum,
+        value_name = "ABLATION",
+        num_args = 0..,
+        require_equals = true,
+        value_delimiter = ',',
+        default_missing_values = ["frozen", "ungated"]
+    )]
+    pub ablate: Vec<AblationChoice>,
+    /// Draw every row's share of correct first choices per episode of the life, and per
+    /// episode since the last switch, to this SVG file, with the numbers in a CSV of the same
+    /// name beside it (`FILE.csv`). Needs lives of several episodes with a switch
+    /// (`[evaluation] episodes_per_life` > 1 and `[evaluation.switch]`); the random genomes'
+    /// lives are then reported per episode too.
+    #[arg(long, value_name = "FILE.svg")]
+    pub episode_curve: Option<PathBuf>,
+}
+
+/// An `--ablate` value (see [`berry_evolve::brain::ablation`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum AblationChoice {
+    /// Plasticity off: the weights never change.
+    Frozen,
+    /// The modulatory signal cut: the rule runs ungated (g = 1), as "hebbian".
+    Ungated,
+}
+
+impl AblationChoice {
+    fn ablation(self) -> Ablation {
+        match self {
+            AblationChoice::Frozen => Ablation::Frozen,
+            AblationChoice::Ungated => Ablation::Ungated,
+        }
+    }
 }
 
 /// A `--measure` name, or a message listing the names there are.
@@ -172,6 +220,10 @@ pub struct GenomeReport {
     /// The genome file (absent for a random genome).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub path: Option<String>,
+    /// With `--ablate`: the control this row is of the genome file `path` (`frozen` or
+    /// `ungated`); absent for the genome as it is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ablation: Option<&'static str>,
     /// The fitness: the trials' scores aggregated as the experiment says (`null` when a
     /// trial was not finite).
     pub fitness: Option<f64>,
@@ -199,6 +251,7 @@ impl GenomeReport {
             .collect();
         GenomeReport {
             path,
+            ablation: None,
             fitness: e.fitness,
             metabolism: e.metabolism,
             measures: measures_in_order(experiment, &e.measures),
@@ -208,6 +261,15 @@ impl GenomeReport {
                 .zip(0..)
                 .map(|(o, t)| TrialReport::new(experiment, t, o))
                 .collect(),
+        }
+    }
+
+    /// The row's name: the genome file, with its ablation in brackets.
+    fn label(&self) -> String {
+        let path = self.path.as_deref().unwrap_or("?");
+        match self.ablation {
+            Some(a) => format!("{path} ({a})"),
+            None => path.to_string(),
         }
     }
 
@@ -348,7 +410,7 @@ impl CompareReport {
             self.worlds.text()
         );
         for g in &self.genomes {
-            outln!("{}: fitness {}", g.path.as_deref().unwrap_or("?"), g.text());
+            outln!("{}: fitness {}", g.label(), g.text());
             if let Some(line) = g.choices_text() {
                 outln!("  {line}");
             }
@@ -379,6 +441,9 @@ impl CompareReport {
 /// Runs the subcommand.
 pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     let report = compare(&args)?;
+    if let Some(path) = &args.episode_curve {
+        write_episode_curve(&report, path)?;
+    }
     if args.json {
         json::print(&report)
     } else {
@@ -402,6 +467,9 @@ pub(crate) fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
     if !args.measures.is_empty() {
         experiment = with_measures(&experiment, &args.measures)
             .with_context(|| format!("{}: with --measure", experiment_path.display()))?;
+    }
+    if let Some(path) = &args.episode_curve {
+        check_episode_curve(&experiment, &experiment_path, path, &args.genomes)?;
     }
     let built = set.built_worlds(&experiment)?;
     let built = built.as_deref();
@@ -433,9 +501,15 @@ pub(crate) fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
         let o = lives(&experiment, &topology, &file.genome(), set, built)?;
         genomes.push(GenomeReport::new(&experiment, path, &o));
     }
-    let random = (args.random > 0)
+    if !args.ablate.is_empty() {
+        genomes = with_ablations(&experiment, args, set, built, genomes)?;
+    }
+    let mut random = (args.random > 0)
         .then(|| random_genomes(&experiment, set, built, args.random))
         .transpose()?;
+    if let (Some(r), Some(_)) = (&mut random, &args.episode_curve) {
+        random_episodes(&experiment, set, built, r)?;
+    }
     Ok(CompareReport {
         schema: "berry-evolve/compare/1",
         experiment: experiment.name.clone(),
@@ -505,4 +579,223 @@ fn random_genomes(
         measures: Named(measures),
         genomes,
     })
+}
+
+/// The episodes of one life as `compare --json` reports them; the first choices only with a
+/// switch (without one no choice is right or wrong).
+fn episodes_report(experiment: &Experiment, c: LifeChoices) -> EpisodesReport {
+    let switch = experiment.evaluation.switch.is_some();
+    EpisodesReport {
+        switches: c.switches,
+        exchanged: c.exchanged,
+        correct_first_choice: if switch {
+            c.correct_first_choice
+        } else {
+            Vec::new()
+        },
+    }
+}
+
+/// One row: `genome` of `topology` evaluated on the worlds, with its episodes when lives have
+/// several.
+fn row_report(
+    experiment: &Experiment,
+    topology: &berry_evolve::brain::Topology,
+    genome: &berry_evolve::brain::Genome,
+    path: Option<String>,
+    set: WorldSet,
+    built: Option<&[World]>,
+) -> anyhow::Result<GenomeReport> {
+    if experiment.evaluation.episodes_per_life == 1 {
+        let o = lives(experiment, topology, genome, set, built)?;
+        return Ok(GenomeReport::new(experiment, path, &o));
+    }
+    let lived = lives_by_episode(experiment, topology, genome, set, built)?;
+    let o: Vec<TrialOutcome> = lived.iter().map(|(o, _)| *o).collect();
+    let mut report = GenomeReport::new(experiment, path, &o);
+    for (trial, (_, c)) in report.trials.iter_mut().zip(lived) {
+        trial.episodes = Some(episodes_report(experiment, c));
+    }
+    Ok(report)
+}
+
+/// `genomes` (the files' rows, in `args.genomes` order) with each plastic file's ablations
+/// after its row. A file whose brain is not plastic gets a note and no rows; when no file
+/// is plastic, `--ablate` is refused (it would add nothing).
+fn with_ablations(
+    experiment: &Experiment,
+    args: &CompareArgs,
+    set: WorldSet,
+    built: Option<&[World]>,
+    genomes: Vec<GenomeReport>,
+) -> anyhow::Result<Vec<GenomeReport>> {
+    let mut rows = Vec::new();
+    let mut plastic = 0;
+    for (path, row) in args.genomes.iter().zip(genomes) {
+        rows.push(row);
+        let file = GenomeFile::load(path)?;
+        let topology = file.topology_for(experiment, path)?;
+        if topology.spec.plastic_settings().is_none() {
+            continue;
+        }
+        plastic += 1;
+        for choice in &args.ablate {
+            let ablation = choice.ablation();
+            let (t, g) = match ablate(&topology, &file.genome(), ablation) {
+                Ok(ablated) => ablated,
+                Err(AblationError::NoGate) => {
+                    errln!(
+                        "note: {}: no `{}` row: {}",
+                        path.display(),
+                        ablation.name(),
+                        AblationError::NoGate
+                    );
+                    continue;
+                }
+                Err(e) => return Err(e).with_context(|| format!("{}: --ablate", path.display())),
+            };
+            let mut row = row_report(
+                experiment,
+                &t,
+                &g,
+                Some(path.display().to_string()),
+                set,
+                built,
+            )?;
+            row.ablation = Some(ablation.name());
+            rows.push(row);
+        }
+    }
+    if plastic == 0 {
+        let names: Vec<String> = args
+            .genomes
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect();
+        bail!(
+            "--ablate: no genome file given has a plastic brain ({}); ablations take learning \
+             away from a genome whose `[brain] plasticity` is \"hebbian\" or \"neuromodulated\" \
+             (see docs/learning.md, \"Controls and the episode curve\"), so give such a file or drop --ablate",
+            if names.is_empty() {
+                "none given".to_string()
+            } else {
+                format!("`brain.plasticity` is \"none\" in {}", names.join(", "))
+            }
+        );
+    }
+    Ok(rows)
+}
+
+/// Refuses `--episode-curve` where it cannot draw anything (lives of one episode, or no
+/// switch, so no first choice is right or wrong) or would write over an input file, before
+/// anything is evaluated.
+fn check_episode_curve(
+    experiment: &Experiment,
+    experiment_path: &Path,
+    path: &Path,
+    genomes: &[PathBuf],
+) -> anyhow::Result<()> {
+    let k = experiment.evaluation.episodes_per_life;
+    if k < 2 {
+        bail!(
+            "--episode-curve draws the correct first choices per episode of a life, but \
+             experiment `{}` ({}) lives one episode per life (`[evaluation] \
+             episodes_per_life` = {k}); use an experiment with lives of several episodes and \
+             a switch, e.g. experiments/t-maze-switch.toml",
+            experiment.name,
+            experiment_path.display()
+        );
+    }
+    if experiment.evaluation.switch.is_none() {
+        bail!(
+            "--episode-curve draws the share of correct first choices, but experiment `{}` \
+             ({}) has no `[evaluation.switch]`, so no choice is right or wrong; add one \
+             (docs/learning.md, \"Switches\")",
+            experiment.name,
+            experiment_path.display()
+        );
+    }
+    if path.extension().and_then(|e| e.to_str()) != Some("svg") {
+        bail!(
+            "--episode-curve {}: give a file name ending in .svg (the numbers go beside it, \
+             in the same name ending in .csv)",
+            path.display()
+        );
+    }
+    let mut inputs: Vec<&Path> = genomes.iter().map(PathBuf::as_path).collect();
+    inputs.push(experiment_path);
+    refuse_output_over_input("--episode-curve", path, &inputs)?;
+    refuse_output_over_input("--episode-curve", &path.with_extension("csv"), &inputs)?;
+    Ok(())
+}
+
+/// Adds each random genome's episodes to its trials (`--episode-curve`), evaluating the
+/// genomes again per episode (the same lives: the outcomes are those already reported).
+fn random_episodes(
+    experiment: &Experiment,
+    set: WorldSet,
+    built: Option<&[World]>,
+    random: &mut RandomReport,
+) -> anyhow::Result<()> {
+    let topology = experiment.topology();
+    let drawn = worlds::random_genomes(experiment, set.generation(), random.count as usize);
+    let lived = drawn
+        .par_iter()
+        .map(|g| lives_by_episode(experiment, &topology, g, set, built))
+        .collect::<Result<Vec<_>, _>>()?;
+    for (report, lives) in random.genomes.iter_mut().zip(lived) {
+        for (trial, (_, c)) in report.trials.iter_mut().zip(lives) {
+            trial.episodes = Some(episodes_report(experiment, c));
+        }
+    }
+    Ok(())
+}
+
+/// A row's lives for the curve (those with per-episode first choices).
+fn curve_lives(report: &GenomeReport) -> Vec<LifeEpisodes<'_>> {
+    report
+        .trials
+        .iter()
+        .filter_map(|t| t.episodes.as_ref())
+        .map(|e| LifeEpisodes {
+            switches: &e.switches,
+            correct: &e.correct_first_choice,
+        })
+        .collect()
+}
+
+/// Writes `--episode-curve`: the SVG at `path`, the CSV beside it.
+fn write_episode_curve(report: &CompareReport, path: &Path) -> anyhow::Result<()> {
+    let episodes = report.episodes_per_life as usize;
+    let mut rows = Vec::new();
+    for g in &report.genomes {
+        rows.push(CurveRow::new(g.label(), &curve_lives(g), episodes, false)?);
+    }
+    let mut first = report.genomes.first().map(curve_lives);
+    if let Some(r) = &report.random {
+        let pooled: Vec<LifeEpisodes<'_>> = r.genomes.iter().flat_map(curve_lives).collect();
+        let label = format!("{} random genomes", r.count);
+        rows.push(CurveRow::new(label, &pooled, episodes, true)?);
+        if first.is_none() {
+            first = r.genomes.first().map(curve_lives);
+        }
+    }
+    let first = first.unwrap_or_default();
+    let title = format!(
+        "{}: correct first choice per episode, {} lives ({})",
+        report.experiment,
+        first.len(),
+        report.worlds.set.name()
+    );
+    let curve = EpisodeCurve::new(title, episodes, &first, rows).with_context(|| {
+        format!(
+            "--episode-curve {}: give genome files or --random N",
+            path.display()
+        )
+    })?;
+    write_svg(path, &curve.svg()?)?;
+    let csv = path.with_extension("csv");
+    write_atomic(&csv, curve.csv().as_bytes())
+        .with_context(|| format!("cannot write {}", csv.display()))?;
+    Ok(())
 }

@@ -1,7 +1,8 @@
 //! Plastic brains (`brain.plasticity`): the rule Δw = η·(A·pre·post + B·pre + C·post + D) on
 //! hand-computed single synapses (each coefficient alone, the tanh(m/2) gate, the clamp), the
 //! genome layout, frozen plasticity (η = 0) equal to the fixed MLP over a whole trial, reset,
-//! random initial weights per life, and bad tables refused naming the key.
+//! random initial weights per life, bad tables refused naming the key, and the ablations of
+//! `compare --ablate` (frozen, ungated).
 
 use crate::brain_common::spec;
 use berry_evolve::brain::activation::tanh;
@@ -567,4 +568,127 @@ fn plastic_evaluation_is_the_single_trial_path_on_any_thread_count() {
             );
         }
     }
+}
+
+/// Ablations (`compare --ablate`, [`berry_evolve::brain::ablation`]): `ungated` is the rule
+/// with its gate held open (the same weights, tick by tick, as the neuromodulated brain whose
+/// m is so large that g = tanh(m/2) = 1), which differs from the gated rule; `frozen` is the
+/// fixed MLP of the genome's weights (its weights never move), and with random initial
+/// weights it keeps the life's draw. Ablating what cannot be ablated is refused.
+#[test]
+fn ablations_freeze_the_weights_or_hold_the_gate_open() {
+    use berry_evolve::brain::ablation::{ablate, Ablation, AblationError};
+    let topology = |table: &str| Topology {
+        spec: spec(&format!("hidden = [3]\n{table}")),
+        inputs: 2,
+        outputs: 2,
+        signals: SignalInputs {
+            food: Some(0),
+            ..SignalInputs::default()
+        },
+    };
+    let plastic = topology(
+        "plasticity = \"neuromodulated\"\nmodulators = [\"food_a\"]\ngranularity = \"layer\"",
+    );
+    let names = plastic.parameter_names();
+    // Weights from a fixed pattern; per layer η = 0.25, A = 0.5, B = −0.25, C = 0.125,
+    // D = 0.0625; the food gene `gate`.
+    let genome = |gate: f64| -> Vec<f64> {
+        names
+            .iter()
+            .enumerate()
+            .map(|(k, name)| match name.split('_').nth(1) {
+                _ if name == "mod_food_a" => gate,
+                Some("eta") => 0.25,
+                Some("a") => 0.5,
+                Some("b") => -0.25,
+                Some("c") => 0.125,
+                Some("d") => 0.0625,
+                _ => ((k * 37 % 23) as f64 - 11.0) / 9.0,
+            })
+            .collect()
+    };
+    assert_eq!(tanh(5e5 * 0.5), 1.0, "the gate can be held open");
+    let gated = Genome::new(genome(0.3));
+    let (ungated_topology, ungated) = ablate(&plastic, &gated, Ablation::Ungated).unwrap();
+    assert_eq!(
+        ungated_topology.spec,
+        spec("hidden = [3]\nplasticity = \"hebbian\"\ngranularity = \"layer\"")
+    );
+    let (frozen_topology, frozen) = ablate(&plastic, &gated, Ablation::Frozen).unwrap();
+    assert_eq!(frozen_topology.spec, spec("hidden = [3]"));
+    assert_eq!(
+        frozen.parameters[..],
+        gated.parameters[..frozen_topology.parameter_count()]
+    );
+    let mut brains = [
+        Brain::new(&plastic, &gated.parameters).unwrap(),
+        Brain::new(&plastic, &genome(5e5)).unwrap(),
+        ungated.decode(&ungated_topology).unwrap(),
+        frozen.decode(&frozen_topology).unwrap(),
+    ];
+    let start = weights(&brains[0]);
+    let mut y = [0.0; 2];
+    for t in 0..20 {
+        // Food detector A on every tick (so the open gate stays open), the other input moving.
+        let x = [1.0, f64::from(t % 5) * 0.25 - 0.5];
+        for brain in &mut brains {
+            brain.activate(&x, &mut y);
+        }
+        assert_eq!(
+            weights(&brains[2]),
+            weights(&brains[1]),
+            "ungated = open, tick {t}"
+        );
+        assert_eq!(weights(&brains[3]), start, "frozen never moves, tick {t}");
+    }
+    assert_ne!(
+        weights(&brains[0]),
+        weights(&brains[2]),
+        "the gate mattered"
+    );
+    assert_ne!(weights(&brains[0]), start, "the intact brain learned");
+
+    // Random initial weights: frozen keeps the life's draw.
+    let random = topology(
+        "plasticity = \"neuromodulated\"\nmodulators = [\"food_a\"]\ninitial_weights = \"random\"",
+    );
+    let genes = Genome::new(vec![0.25, 0.5, -0.25, 0.125, 0.0625, 0.3]);
+    let (t, g) = ablate(&random, &genes, Ablation::Frozen).unwrap();
+    let key = LifeKey {
+        seed: Seed(3),
+        trial: TrialIndex(2),
+        ..LifeKey::default()
+    };
+    let mut intact = Brain::new(&random, &genes.parameters).unwrap();
+    let mut frozen = g.decode(&t).unwrap();
+    intact.start_life(key);
+    frozen.start_life(key);
+    let drawn = weights(&intact);
+    assert_eq!(weights(&frozen), drawn, "the same draw");
+    for _ in 0..10 {
+        intact.activate(&[1.0, 0.5], &mut y);
+        frozen.activate(&[1.0, 0.5], &mut y);
+    }
+    assert_eq!(weights(&frozen), drawn);
+    assert_ne!(weights(&intact), drawn);
+
+    // Refusals.
+    let fixed = topology("");
+    let some = Genome::new(vec![0.0; fixed.parameter_count()]);
+    assert_eq!(
+        ablate(&fixed, &some, Ablation::Frozen).unwrap_err(),
+        AblationError::NotPlastic
+    );
+    let hebbian = topology("plasticity = \"hebbian\"");
+    let some = Genome::new(vec![0.0; hebbian.parameter_count()]);
+    assert_eq!(
+        ablate(&hebbian, &some, Ablation::Ungated).unwrap_err(),
+        AblationError::NoGate
+    );
+    assert!(ablate(&hebbian, &some, Ablation::Frozen).is_ok());
+    assert!(matches!(
+        ablate(&plastic, &some, Ablation::Frozen),
+        Err(AblationError::ParameterCount { .. })
+    ));
 }

@@ -10,6 +10,7 @@ mod atomic_outputs;
 mod completions_and_man;
 mod config_reference;
 mod console_output;
+mod controls_and_episode_curve;
 mod dead_end_messages;
 mod first_hour;
 mod gadget_experiments;
