@@ -15,6 +15,7 @@ root, after `cargo build --release`; each command writes the committed file byte
   python3 -m scripts.genomes landmark-arena        # genomes/landmark-arena-baseline.json
   python3 -m scripts.genomes predator-arena        # genomes/predator-arena-baseline.json
   python3 -m scripts.genomes air-raid              # genomes/air-raid-baseline.json
+  python3 -m scripts.genomes t-maze-switch         # genomes/t-maze-switch-baseline.json
   python3 -m scripts.genomes all                   # every one of them
 
 Options: `--experiment FILE` (another experiment's layout, e.g. an ablation), `--out FILE`

@@ -2,7 +2,7 @@
 import argparse
 import sys
 
-from . import air_raid, baselines, predator_arena
+from . import air_raid, baselines, learner, predator_arena
 from .layout import BINARY, layout, motor_layout
 from .vehicle import vehicle
 from .write import dump, single_layer
@@ -21,6 +21,7 @@ GENOMES = {
     "landmark-arena": (baselines.landmark_arena, "landmark-arena", "landmark-arena-baseline"),
     "predator-arena": (None, "predator-arena", "predator-arena-baseline"),
     "air-raid": (None, "air-raid", "air-raid-baseline"),
+    "t-maze-switch": (learner.t_maze_switch, "t-maze-switch", "t-maze-switch-baseline"),
 }
 
 # Tuning options, per genome: (option, default); None = the builder's own default.
