@@ -10,15 +10,14 @@ use crate::cli::worlds::{
 };
 
 use anyhow::Context;
+use berry_evolve::evo::door::{self, Evaluate};
 use berry_evolve::evo::evaluate::aggregate;
 use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::stats::FitnessStats;
-use berry_evolve::evo::worlds::{self, alone, lives, lives_by_episode};
+use berry_evolve::evo::worlds::{self, alone};
 use berry_evolve::experiment::{Aggregate, Experiment, Measure, MEASURES};
 use berry_evolve::record::genome_file::GenomeFile;
-use berry_evolve::sim::world::World;
 use clap::Args;
-use rayon::prelude::*;
 use serde::Serialize;
 use std::path::PathBuf;
 
@@ -403,16 +402,16 @@ pub(crate) fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
         experiment = with_measures(&experiment, &args.measures)
             .with_context(|| format!("{}: with --measure", experiment_path.display()))?;
     }
-    let built = set.built_worlds(&experiment)?;
-    let built = built.as_deref();
     let mut genomes = Vec::new();
     for path in &args.genomes {
         let file = GenomeFile::load(path)?;
         let topology = file.topology_for(&experiment, path)?;
         warn_other_experiment(&file, path, &experiment, &experiment_path);
         let path = Some(path.display().to_string());
+        let genome = [file.genome()];
+        let request = Evaluate::new(&experiment, &topology, &genome, door::Worlds::Alone(set));
         if experiment.evaluation.episodes_per_life > 1 {
-            let lived = lives_by_episode(&experiment, &topology, &file.genome(), set, built)?;
+            let lived = request.lives_by_episode()?.swap_remove(0);
             let o: Vec<TrialOutcome> = lived.iter().map(|(o, _)| *o).collect();
             let mut report = GenomeReport::new(&experiment, path, &o);
             let switch = experiment.evaluation.switch.is_some();
@@ -430,11 +429,11 @@ pub(crate) fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
             genomes.push(report);
             continue;
         }
-        let o = lives(&experiment, &topology, &file.genome(), set, built)?;
+        let o = request.lives()?.swap_remove(0);
         genomes.push(GenomeReport::new(&experiment, path, &o));
     }
     let random = (args.random > 0)
-        .then(|| random_genomes(&experiment, set, built, args.random))
+        .then(|| random_genomes(&experiment, set, args.random))
         .transpose()?;
     Ok(CompareReport {
         schema: "berry-evolve/compare/1",
@@ -475,18 +474,15 @@ fn with_measures(
 fn random_genomes(
     experiment: &Experiment,
     set: WorldSet,
-    built: Option<&[World]>,
     count: u64,
 ) -> anyhow::Result<RandomReport> {
     let topology = experiment.topology();
     let drawn = worlds::random_genomes(experiment, set.generation(), count as usize);
-    let genomes = drawn
-        .par_iter()
-        .map(|g| {
-            let o = lives(experiment, &topology, g, set, built)?;
-            Ok(GenomeReport::new(experiment, None, &o))
-        })
-        .collect::<anyhow::Result<Vec<_>>>()?;
+    let lives = Evaluate::new(experiment, &topology, &drawn, door::Worlds::Alone(set)).lives()?;
+    let genomes: Vec<GenomeReport> = lives
+        .iter()
+        .map(|o| GenomeReport::new(experiment, None, o))
+        .collect();
     let fitness: Vec<f64> = genomes.iter().filter_map(|g| g.fitness).collect();
     let measures = experiment
         .behaviour
