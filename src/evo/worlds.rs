@@ -210,20 +210,22 @@ impl WorldSet {
     /// the set's generation (the worlds a genome alone meets there: with group 0 the stream
     /// is the same with or without common random numbers).
     pub fn build(self, experiment: &Experiment) -> Result<BuiltWorlds, EvaluationError> {
-        if self == WorldSet::Validation {
-            return Ok(BuiltWorlds {
+        match self {
+            WorldSet::Validation => Ok(BuiltWorlds {
                 worlds: validation_worlds(experiment)?,
                 origin: LifeOrigin::validation(TrialIndex(0)),
-            });
+            }),
+            WorldSet::Training(_) | WorldSet::HeldOut | WorldSet::Design => {
+                let generation = self.generation();
+                let trials = experiment.evaluation.trials;
+                Ok(BuiltWorlds {
+                    worlds: worlds_from(experiment, trials, generation, |t| {
+                        trial_stream(experiment, generation, 0, t)
+                    })?,
+                    origin: LifeOrigin::trial(experiment, generation, 0, TrialIndex(0)),
+                })
+            }
         }
-        let generation = self.generation();
-        let trials = experiment.evaluation.trials;
-        Ok(BuiltWorlds {
-            worlds: worlds_from(experiment, trials, generation, |t| {
-                trial_stream(experiment, generation, 0, t)
-            })?,
-            origin: LifeOrigin::trial(experiment, generation, 0, TrialIndex(0)),
-        })
     }
 }
 
