@@ -8,7 +8,7 @@
 
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::brain::spec::Topology;
-use berry_evolve::evo::door::{Evaluate, Worlds};
+use berry_evolve::evo::door::{self, Evaluate};
 use berry_evolve::evo::episode::Episode;
 use berry_evolve::evo::evaluate::Evaluation;
 use berry_evolve::evo::life::EvaluationError;
@@ -203,7 +203,7 @@ impl PyExperiment {
             .map(|row| Genome::new(row.to_vec()))
             .collect();
         let (experiment, topology) = (&*self.experiment, &self.topology);
-        let request = Evaluate::new(experiment, topology, &list, Worlds::of(set));
+        let request = Evaluate::new(experiment, topology, &list, door::Worlds::of(set));
         request.check().map_err(value_error)?;
         let evaluations: Vec<Evaluation> =
             py.allow_threads(|| request.run()).map_err(value_error)?;
