@@ -197,7 +197,7 @@ impl<'a> PopulationJobs<'a> {
     /// The jobs of evaluating `population` as generation `generation`: with a stateless brain
     /// (an MLP) one per group and chunk of up to [`lockstep::CHUNK_TRIALS`] trials, otherwise
     /// one per (group, trial) pair; group-major. Builds the shared trial worlds once (see
-    /// [`shared_worlds`]).
+    /// `shared_worlds`).
     pub fn new(
         experiment: &'a Experiment,
         topology: &'a Topology,
