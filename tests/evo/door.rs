@@ -222,20 +222,17 @@ fn the_door_refuses_what_cannot_be_evaluated_as_asked() {
     let grouped = e
         .with_overrides()
         .edit(|c| c.evaluation.group_size = 2)
-        .build();
-    if let Ok(grouped) = grouped {
-        let request = Evaluate::new(
-            &grouped,
-            &topology,
-            &genomes,
-            Worlds::of(WorldSet::Training(0)),
-        );
-        let error = request.check().unwrap_err().to_string();
-        assert!(
-            error.contains("group_size") && error.contains("multiple of 2"),
-            "{error}"
-        );
-    }
+        .build()
+        .unwrap();
+    let worlds = Worlds::of(WorldSet::Training(0));
+    let error = Evaluate::new(&grouped, &topology, &genomes, worlds)
+        .check()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("group_size") && error.contains("multiple of 2"),
+        "{error}"
+    );
     let fine = Evaluate::new(&e, &topology, &genomes, Worlds::of(WorldSet::HeldOut));
     fine.check().unwrap();
 }
