@@ -8,10 +8,11 @@
 
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::brain::spec::Topology;
+use berry_evolve::evo::door::{self, Evaluate};
 use berry_evolve::evo::episode::Episode;
 use berry_evolve::evo::evaluate::Evaluation;
 use berry_evolve::evo::life::EvaluationError;
-use berry_evolve::evo::worlds::{self, WorldSet, HELD_OUT_GENERATION};
+use berry_evolve::evo::worlds::{WorldSet, HELD_OUT_GENERATION};
 use berry_evolve::experiment::{Experiment, ExperimentError};
 use berry_evolve::record::genome_file::{GenomeFile, GenomeFileError, Origin};
 use berry_evolve::seed::{Generation, TrialIndex};
@@ -202,9 +203,10 @@ impl PyExperiment {
             .map(|row| Genome::new(row.to_vec()))
             .collect();
         let (experiment, topology) = (&*self.experiment, &self.topology);
-        let evaluations: Vec<Evaluation> = py
-            .allow_threads(|| worlds::evaluate(experiment, topology, &list, set))
-            .map_err(value_error)?;
+        let request = Evaluate::new(experiment, topology, &list, door::Worlds::of(set));
+        request.check().map_err(value_error)?;
+        let evaluations: Vec<Evaluation> =
+            py.allow_threads(|| request.run()).map_err(value_error)?;
         let fitness: Vec<f64> = evaluations
             .iter()
             .map(|e| e.fitness.unwrap_or(f64::NAN))

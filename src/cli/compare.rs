@@ -14,18 +14,17 @@ use crate::cli::worlds::{
 
 use anyhow::{bail, Context};
 use berry_evolve::brain::ablation::{ablate, Ablation, AblationError};
+use berry_evolve::evo::door::{self, Evaluate, LifeChoices};
 use berry_evolve::evo::evaluate::aggregate;
 use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::stats::FitnessStats;
-use berry_evolve::evo::worlds::{self, alone, lives, lives_by_episode, LifeChoices};
+use berry_evolve::evo::worlds::{self, alone};
 use berry_evolve::experiment::{Aggregate, Experiment, Measure, MEASURES};
 use berry_evolve::record::atomic::{refuse_output_over_input, write_atomic};
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::record::plot::write_svg;
-use berry_evolve::sim::world::World;
 use berry_evolve::view::episode_curve::{CurveRow, EpisodeCurve, LifeEpisodes};
 use clap::{Args, ValueEnum};
-use rayon::prelude::*;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -471,44 +470,28 @@ pub(crate) fn compare(args: &CompareArgs) -> anyhow::Result<CompareReport> {
     if let Some(path) = &args.episode_curve {
         check_episode_curve(&experiment, &experiment_path, path, &args.genomes)?;
     }
-    let built = set.built_worlds(&experiment)?;
-    let built = built.as_deref();
     let mut genomes = Vec::new();
     for path in &args.genomes {
         let file = GenomeFile::load(path)?;
         let topology = file.topology_for(&experiment, path)?;
         warn_other_experiment(&file, path, &experiment, &experiment_path);
         let path = Some(path.display().to_string());
-        if experiment.evaluation.episodes_per_life > 1 {
-            let lived = lives_by_episode(&experiment, &topology, &file.genome(), set, built)?;
-            let o: Vec<TrialOutcome> = lived.iter().map(|(o, _)| *o).collect();
-            let mut report = GenomeReport::new(&experiment, path, &o);
-            let switch = experiment.evaluation.switch.is_some();
-            for (trial, (_, c)) in report.trials.iter_mut().zip(lived) {
-                trial.episodes = Some(EpisodesReport {
-                    switches: c.switches,
-                    exchanged: c.exchanged,
-                    correct_first_choice: if switch {
-                        c.correct_first_choice
-                    } else {
-                        Vec::new()
-                    },
-                });
-            }
-            genomes.push(report);
-            continue;
-        }
-        let o = lives(&experiment, &topology, &file.genome(), set, built)?;
-        genomes.push(GenomeReport::new(&experiment, path, &o));
+        genomes.push(row_report(
+            &experiment,
+            &topology,
+            &file.genome(),
+            path,
+            set,
+        )?);
     }
     if !args.ablate.is_empty() {
-        genomes = with_ablations(&experiment, args, set, built, genomes)?;
+        genomes = with_ablations(&experiment, args, set, genomes)?;
     }
     let mut random = (args.random > 0)
-        .then(|| random_genomes(&experiment, set, built, args.random))
+        .then(|| random_genomes(&experiment, set, args.random))
         .transpose()?;
     if let (Some(r), Some(_)) = (&mut random, &args.episode_curve) {
-        random_episodes(&experiment, set, built, r)?;
+        random_episodes(&experiment, set, r)?;
     }
     Ok(CompareReport {
         schema: "berry-evolve/compare/1",
@@ -549,18 +532,15 @@ fn with_measures(
 fn random_genomes(
     experiment: &Experiment,
     set: WorldSet,
-    built: Option<&[World]>,
     count: u64,
 ) -> anyhow::Result<RandomReport> {
     let topology = experiment.topology();
     let drawn = worlds::random_genomes(experiment, set.generation(), count as usize);
-    let genomes = drawn
-        .par_iter()
-        .map(|g| {
-            let o = lives(experiment, &topology, g, set, built)?;
-            Ok(GenomeReport::new(experiment, None, &o))
-        })
-        .collect::<anyhow::Result<Vec<_>>>()?;
+    let lives = Evaluate::new(experiment, &topology, &drawn, door::Worlds::Alone(set)).lives()?;
+    let genomes: Vec<GenomeReport> = lives
+        .iter()
+        .map(|o| GenomeReport::new(experiment, None, o))
+        .collect();
     let fitness: Vec<f64> = genomes.iter().filter_map(|g| g.fitness).collect();
     let measures = experiment
         .behaviour
@@ -604,13 +584,14 @@ fn row_report(
     genome: &berry_evolve::brain::Genome,
     path: Option<String>,
     set: WorldSet,
-    built: Option<&[World]>,
 ) -> anyhow::Result<GenomeReport> {
+    let genomes = [genome.clone()];
+    let request = Evaluate::new(experiment, topology, &genomes, door::Worlds::Alone(set));
     if experiment.evaluation.episodes_per_life == 1 {
-        let o = lives(experiment, topology, genome, set, built)?;
+        let o = request.lives()?.swap_remove(0);
         return Ok(GenomeReport::new(experiment, path, &o));
     }
-    let lived = lives_by_episode(experiment, topology, genome, set, built)?;
+    let lived = request.lives_by_episode()?.swap_remove(0);
     let o: Vec<TrialOutcome> = lived.iter().map(|(o, _)| *o).collect();
     let mut report = GenomeReport::new(experiment, path, &o);
     for (trial, (_, c)) in report.trials.iter_mut().zip(lived) {
@@ -626,7 +607,6 @@ fn with_ablations(
     experiment: &Experiment,
     args: &CompareArgs,
     set: WorldSet,
-    built: Option<&[World]>,
     genomes: Vec<GenomeReport>,
 ) -> anyhow::Result<Vec<GenomeReport>> {
     let mut rows = Vec::new();
@@ -654,14 +634,7 @@ fn with_ablations(
                 }
                 Err(e) => return Err(e).with_context(|| format!("{}: --ablate", path.display())),
             };
-            let mut row = row_report(
-                experiment,
-                &t,
-                &g,
-                Some(path.display().to_string()),
-                set,
-                built,
-            )?;
+            let mut row = row_report(experiment, &t, &g, Some(path.display().to_string()), set)?;
             row.ablation = Some(ablation.name());
             rows.push(row);
         }
@@ -734,15 +707,12 @@ fn check_episode_curve(
 fn random_episodes(
     experiment: &Experiment,
     set: WorldSet,
-    built: Option<&[World]>,
     random: &mut RandomReport,
 ) -> anyhow::Result<()> {
     let topology = experiment.topology();
     let drawn = worlds::random_genomes(experiment, set.generation(), random.count as usize);
-    let lived = drawn
-        .par_iter()
-        .map(|g| lives_by_episode(experiment, &topology, g, set, built))
-        .collect::<Result<Vec<_>, _>>()?;
+    let lived = Evaluate::new(experiment, &topology, &drawn, door::Worlds::Alone(set))
+        .lives_by_episode()?;
     for (report, lives) in random.genomes.iter_mut().zip(lived) {
         for (trial, (_, c)) in report.trials.iter_mut().zip(lives) {
             trial.episodes = Some(episodes_report(experiment, c));

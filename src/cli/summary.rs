@@ -11,9 +11,8 @@ use crate::cli::json::{self, Named};
 use crate::cli::worlds::{warn_other_experiment, WorldSet, WorldSetArgs, WorldsChoice};
 
 use anyhow::Context;
-use berry_evolve::evo::episodes::LifeOrigin;
-use berry_evolve::evo::evaluate::{evaluate_in_worlds, worlds_from, Evaluation};
-use berry_evolve::evo::life::trial_stream;
+use berry_evolve::evo::door::{Evaluate, Worlds};
+use berry_evolve::evo::evaluate::Evaluation;
 use berry_evolve::evo::worlds::random_genomes;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::genome_file::GenomeFile;
@@ -21,7 +20,6 @@ use berry_evolve::record::summary::{
     self, held_out_bytes, quartiles, read_seeds, seed_folders, summary_bytes, HeldOutRow,
     SummaryRow, HELD_OUT_FILE, SUMMARY_FILE,
 };
-use berry_evolve::seed::TrialIndex;
 use clap::Args;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -252,20 +250,14 @@ fn held_out(
     let generation = set.generation();
     // The worlds compare uses: the validation worlds, or group 0 of the generation, one
     // creature each.
-    let (worlds, origin) = match set.built_worlds(experiment)? {
-        Some(worlds) => (worlds, LifeOrigin::validation(TrialIndex(0))),
-        None => (
-            worlds_from(experiment, experiment.evaluation.trials, generation, |t| {
-                trial_stream(experiment, generation, 0, t)
-            })?,
-            LifeOrigin::trial(experiment, generation, 0, TrialIndex(0)),
-        ),
-    };
+    let worlds = set.build(experiment)?;
     let evaluate_file = |path: &PathBuf| -> anyhow::Result<Evaluation> {
         let file = GenomeFile::load(path)?;
         let topology = file.topology_for(experiment, path)?;
         warn_other_experiment(&file, path, experiment, experiment_path);
-        Ok(evaluate_in_worlds(experiment, &topology, &[file.genome()], &worlds, origin)?.remove(0))
+        let genome = [file.genome()];
+        let request = Evaluate::new(experiment, &topology, &genome, Worlds::Built(&worlds));
+        Ok(request.run()?.remove(0))
     };
     let mut out = Vec::new();
     let mut without_best = Vec::new();
@@ -288,7 +280,8 @@ fn held_out(
     if args.random > 0 {
         let topology = experiment.topology();
         let genomes = random_genomes(experiment, generation, args.random as usize);
-        let evaluations = evaluate_in_worlds(experiment, &topology, &genomes, &worlds, origin)?;
+        let evaluations =
+            Evaluate::new(experiment, &topology, &genomes, Worlds::Built(&worlds)).run()?;
         let fitness: Vec<f64> = evaluations.iter().filter_map(|e| e.fitness).collect();
         let measure =
             |k: usize| -> Vec<f64> { evaluations.iter().map(|e| e.measures[k]).collect() };
@@ -346,7 +339,7 @@ fn held_out(
             _ => None,
         },
         set,
-        trials: worlds.len() as u64,
+        trials: worlds.worlds.len() as u64,
         without_best,
         seed_fitness: quartiles(&seed_fitness).map(|q| Quartiles {
             q1: q[0],

@@ -56,7 +56,7 @@ impl LifeOrigin {
     }
 
     /// The life in validation world `trial` (see
-    /// [`crate::evo::validation::validation_worlds`]).
+    /// [`crate::evo::worlds::validation_worlds`]).
     pub fn validation(trial: TrialIndex) -> LifeOrigin {
         LifeOrigin {
             purpose: Purpose::ValidationWorld,

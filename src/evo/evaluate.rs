@@ -1,27 +1,29 @@
-//! Evaluation: a genome's fitness, measured by living `trials` lives in trial worlds.
+//! Evaluation: a genome's fitness, measured by living `trials` lives in trial worlds, and the
+//! jobs a generation's evaluation splits into. Callers come through the one door,
+//! [`crate::evo::door::Evaluate`]; this file holds what it is made of.
 //!
 //! One trial is a pure function of (experiment, the genomes of one group, generation, group
 //! index, trial index): its world comes from its own seed stream and it shares nothing with
 //! other trials. (With common random numbers that stream does not depend on the group, so
-//! [`evaluate_population`] builds each trial world once and hands every group a clone: the
-//! same world, built once instead of once per group.) [`evaluate_population`] runs all (group, trial) pairs in parallel with rayon
-//! (with stateless brains, several trials of a group at once in lockstep, see
-//! [`crate::evo::lockstep`]), collects them in index order and reduces them serially, so the
-//! result is the same bits for any number of threads, and the same as evaluating one group at
-//! a time with [`evaluate_group`]. The generation's jobs ([`PopulationJobs`]) can run on
-//! this process's threads ([`ThisProcess`]) or on other processes ([`Evaluator`]; the `mpi`
+//! [`PopulationJobs`] builds each trial world once and hands every group a clone: the same
+//! world, built once instead of once per group.) The jobs run in parallel with rayon (with
+//! stateless brains, several trials of a group at once in lockstep, see
+//! [`crate::evo::lockstep`]), are collected in index order and reduced serially, so the
+//! result is the same bits for any number of threads, and the same as living one trial at a
+//! time with [`crate::evo::trial::run_trial`]. The generation's jobs can run on this
+//! process's threads ([`ThisProcess`]) or on other processes ([`Evaluator`]; the `mpi`
 //! feature's ranks), with the same bits.
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
 use crate::evo::episodes::LifeOrigin;
 use crate::evo::life::{
-    build_trial_world, checked_controllers, valid_specs, world_error, EvaluationError, TrialOutcome,
+    build_trial_world, checked_controllers, valid_specs, EvaluationError, TrialOutcome,
 };
 use crate::evo::lockstep;
 use crate::evo::trial;
 use crate::experiment::{Aggregate, Experiment};
-use crate::seed::{Generation, Rng, TrialIndex};
+use crate::seed::{Generation, TrialIndex};
 use crate::sim::metabolism::Metabolism;
 use crate::sim::world::World;
 use rayon::prelude::*;
@@ -55,33 +57,10 @@ impl Evaluation {
     }
 }
 
-/// Lives one trial for a group of genomes sharing one world; returns one outcome per genome.
-/// Builds one brain per genome for this trial alone and steps the world tick by tick (the
-/// path for brains with state; [`crate::evo::lockstep`] gives the same bits for stateless
-/// ones).
-pub fn run_trial(
-    experiment: &Experiment,
-    topology: &Topology,
-    genomes: &[Genome],
-    generation: Generation,
-    group: u64,
-    trial: TrialIndex,
-) -> Result<Vec<TrialOutcome>, EvaluationError> {
-    // The one trial path, watched by nobody (see `crate::evo::trial`).
-    trial::run_trial(
-        experiment,
-        topology,
-        genomes,
-        generation,
-        group,
-        trial,
-        trial::NoObserver,
-    )
-}
-
-/// [`run_trial`] in a given world: a clone of the trial's world from [`shared_worlds`], or a
-/// world built beforehand from the stream at `origin` (the first of the life's worlds).
-fn run_trial_in(
+/// One trial for `genomes` (group `group`) in a given world: a clone of the trial's world
+/// from [`shared_worlds`], or a world built beforehand from the stream at `origin` (the first
+/// of the life's worlds).
+pub(crate) fn run_trial_in(
     experiment: &Experiment,
     topology: &Topology,
     genomes: &[Genome],
@@ -181,34 +160,6 @@ pub fn aggregate(experiment: &Experiment, trials: &[TrialOutcome]) -> Evaluation
     }
 }
 
-/// Evaluates one group (individuals `group*k .. group*k + k`) serially, trial by trial.
-pub fn evaluate_group(
-    experiment: &Experiment,
-    topology: &Topology,
-    genomes: &[Genome],
-    generation: Generation,
-    group: u64,
-) -> Result<Vec<Evaluation>, EvaluationError> {
-    let mut per_individual: Vec<Vec<TrialOutcome>> = vec![Vec::new(); genomes.len()];
-    for t in 0..experiment.evaluation.trials {
-        let outcomes = run_trial(
-            experiment,
-            topology,
-            genomes,
-            generation,
-            group,
-            TrialIndex(t),
-        )?;
-        for (list, outcome) in per_individual.iter_mut().zip(outcomes) {
-            list.push(outcome);
-        }
-    }
-    Ok(per_individual
-        .iter()
-        .map(|trials| aggregate(experiment, trials))
-        .collect())
-}
-
 /// One evaluation job of a generation: a group's chunk of trials lived in lockstep
 /// (stateless brains), or one (group, trial) pair.
 #[derive(Debug, Clone, PartialEq)]
@@ -218,7 +169,7 @@ enum Job {
         group: usize,
         trials: std::ops::Range<u64>,
     },
-    /// Group `group`'s trial `trial` alone ([`run_trial`]).
+    /// Group `group`'s trial `trial` alone ([`trial::run_trial`]).
     Trial { group: usize, trial: u64 },
 }
 
@@ -246,7 +197,7 @@ impl<'a> PopulationJobs<'a> {
     /// The jobs of evaluating `population` as generation `generation`: with a stateless brain
     /// (an MLP) one per group and chunk of up to [`lockstep::CHUNK_TRIALS`] trials, otherwise
     /// one per (group, trial) pair; group-major. Builds the shared trial worlds once (see
-    /// [`shared_worlds`]).
+    /// `shared_worlds`).
     pub fn new(
         experiment: &'a Experiment,
         topology: &'a Topology,
@@ -367,13 +318,14 @@ impl<'a> PopulationJobs<'a> {
                             world,
                         )
                     }
-                    None => run_trial(
+                    None => trial::run_trial(
                         self.experiment,
                         self.topology,
                         genomes,
                         self.generation,
                         *group as u64,
                         TrialIndex(*trial),
+                        trial::NoObserver,
                     ),
                 }?;
                 Ok(vec![lives])
@@ -398,23 +350,29 @@ impl<'a> PopulationJobs<'a> {
             .collect()
     }
 
-    /// The population's evaluations from every job's result (`per_job[j]` is job j's), reduced
-    /// serially in index order.
-    pub fn reduce(&self, per_job: Vec<JobLives>) -> Vec<Evaluation> {
+    /// Every individual's lives from every job's result (`per_job[j]` is job j's): per
+    /// individual, in population order, its trial outcomes in trial order.
+    pub fn lives(&self, per_job: Vec<JobLives>) -> Vec<Vec<TrialOutcome>> {
         let k = self.experiment.evaluation.group_size as usize;
         let trials = self.experiment.evaluation.trials as usize;
         // outcomes[g * trials + t][i] is individual g*k + i's life in trial t.
         let outcomes: Vec<Vec<TrialOutcome>> = per_job.into_iter().flatten().collect();
-        let mut evaluations = Vec::with_capacity(self.population.len());
-        let mut trial_list = Vec::with_capacity(trials);
+        let mut lives = Vec::with_capacity(self.population.len());
         for group_trials in outcomes.chunks(trials) {
             for i in 0..k {
-                trial_list.clear();
-                trial_list.extend(group_trials.iter().map(|outcome| outcome[i]));
-                evaluations.push(aggregate(self.experiment, &trial_list));
+                lives.push(group_trials.iter().map(|outcome| outcome[i]).collect());
             }
         }
-        evaluations
+        lives
+    }
+
+    /// The population's evaluations from every job's result (`per_job[j]` is job j's), reduced
+    /// serially in index order.
+    pub fn reduce(&self, per_job: Vec<JobLives>) -> Vec<Evaluation> {
+        self.lives(per_job)
+            .iter()
+            .map(|trials| aggregate(self.experiment, trials))
+            .collect()
     }
 }
 
@@ -439,31 +397,12 @@ impl Evaluator for ThisProcess {
     }
 }
 
-/// Evaluates a whole population in parallel on the current rayon pool (see
-/// [`PopulationJobs`]): results are collected in index order and aggregated serially, so
-/// they are the same bits on any number of threads and on either trial path.
-pub fn evaluate_population(
-    experiment: &Experiment,
-    topology: &Topology,
-    population: &[Genome],
-    generation: Generation,
-) -> Result<Vec<Evaluation>, EvaluationError> {
-    evaluate_population_on(
-        &ThisProcess,
-        experiment,
-        topology,
-        population,
-        generation,
-        None,
-    )
-}
-
 /// Told of each evaluation job as it finishes, from whichever worker thread ran it and in
 /// any order (e.g. a progress bar within a generation). It only counts: results are still
 /// collected in index order, so it cannot change them.
 pub type JobDone<'a> = Option<&'a (dyn Fn() + Sync)>;
 
-/// How many jobs [`evaluate_population`] splits `individuals` individuals into (what a
+/// How many jobs a generation of `individuals` individuals splits into (what a
 /// [`JobDone`] is called that many times for): per group, one per lockstep chunk of trials
 /// with a stateless brain, one per trial otherwise (the jobs of [`PopulationJobs`]).
 pub fn evaluation_jobs(experiment: &Experiment, topology: &Topology, individuals: usize) -> u64 {
@@ -475,128 +414,4 @@ pub fn evaluation_jobs(experiment: &Experiment, topology: &Topology, individuals
         trials
     };
     groups.saturating_mul(per_group)
-}
-
-/// [`evaluate_population`], calling `on_job` (when given) after each job. With `None` the
-/// only cost is one untaken branch per job (a job lives whole trials, not ticks).
-pub fn evaluate_population_watched(
-    experiment: &Experiment,
-    topology: &Topology,
-    population: &[Genome],
-    generation: Generation,
-    on_job: JobDone<'_>,
-) -> Result<Vec<Evaluation>, EvaluationError> {
-    evaluate_population_on(
-        &ThisProcess,
-        experiment,
-        topology,
-        population,
-        generation,
-        on_job,
-    )
-}
-
-/// [`evaluate_population_watched`] with the jobs run by `evaluator`: the same bits wherever
-/// they run.
-pub fn evaluate_population_on(
-    evaluator: &dyn Evaluator,
-    experiment: &Experiment,
-    topology: &Topology,
-    population: &[Genome],
-    generation: Generation,
-    on_job: JobDone<'_>,
-) -> Result<Vec<Evaluation>, EvaluationError> {
-    let jobs = PopulationJobs::new(experiment, topology, population, generation)?.watched(on_job);
-    let lives = evaluator.run_jobs(&jobs)?;
-    Ok(jobs.reduce(lives))
-}
-
-/// Builds `trials` worlds for one creature each from `rng_of(t)`, in trial order (e.g. the
-/// validation worlds, or `compare`'s held-out worlds), validating the specifications once.
-pub fn worlds_from(
-    experiment: &Experiment,
-    trials: u64,
-    generation: Generation,
-    rng_of: impl Fn(TrialIndex) -> Rng,
-) -> Result<Vec<World>, EvaluationError> {
-    if trials == 0 {
-        return Ok(Vec::new());
-    }
-    let specs = valid_specs(experiment, generation, TrialIndex(0))?;
-    (0..trials)
-        .map(|t| {
-            World::build(specs, 1, rng_of(TrialIndex(t)))
-                .map_err(|error| world_error(generation, TrialIndex(t), error))
-        })
-        .collect()
-}
-
-/// Evaluates each of `genomes` alone in every one of `worlds` (built for one creature, e.g.
-/// by [`worlds_from`]), in parallel on the current rayon pool, with the same trial path as
-/// evolution (lockstep for stateless brains). Results in genome order, each aggregated
-/// serially over the worlds in order: the same bits for any number of threads. `origin` is
-/// where the first world came from (world t's is `origin.with_trial(t)`), whence the later
-/// episodes of lives of several.
-pub fn evaluate_in_worlds(
-    experiment: &Experiment,
-    topology: &Topology,
-    genomes: &[Genome],
-    worlds: &[World],
-    origin: LifeOrigin,
-) -> Result<Vec<Evaluation>, EvaluationError> {
-    let trials = worlds.len() as u64;
-    let per_genome: Vec<Vec<TrialOutcome>> = if lockstep::stateless(topology) {
-        let chunks = lockstep::chunks(trials);
-        let jobs: Vec<(usize, std::ops::Range<u64>)> = (0..genomes.len())
-            .flat_map(|g| chunks.iter().map(move |c| (g, c.clone())))
-            .collect();
-        let per_job: Vec<Vec<Vec<TrialOutcome>>> = jobs
-            .par_iter()
-            .with_max_len(JOBS_APART)
-            .map(|(g, chunk)| {
-                lockstep::run_trials_in(
-                    experiment,
-                    topology,
-                    std::slice::from_ref(&genomes[*g]),
-                    Generation(0),
-                    *g as u64,
-                    chunk.clone(),
-                    Some(worlds),
-                    origin,
-                )
-            })
-            .collect::<Result<_, _>>()?;
-        let mut lives: Vec<Vec<TrialOutcome>> = vec![Vec::new(); genomes.len()];
-        for ((g, _), job) in jobs.iter().zip(per_job) {
-            lives[*g].extend(job.into_iter().map(|o| o[0]));
-        }
-        lives
-    } else {
-        let jobs: Vec<(usize, usize)> = (0..genomes.len())
-            .flat_map(|g| (0..worlds.len()).map(move |t| (g, t)))
-            .collect();
-        let outcomes: Vec<TrialOutcome> = jobs
-            .par_iter()
-            .with_max_len(JOBS_APART)
-            .map(|&(g, t)| {
-                run_trial_in(
-                    experiment,
-                    topology,
-                    std::slice::from_ref(&genomes[g]),
-                    g as u64,
-                    origin.with_trial(TrialIndex(t as u64)),
-                    worlds[t].clone(),
-                )
-                .map(|o| o[0])
-            })
-            .collect::<Result<_, _>>()?;
-        outcomes
-            .chunks(worlds.len().max(1))
-            .map(<[TrialOutcome]>::to_vec)
-            .collect()
-    };
-    Ok(per_genome
-        .iter()
-        .map(|lives| aggregate(experiment, lives))
-        .collect())
 }

@@ -180,7 +180,7 @@ impl Lockstep {
 /// [`crate::evo::trial::run_trial`] for each trial.
 ///
 /// # Panics
-/// When the brains are not [stateless](stateless) (a programming error: check first).
+/// When the brains are not stateless ([`stateless`]) (a programming error: check first).
 pub fn run_trials(
     experiment: &Experiment,
     topology: &Topology,

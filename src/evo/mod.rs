@@ -6,6 +6,7 @@
 //! in a documented order, so a run reproduces bit for bit from its seed.
 
 pub mod choices;
+pub mod door;
 pub mod episode;
 pub mod episodes;
 pub mod evaluate;

@@ -6,7 +6,8 @@
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
-use crate::evo::evaluate::{evaluate_population_on, Evaluation, Evaluator, JobDone, ThisProcess};
+use crate::evo::door::{Evaluate, Worlds};
+use crate::evo::evaluate::Evaluation;
 use crate::evo::life::EvaluationError;
 use crate::evo::lineage::Lineage;
 use crate::evo::stats::FitnessStats;
@@ -120,75 +121,46 @@ impl EvaluatedGeneration {
     }
 }
 
-/// Evaluates `population` as generation `generation` (in parallel on the current rayon pool).
-/// The individuals carry no lineage; [`EvaluatedGeneration::with_lineage`] adds it.
+/// Evaluates `population` as generation `generation` (in parallel on the current rayon pool;
+/// [`crate::evo::door::Evaluate`] on its training worlds). The individuals carry no lineage;
+/// [`EvaluatedGeneration::with_lineage`] adds it.
 pub fn evaluate(
     experiment: &Experiment,
     topology: &Topology,
     generation: u64,
     population: Vec<Genome>,
 ) -> Result<EvaluatedGeneration, EvaluationError> {
-    evaluate_on(
-        &ThisProcess,
-        experiment,
-        topology,
+    let worlds = Worlds::Training(Generation(generation));
+    let evaluations = Evaluate::new(experiment, topology, &population, worlds).run()?;
+    Ok(EvaluatedGeneration::new(
         generation,
         population,
-        None,
-    )
-}
-
-/// [`evaluate`], telling `on_job` of each evaluation job as it finishes (see [`JobDone`]).
-pub fn evaluate_watched(
-    experiment: &Experiment,
-    topology: &Topology,
-    generation: u64,
-    population: Vec<Genome>,
-    on_job: JobDone<'_>,
-) -> Result<EvaluatedGeneration, EvaluationError> {
-    evaluate_on(
-        &ThisProcess,
-        experiment,
-        topology,
-        generation,
-        population,
-        on_job,
-    )
-}
-
-/// [`evaluate_watched`] with the evaluation jobs run by `evaluator` (e.g. MPI ranks): the
-/// same bits.
-pub fn evaluate_on(
-    evaluator: &dyn Evaluator,
-    experiment: &Experiment,
-    topology: &Topology,
-    generation: u64,
-    population: Vec<Genome>,
-    on_job: JobDone<'_>,
-) -> Result<EvaluatedGeneration, EvaluationError> {
-    let evaluations = evaluate_population_on(
-        evaluator,
-        experiment,
-        topology,
-        &population,
-        Generation(generation),
-        on_job,
-    )?;
-    Ok(EvaluatedGeneration {
-        generation,
-        individuals: population
-            .into_iter()
-            .zip(evaluations)
-            .map(|(genome, evaluation)| Individual {
-                genome,
-                evaluation,
-                lineage: None,
-            })
-            .collect(),
-    })
+        evaluations,
+    ))
 }
 
 impl EvaluatedGeneration {
+    /// Generation `generation`: `population` with its `evaluations` (in the same order), no
+    /// lineage yet.
+    pub fn new(
+        generation: u64,
+        population: Vec<Genome>,
+        evaluations: Vec<Evaluation>,
+    ) -> EvaluatedGeneration {
+        EvaluatedGeneration {
+            generation,
+            individuals: population
+                .into_iter()
+                .zip(evaluations)
+                .map(|(genome, evaluation)| Individual {
+                    genome,
+                    evaluation,
+                    lineage: None,
+                })
+                .collect(),
+        }
+    }
+
     /// The generation with `lineage[i]` recorded for individual i (in population order; an
     /// individual beyond the list keeps none).
     pub fn with_lineage(mut self, lineage: Vec<Lineage>) -> EvaluatedGeneration {

@@ -1,6 +1,6 @@
 //! The one trial path: build a trial's world, live it tick by tick, score every life. Scoring
-//! ([`crate::evo::evaluate::run_trial`], [`crate::evo::evaluate::evaluate_group`], and
-//! evaluation in shared worlds through `live`), replay (`berry-evolve replay`) and traces
+//! (the evaluation jobs of [`crate::evo::evaluate`] and [`crate::evo::door`], one trial at a
+//! time or in worlds built beforehand), replay (`berry-evolve replay`) and traces
 //! (`evo::trace`'s recorder is a [`TickObserver`]) all live a trial through this file, so a
 //! traced life is the scored life by construction. Only the lockstep path
 //! ([`crate::evo::lockstep`], tested bit-identical to this one) steps its worlds itself, built
@@ -126,7 +126,7 @@ pub fn run_trial<O: TickObserver>(
 }
 
 /// Lives one trial in a `world` built beforehand for `genomes.len()` creatures (e.g. a
-/// validation world of [`crate::evo::validation::validation_worlds`], which no generation's
+/// validation world of [`crate::evo::worlds::validation_worlds`], which no generation's
 /// stream builds), showing every tick to `observer`: the life evaluation in those worlds
 /// scores. `id` only names the trial to the observer (and numbers individuals in errors);
 /// `origin` is where `world` came from, whence the later episodes of a life of several.

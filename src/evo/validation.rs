@@ -4,22 +4,21 @@
 //! Every `every` generations (and after the last) the generation's `top` best individuals by
 //! training fitness, plus any further candidates the search passes in (e.g. an evolution
 //! strategy's distribution centre), are evaluated alone on `trials` fixed validation worlds:
-//! [`Purpose::ValidationWorld`] streams, the same worlds at every validation and never
-//! trained on (training uses [`Purpose::TrialWorld`] at generations below 2^40, `compare` the
+//! [`crate::seed::Purpose::ValidationWorld`] streams, the same worlds at every validation and never
+//! trained on (training uses [`crate::seed::Purpose::TrialWorld`] at generations below 2^40, `compare` the
 //! same purpose at generation 2^40). The best candidate on validation so far is the champion
 //! written to `best.json`. The validation fitness is aggregated over the validation worlds as
 //! `[evaluation] aggregate` says.
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
-use crate::evo::episodes::LifeOrigin;
-use crate::evo::evaluate::{evaluate_in_worlds, worlds_from, Evaluation};
+use crate::evo::door::{Evaluate, Worlds};
+use crate::evo::evaluate::Evaluation;
 use crate::evo::life::EvaluationError;
 use crate::evo::state::{EvaluatedGeneration, GenerationSummary};
+use crate::evo::worlds::{BuiltWorlds, WorldSet};
 use crate::experiment::{Experiment, ValidationSpec};
-use crate::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
 use crate::sim::metabolism::Metabolism;
-use crate::sim::world::World;
 use serde::{Deserialize, Serialize};
 
 /// A genome to validate, with where it came from.
@@ -77,25 +76,6 @@ pub fn is_scheduled(spec: &ValidationSpec, generation: u64) -> bool {
     spec.enabled() && (generation + 1) % spec.every == 0
 }
 
-/// The fixed validation worlds of `experiment` (one creature each): world t is built from
-/// the [`Purpose::ValidationWorld`] stream of (seed, generation 0, individual 0, trial t).
-pub fn validation_worlds(experiment: &Experiment) -> Result<Vec<World>, EvaluationError> {
-    worlds_from(
-        experiment,
-        experiment.validation.trials,
-        Generation(0),
-        |trial| {
-            stream(
-                experiment.seed(),
-                Purpose::ValidationWorld,
-                Generation(0),
-                IndividualId(0),
-                trial,
-            )
-        },
-    )
-}
-
 /// The indices of `generation`'s best `k` individuals with a finite fitness, best first
 /// (ties to the lower index).
 pub fn top_individuals(generation: &EvaluatedGeneration, k: usize) -> Vec<usize> {
@@ -127,7 +107,8 @@ pub fn top_candidates(experiment: &Experiment, generation: &EvaluatedGeneration)
         .collect()
 }
 
-/// Evaluates `candidates` on `worlds` (the validation worlds) and returns the best of them
+/// Evaluates `candidates` on `worlds` (the validation worlds, [`WorldSet::build`]'s) and
+/// returns the best of them
 /// (highest finite validation fitness; ties to the earlier candidate), or `None` when no
 /// candidate has a finite one. In parallel on the current rayon pool; the same bits for any
 /// number of threads.
@@ -135,11 +116,10 @@ pub fn validate(
     experiment: &Experiment,
     topology: &Topology,
     candidates: &[Candidate],
-    worlds: &[World],
+    worlds: &BuiltWorlds,
 ) -> Result<Option<ValidatedChampion>, EvaluationError> {
     let genomes: Vec<Genome> = candidates.iter().map(|c| c.genome.clone()).collect();
-    let origin = LifeOrigin::validation(TrialIndex(0));
-    let evaluations = evaluate_in_worlds(experiment, topology, &genomes, worlds, origin)?;
+    let evaluations = Evaluate::new(experiment, topology, &genomes, Worlds::Built(worlds)).run()?;
     let mut best: Option<usize> = None;
     for (k, e) in evaluations.iter().enumerate() {
         if let Some(f) = e.fitness {
@@ -237,22 +217,18 @@ pub fn after_generation(
     summary: &GenerationSummary,
     total: u64,
     extra: Vec<Candidate>,
-    worlds: &mut Option<Vec<World>>,
+    worlds: &mut Option<BuiltWorlds>,
 ) -> Result<(Vec<Option<f64>>, Option<ValidatedChampion>), EvaluationError> {
     let mut columns = measure_columns(experiment, generation, summary);
     let mut best = None;
     if is_due(&experiment.validation, generation.generation, total) {
-        if worlds.is_none() {
-            *worlds = Some(validation_worlds(experiment)?);
-        }
+        let worlds = match worlds {
+            Some(worlds) => worlds,
+            None => worlds.insert(WorldSet::Validation.build(experiment)?),
+        };
         let mut candidates = top_candidates(experiment, generation);
         candidates.extend(extra);
-        best = validate(
-            experiment,
-            topology,
-            &candidates,
-            worlds.as_deref().unwrap_or(&[]),
-        )?;
+        best = validate(experiment, topology, &candidates, worlds)?;
     }
     columns.extend(validation_columns(experiment, best.as_ref()));
     Ok((columns, best))

@@ -1,30 +1,19 @@
-//! The named world sets and evaluating genomes on them: which trial worlds "training
-//! generation g", "validation" and "held-out" mean, and the one way genomes meet them. The
-//! command line (`compare`, `replay`, `render`, `summary`) and the Python package both come
-//! here, so `berry-evolve compare --json` and `Experiment.evaluate` in Python give the same
-//! bits by construction.
-//!
-//! Two ways to meet a set, both here:
-//! - [`lives`] / [`evaluate_alone`]: each genome alone (group 0) in the same worlds, common
-//!   random numbers forced on ([`alone`]): what `compare` reports, for any set.
-//! - [`evaluate`] with a training set: the population as the run evaluates generation g
-//!   (its groups, its `common_random_numbers`), through
-//!   [`crate::evo::evaluate::evaluate_population`]. For an experiment with common random
-//!   numbers and groups of one (the shipped foraging experiments) both give the same bits.
+//! The named world sets: which trial worlds "training generation g", "validation",
+//! "held-out" and "design" mean, how they are built ([`WorldSet::build`]), and the random
+//! genomes every science table sets champions against ([`random_genomes`]). Genomes meet
+//! them through the one evaluation door, [`crate::evo::door`]; the command line (`compare`,
+//! `replay`, `render`, `summary`) and the Python package both name sets here, so
+//! `berry-evolve compare --json` and `Experiment.evaluate` in Python give the same bits by
+//! construction.
 
 use crate::brain::genome::Genome;
-use crate::brain::spec::Topology;
-use crate::evo::episodes::{Life, LifeOrigin};
-use crate::evo::evaluate::{aggregate, evaluate_population, run_trial, Evaluation, JOBS_APART};
+use crate::evo::episodes::LifeOrigin;
 use crate::evo::init::initial_population;
-use crate::evo::life::{EvaluationError, TrialOutcome};
-use crate::evo::trial::{run_life, run_trial_in_world, NoObserver, TrialId};
-use crate::evo::validation::validation_worlds;
+use crate::evo::life::{trial_stream, valid_specs, world_error, EvaluationError};
 use crate::experiment::Experiment;
-use crate::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
+use crate::seed::{stream, Generation, IndividualId, Purpose, Rng, TrialIndex};
 use crate::sim::world::World;
 use crate::validate::InvalidValue;
-use rayon::prelude::*;
 use thiserror::Error;
 
 /// Generation number whose trial worlds serve as the held-out test set: far beyond any run's
@@ -205,7 +194,7 @@ impl WorldSet {
 
     /// The validation worlds (for one creature each) of `experiment`, exactly those a run's
     /// validation evaluates on; None for the other sets, whose trial worlds are built trial by
-    /// trial from their generation's streams.
+    /// trial from their generation's streams (`replay`, which lives one trial at a time).
     pub fn built_worlds(
         self,
         experiment: &Experiment,
@@ -213,6 +202,29 @@ impl WorldSet {
         match self {
             WorldSet::Validation => Ok(Some(validation_worlds(experiment)?)),
             _ => Ok(None),
+        }
+    }
+
+    /// The set's worlds in `experiment` for one creature each, built once: the validation
+    /// worlds (exactly those a run's validation evaluates on), else group 0's trial worlds of
+    /// the set's generation (the worlds a genome alone meets there: with group 0 the stream
+    /// is the same with or without common random numbers).
+    pub fn build(self, experiment: &Experiment) -> Result<BuiltWorlds, EvaluationError> {
+        match self {
+            WorldSet::Validation => Ok(BuiltWorlds {
+                worlds: validation_worlds(experiment)?,
+                origin: LifeOrigin::validation(TrialIndex(0)),
+            }),
+            WorldSet::Training(_) | WorldSet::HeldOut | WorldSet::Design => {
+                let generation = self.generation();
+                let trials = experiment.evaluation.trials;
+                Ok(BuiltWorlds {
+                    worlds: worlds_from(experiment, trials, generation, |t| {
+                        trial_stream(experiment, generation, 0, t)
+                    })?,
+                    origin: LifeOrigin::trial(experiment, generation, 0, TrialIndex(0)),
+                })
+            }
         }
     }
 }
@@ -247,176 +259,53 @@ pub fn alone(experiment: &Experiment) -> Result<Experiment, InvalidValue> {
         .build()
 }
 
-/// `genome`'s life, alone (group 0), in trial `t` of `set`: in the `built` world t (the
-/// validation worlds) when given, else in the world its generation's stream builds.
-fn life(
-    experiment: &Experiment,
-    topology: &Topology,
-    genome: &Genome,
-    set: WorldSet,
-    built: Option<&[World]>,
-    t: u64,
-) -> Result<TrialOutcome, EvaluationError> {
-    let genomes = std::slice::from_ref(genome);
-    let generation = set.generation();
-    let trial = TrialIndex(t);
-    let lives = match built {
-        Some(worlds) => {
-            let id = TrialId {
-                generation,
-                group: 0,
+/// A set's worlds, built once for one creature each, and where the first came from (world
+/// t's life is at `origin.with_trial(t)`, whence the later episodes of lives of several).
+#[derive(Debug, Clone)]
+pub struct BuiltWorlds {
+    /// The worlds, in trial order.
+    pub worlds: Vec<World>,
+    /// The seed-stream coordinates of the first world.
+    pub origin: LifeOrigin,
+}
+
+/// The fixed validation worlds of `experiment` (one creature each): world t is built from
+/// the [`Purpose::ValidationWorld`] stream of (seed, generation 0, individual 0, trial t).
+pub fn validation_worlds(experiment: &Experiment) -> Result<Vec<World>, EvaluationError> {
+    worlds_from(
+        experiment,
+        experiment.validation.trials,
+        Generation(0),
+        |trial| {
+            stream(
+                experiment.seed(),
+                Purpose::ValidationWorld,
+                Generation(0),
+                IndividualId(0),
                 trial,
-            };
-            let world = worlds[t as usize].clone();
-            // Built worlds are the validation worlds (see `WorldSet::built_worlds`).
-            let origin = LifeOrigin::validation(trial);
-            run_trial_in_world(experiment, topology, genomes, id, origin, world, NoObserver)?
-        }
-        None => run_trial(experiment, topology, genomes, generation, 0, trial)?,
-    };
-    Ok(lives[0])
+            )
+        },
+    )
 }
 
-/// One life's episodes as `compare --json` reports them (lives of several episodes).
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct LifeChoices {
-    /// The episodes (numbered from 1) a switch came before.
-    pub switches: Vec<u64>,
-    /// Per episode: were the switch kinds' payoffs exchanged (relative to `[world.kinds]`)?
-    pub exchanged: Vec<bool>,
-    /// Per episode: was the first bite of a switch kind of the paying one? (false when it bit
-    /// neither, or the life had ended)
-    pub correct_first_choice: Vec<bool>,
-}
-
-/// [`lives`], also returning each life's episodes (one list per trial, in trial order).
-pub fn lives_by_episode(
+/// Builds `trials` worlds for one creature each from `rng_of(t)`, in trial order,
+/// validating the specifications once.
+fn worlds_from(
     experiment: &Experiment,
-    topology: &Topology,
-    genome: &Genome,
-    set: WorldSet,
-    built: Option<&[World]>,
-) -> Result<Vec<(TrialOutcome, LifeChoices)>, EvaluationError> {
-    (0..trial_count(experiment, built))
-        .into_par_iter()
-        .map(|t| {
-            let trial = TrialIndex(t);
-            let generation = set.generation();
-            let id = TrialId {
-                generation,
-                group: 0,
-                trial,
-            };
-            let (origin, first) = match built {
-                Some(worlds) => (
-                    LifeOrigin::validation(trial),
-                    Some(worlds[t as usize].clone()),
-                ),
-                None => (LifeOrigin::trial(experiment, generation, 0, trial), None),
-            };
-            let genomes = std::slice::from_ref(genome);
-            let (outcomes, episodes) =
-                run_life(experiment, topology, genomes, id, origin, first, NoObserver)?;
-            let life = Life::new(experiment, origin);
-            let choices = LifeChoices {
-                switches: life.schedule().switches(),
-                exchanged: life.schedule().exchanged.clone(),
-                correct_first_choice: life.correct_choices(&episodes[0]),
-            };
-            Ok((outcomes[0], choices))
-        })
-        .collect()
-}
-
-/// How many trials `genome` lives in `set`: the `built` worlds when given, else the
-/// experiment's `[evaluation] trials`.
-fn trial_count(experiment: &Experiment, built: Option<&[World]>) -> u64 {
-    built.map_or(experiment.evaluation.trials, |w| w.len() as u64)
-}
-
-/// Lives every trial of `genome` alone in `set`'s worlds (group 0): the `built` worlds (from
-/// [`WorldSet::built_worlds`]) when given, else those its generation's streams build; the
-/// trials in parallel, collected in trial order, so the same bits on any number of threads.
-/// `experiment` should come from [`alone`], so that the worlds do not depend on the group.
-pub fn lives(
-    experiment: &Experiment,
-    topology: &Topology,
-    genome: &Genome,
-    set: WorldSet,
-    built: Option<&[World]>,
-) -> Result<Vec<TrialOutcome>, EvaluationError> {
-    (0..trial_count(experiment, built))
-        .into_par_iter()
-        .map(|t| life(experiment, topology, genome, set, built, t))
-        .collect()
-}
-
-/// [`lives`] for each of `genomes` (every (genome, trial) pair in parallel, collected in
-/// order), each aggregated over its trials as `compare` does.
-pub fn evaluate_alone(
-    experiment: &Experiment,
-    topology: &Topology,
-    genomes: &[Genome],
-    set: WorldSet,
-    built: Option<&[World]>,
-) -> Result<Vec<Evaluation>, EvaluationError> {
-    let trials = trial_count(experiment, built);
-    let jobs = genomes.len() * trials as usize;
-    let outcomes: Vec<TrialOutcome> = (0..jobs as u64)
-        .collect::<Vec<_>>()
-        .into_par_iter()
-        .with_max_len(JOBS_APART)
-        .map(|j| {
-            let genome = &genomes[(j / trials) as usize];
-            life(experiment, topology, genome, set, built, j % trials)
-        })
-        .collect::<Result<_, _>>()?;
-    Ok(outcomes
-        .chunks(trials.max(1) as usize)
-        .take(genomes.len())
-        .map(|lives| aggregate(experiment, lives))
-        .collect())
-}
-
-/// Evaluates `genomes` on `set`: the training worlds of generation g exactly as the run
-/// evaluates that generation (its groups and common random numbers), the held-out and
-/// validation worlds each genome alone as `compare` does ([`evaluate_alone`] in [`alone`]'s
-/// experiment). Results in genome order; the same bits on any number of threads.
-pub fn evaluate(
-    experiment: &Experiment,
-    topology: &Topology,
-    genomes: &[Genome],
-    set: WorldSet,
-) -> Result<Vec<Evaluation>, WorldsError> {
-    set.check(experiment)?;
-    match set {
-        WorldSet::Training(g) => {
-            let k = experiment.evaluation.group_size.max(1);
-            if genomes.len() as u64 % k != 0 {
-                return Err(WorldsError::PartialGroup {
-                    genomes: genomes.len(),
-                    group_size: k,
-                });
-            }
-            Ok(evaluate_population(
-                experiment,
-                topology,
-                genomes,
-                Generation(g),
-            )?)
-        }
-        WorldSet::HeldOut | WorldSet::Validation | WorldSet::Design => {
-            let experiment = alone(experiment)?;
-            let built = set.built_worlds(&experiment)?;
-            Ok(evaluate_alone(
-                &experiment,
-                topology,
-                genomes,
-                set,
-                built.as_deref(),
-            )?)
-        }
+    trials: u64,
+    generation: Generation,
+    rng_of: impl Fn(TrialIndex) -> Rng,
+) -> Result<Vec<World>, EvaluationError> {
+    if trials == 0 {
+        return Ok(Vec::new());
     }
+    let specs = valid_specs(experiment, generation, TrialIndex(0))?;
+    (0..trials)
+        .map(|t| {
+            World::build(specs, 1, rng_of(TrialIndex(t)))
+                .map_err(|error| world_error(generation, TrialIndex(t), error))
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -10,7 +10,8 @@
 //! evolved brains can live longer lives (creatures that die early end their trial early) or
 //! shorter ones, which the estimate cannot know.
 
-use crate::evo::evaluate::{evaluate_population, shared_worlds};
+use crate::evo::door::{Evaluate, Worlds};
+use crate::evo::evaluate::shared_worlds;
 use crate::evo::life::EvaluationError;
 use crate::evo::lockstep;
 use crate::evo::search;
@@ -245,7 +246,14 @@ fn measure(
     let mut timed = None;
     if let Some(probe) = shortened(experiment, 1, probe_ticks) {
         let probe_seconds = time(|| {
-            evaluate_population(&probe, &topology, &genomes[..k], Generation(0)).map(drop)
+            Evaluate::new(
+                &probe,
+                &topology,
+                &genomes[..k],
+                Worlds::Training(Generation(0)),
+            )
+            .run()
+            .map(drop)
         })?;
         let per_tick = probe_seconds / (k as u64 * probe_ticks) as f64;
         if per_tick * (k as u64 * trials * ticks) as f64 > target && ticks > probe_ticks {
@@ -266,7 +274,14 @@ fn measure(
     let mut n = 1;
     loop {
         let seconds = time(|| {
-            evaluate_population(&timed, &topology, &genomes[..n * k], Generation(0)).map(drop)
+            Evaluate::new(
+                &timed,
+                &topology,
+                &genomes[..n * k],
+                Worlds::Training(Generation(0)),
+            )
+            .run()
+            .map(drop)
         })?;
         let lives = seconds - world_seconds;
         // Aim the next evaluation at the target (at most 8× as many), within the generation.

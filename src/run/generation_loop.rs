@@ -11,18 +11,19 @@ use super::lock::RunLock;
 use super::names::{BEST_FILE, CHECKPOINT_DIR};
 use super::progress::{Progress, RunOptions, RunSummary};
 use crate::brain::spec::Topology;
+use crate::evo::door::{Evaluate, Worlds};
 use crate::evo::evaluate::evaluation_jobs;
 use crate::evo::search::{Search, Unevaluated};
-use crate::evo::state::{
-    evaluate_on, evaluate_watched, Champion, EvaluatedGeneration, GenerationSummary,
-};
+use crate::evo::state::{Champion, EvaluatedGeneration, GenerationSummary};
 use crate::evo::validation::{self, ValidatedChampion};
+use crate::evo::worlds::BuiltWorlds;
 use crate::experiment::Experiment;
 use crate::record::archive::{self, ARCHIVE_FILE};
 use crate::record::champions::ChampionsLog;
 use crate::record::checkpoint;
 use crate::record::fitness_csv::{FitnessCsv, FitnessRow};
 use crate::record::genome_file::{GenomeFile, Origin};
+use crate::seed::Generation;
 use std::path::PathBuf;
 use std::sync::atomic::Ordering;
 
@@ -44,7 +45,7 @@ pub(super) struct Loop {
     pub(super) history_extra: Vec<Vec<Option<f64>>>,
     pub(super) validated_best: Option<ValidatedChampion>,
     /// The validation worlds, built at the first validation of this process.
-    pub(super) validation_worlds: Option<Vec<crate::sim::world::World>>,
+    pub(super) validation_worlds: Option<BuiltWorlds>,
     /// Set after the last generation when its validation was only for being the last.
     pub(super) end_of_run_validation: Option<EndOfRunValidation>,
 }
@@ -155,27 +156,22 @@ pub(super) fn drive(
     let mut generation = state.next_generation;
     loop {
         let on_job = on_job.as_deref().map(|f| f as &(dyn Fn() + Sync));
-        let evaluated = match options.evaluator {
-            Some(evaluator) => evaluate_on(
-                evaluator,
-                &state.experiment,
-                &state.topology,
-                generation,
-                population.genomes,
-                on_job,
-            )
-            .map_err(|e| evaluation_failed(&state.dir, e))?,
-            None => pool.install(|| {
-                evaluate_watched(
-                    &state.experiment,
-                    &state.topology,
-                    generation,
-                    population.genomes,
-                    on_job,
-                )
-            })?,
-        }
-        .with_lineage(population.lineage);
+        let genomes = &population.genomes;
+        let request = Evaluate::new(
+            &state.experiment,
+            &state.topology,
+            genomes,
+            Worlds::Training(Generation(generation)),
+        )
+        .watched(on_job);
+        let evaluations = match options.evaluator {
+            Some(evaluator) => request
+                .run_on(evaluator)
+                .map_err(|e| evaluation_failed(&state.dir, e))?,
+            None => pool.install(|| request.run())?,
+        };
+        let evaluated = EvaluatedGeneration::new(generation, population.genomes, evaluations)
+            .with_lineage(population.lineage);
         let row = state.record_generation(&evaluated, &pool, total)?;
         progress.generation(&row);
         let is_last = generation + 1 >= total;

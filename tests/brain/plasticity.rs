@@ -8,7 +8,7 @@ use crate::brain_common::spec;
 use berry_evolve::brain::activation::tanh;
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::brain::{Brain, LifeKey, SignalInputs, Topology};
-use berry_evolve::evo::evaluate::run_trial;
+use berry_evolve::evo::trial::{run_trial, NoObserver};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::{Generation, IndividualId, Seed, TrialIndex};
 use std::path::Path;
@@ -312,6 +312,7 @@ fn frozen_plasticity_lives_a_trial_as_the_fixed_mlp_bit_for_bit() {
         Generation(0),
         0,
         TrialIndex(0),
+        NoObserver,
     )
     .unwrap();
     for table in [
@@ -338,6 +339,7 @@ fn frozen_plasticity_lives_a_trial_as_the_fixed_mlp_bit_for_bit() {
             Generation(0),
             0,
             TrialIndex(0),
+            NoObserver,
         )
         .unwrap();
         assert_eq!(
@@ -505,7 +507,8 @@ fn bad_plasticity_tables_are_refused_naming_the_key() {
 /// off.
 #[test]
 fn plastic_evaluation_is_the_single_trial_path_on_any_thread_count() {
-    use berry_evolve::evo::evaluate::{evaluate_group, evaluate_population, Evaluation};
+    use berry_evolve::evo::door::{Evaluate, Worlds};
+    use berry_evolve::evo::evaluate::{aggregate, Evaluation};
     use berry_evolve::evo::lockstep;
     use berry_evolve::evo::search::ga::first_population;
     let bits = |evaluations: &[Evaluation]| -> Vec<(Option<u64>, [u64; 4])> {
@@ -542,15 +545,23 @@ fn plastic_evaluation_is_the_single_trial_path_on_any_thread_count() {
         let serial: Vec<Evaluation> = population
             .iter()
             .enumerate()
-            .flat_map(|(g, genome)| {
-                evaluate_group(
-                    &experiment,
-                    &topology,
-                    std::slice::from_ref(genome),
-                    Generation(2),
-                    g as u64,
-                )
-                .unwrap()
+            .map(|(g, genome)| {
+                // Alone, trial by trial: the single-trial path, serially.
+                let lives: Vec<_> = (0..experiment.evaluation.trials)
+                    .map(|t| {
+                        run_trial(
+                            &experiment,
+                            &topology,
+                            std::slice::from_ref(genome),
+                            Generation(2),
+                            g as u64,
+                            TrialIndex(t),
+                            NoObserver,
+                        )
+                        .unwrap()[0]
+                    })
+                    .collect();
+                aggregate(&experiment, &lives)
             })
             .collect();
         for threads in [1, 2] {
@@ -559,7 +570,15 @@ fn plastic_evaluation_is_the_single_trial_path_on_any_thread_count() {
                 .build()
                 .unwrap();
             let parallel = pool
-                .install(|| evaluate_population(&experiment, &topology, &population, Generation(2)))
+                .install(|| {
+                    Evaluate::new(
+                        &experiment,
+                        &topology,
+                        &population,
+                        Worlds::Training(Generation(2)),
+                    )
+                    .run()
+                })
                 .unwrap();
             assert_eq!(
                 bits(&parallel),

@@ -3,7 +3,8 @@
 //! fitness files) and the held-out evaluation of every seed's champion.
 
 use berry_evolve::brain::genome::Genome;
-use berry_evolve::evo::evaluate::{aggregate, run_trial};
+use berry_evolve::evo::evaluate::aggregate;
+use berry_evolve::evo::trial::{run_trial, NoObserver};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::seed::{Generation, TrialIndex};
@@ -136,6 +137,7 @@ fn each_seed_of_a_batch_is_the_single_seed_run() {
                     Generation(1 << 40),
                     0,
                     TrialIndex(t),
+                    NoObserver,
                 )
                 .unwrap()[0]
             })

@@ -5,10 +5,10 @@
 //! their place; lockstep equals the single-trial path; the switch measures on a hand-made
 //! life; bad tables refused naming the key.
 
+use crate::door::{evaluate_group, evaluate_population, run_trial};
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::brain::{Brain, BrainController};
 use berry_evolve::evo::episodes::{EpisodeChoices, Life, LifeOrigin, Schedule};
-use berry_evolve::evo::evaluate::{evaluate_group, evaluate_population, run_trial};
 use berry_evolve::evo::fitness::{LifePlan, LifeScore};
 use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::lockstep;

@@ -3,8 +3,9 @@
 //! out by hand; then both evaluation paths agree to the bit with every term and measure on,
 //! and a run's fitness.csv carries the measure columns.
 
+use crate::door::{evaluate_group, evaluate_population, run_trial};
 use berry_evolve::brain::genome::Genome;
-use berry_evolve::evo::evaluate::{evaluate_group, evaluate_population, run_trial, Evaluation};
+use berry_evolve::evo::evaluate::Evaluation;
 use berry_evolve::evo::fitness::{LifePlan, LifeScore, MEASURE_COUNT};
 use berry_evolve::evo::lockstep;
 use berry_evolve::experiment::{Experiment, Measure};

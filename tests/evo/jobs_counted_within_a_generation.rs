@@ -1,11 +1,11 @@
-//! Progress within a generation: `evaluate_population_watched` is told of every evaluation
-//! job once (as many as `evaluation_jobs` says, on 1 and 2 threads, lockstep and one trial
-//! per job), and its results are the same bits as `evaluate_population`'s. The calibration's
+//! Progress within a generation: a watched request (`Evaluate::watched`) on a generation's
+//! training worlds is told of every evaluation job once (as many as `evaluation_jobs` says,
+//! on 1 and 2 threads, lockstep and one trial per job), and its results are the same bits as
+//! the unwatched request's. The calibration's
 //! brains (`first_genomes`) are the first individuals of generation 0 exactly.
 
-use berry_evolve::evo::evaluate::{
-    evaluate_population, evaluate_population_watched, evaluation_jobs,
-};
+use berry_evolve::evo::door::{Evaluate, Worlds};
+use berry_evolve::evo::evaluate::evaluation_jobs;
 use berry_evolve::evo::search::factory::{first_generation, first_genomes};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::Generation;
@@ -33,7 +33,8 @@ fn every_job_is_counted_once_and_counting_changes_no_bit() {
     for (name, e) in [("mlp", mlp), ("recurrent", recurrent), ("no crn", no_crn)] {
         let topology = e.topology();
         let population = first_generation(&e, &topology).genomes;
-        let plain = evaluate_population(&e, &topology, &population, Generation(0)).unwrap();
+        let request = Evaluate::new(&e, &topology, &population, Worlds::Training(Generation(0)));
+        let plain = request.run().unwrap();
         let jobs = evaluation_jobs(&e, &topology, population.len());
         // 12 individuals × 2 trials: one lockstep job per individual, or one per trial.
         let expected = if name == "recurrent" { 24 } else { 12 };
@@ -48,15 +49,7 @@ fn every_job_is_counted_once_and_counting_changes_no_bit() {
                 done.fetch_add(1, Ordering::Relaxed);
             };
             let watched = pool
-                .install(|| {
-                    evaluate_population_watched(
-                        &e,
-                        &topology,
-                        &population,
-                        Generation(0),
-                        Some(&count),
-                    )
-                })
+                .install(|| request.watched(Some(&count)).run())
                 .unwrap();
             assert_eq!(
                 done.load(Ordering::Relaxed),

@@ -5,8 +5,9 @@
 //! world once and clones it for every group) is compared with `evaluate_group` (which builds
 //! every world itself), with common random numbers on and off.
 
+use crate::door::{evaluate_group, evaluate_population, run_trial};
 use berry_evolve::brain::genome::Genome;
-use berry_evolve::evo::evaluate::{evaluate_group, evaluate_population, run_trial, Evaluation};
+use berry_evolve::evo::evaluate::Evaluation;
 use berry_evolve::evo::lockstep::{self, CHUNK_TRIALS};
 use berry_evolve::evo::search::ga::first_population;
 use berry_evolve::experiment::Experiment;

@@ -5,6 +5,7 @@
 mod cli_common;
 
 mod cma_es;
+mod door;
 mod eating_and_choice_measures;
 mod episode_steps;
 mod episodes_and_switches;

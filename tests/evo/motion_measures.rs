@@ -3,7 +3,8 @@
 //! 2π·w·signal LU straight along its heading each tick. Then both evaluation paths agree on
 //! them to the bit, and novelty search takes them as descriptors.
 
-use berry_evolve::evo::evaluate::{evaluate_group, evaluate_population, Evaluation};
+use crate::door::{evaluate_group, evaluate_population};
+use berry_evolve::evo::evaluate::Evaluation;
 use berry_evolve::evo::fitness::{LifePlan, LifeScore, MEASURE_COUNT};
 use berry_evolve::experiment::{Experiment, Measure};
 use berry_evolve::seed::{stream, Generation, IndividualId, Purpose, Seed, TrialIndex};

@@ -1,8 +1,8 @@
 //! A lethal predator ends a creature's life for evaluation: its score stops being recorded and
 //! its final metabolism is the value at its death.
 
+use crate::door::run_trial;
 use berry_evolve::brain::genome::Genome;
-use berry_evolve::evo::evaluate::run_trial;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::{Generation, TrialIndex};
 use std::path::Path;

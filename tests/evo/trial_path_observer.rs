@@ -4,8 +4,9 @@
 //! trial path), and what the observer saw is that very life: its last tick's metabolic vector,
 //! its shocked ticks and its length are the outcome's.
 
+use crate::door::{evaluate_group, evaluate_population};
 use berry_evolve::brain::genome::Genome;
-use berry_evolve::evo::evaluate::{aggregate, evaluate_group, evaluate_population};
+use berry_evolve::evo::evaluate::aggregate;
 use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::search::ga::first_population;
 use berry_evolve::evo::trial::{run_trial, TickObserver, TrialId};

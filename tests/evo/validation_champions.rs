@@ -3,14 +3,13 @@
 //! their own set; results do not depend on threads or on stopping and resuming.
 
 use berry_evolve::brain::genome::Genome;
-use berry_evolve::evo::episodes::LifeOrigin;
-use berry_evolve::evo::evaluate::{evaluate_in_worlds, Evaluation};
+use berry_evolve::evo::door::{Evaluate, Worlds};
+use berry_evolve::evo::evaluate::Evaluation;
 use berry_evolve::evo::life::trial_stream;
 use berry_evolve::evo::search::ga::first_population;
 use berry_evolve::evo::state::{EvaluatedGeneration, Individual};
-use berry_evolve::evo::validation::{
-    is_due, top_candidates, top_individuals, validate, validation_worlds,
-};
+use berry_evolve::evo::validation::{is_due, top_candidates, top_individuals, validate};
+use berry_evolve::evo::worlds::{validation_worlds, WorldSet};
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::run::{self, CheckpointPayload, RunOptions, Silent};
@@ -46,10 +45,12 @@ fn fake(genome: &Genome, fitness: f64) -> Individual {
 fn validation_chooses_by_validation_score_not_training_luck() {
     let e = tiny(VALIDATION);
     let topology = e.topology();
-    let worlds = validation_worlds(&e).unwrap();
+    let worlds = WorldSet::Validation.build(&e).unwrap();
     // The random genome of generation 0 that eats most on the validation worlds.
     let population = first_population(&e, &topology);
-    let scores = evaluate_in_worlds(&e, &topology, &population, &worlds, origin()).unwrap();
+    let scores = Evaluate::new(&e, &topology, &population, Worlds::Built(&worlds))
+        .run()
+        .unwrap();
     let (forager, best_score) = scores
         .iter()
         .enumerate()
@@ -167,8 +168,11 @@ fn a_run_keeps_the_validation_champion_as_best_json() {
     let first = column.iter().position(|v| *v == Some(top)).unwrap();
     assert_eq!(champion.generation, first as u64);
     // Re-evaluating best.json on the validation worlds gives its validation fitness.
-    let worlds = validation_worlds(&e).unwrap();
-    let again = evaluate_in_worlds(&e, &e.topology(), &[best.genome()], &worlds, origin()).unwrap();
+    let genome = [best.genome()];
+    let topology = e.topology();
+    let again = Evaluate::new(&e, &topology, &genome, Worlds::Alone(WorldSet::Validation))
+        .run()
+        .unwrap();
     assert_eq!(again[0].fitness, champion.validation.fitness);
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -247,9 +251,4 @@ fn copy_dir(from: &Path, to: &Path) {
             std::fs::copy(entry.path(), target).unwrap();
         }
     }
-}
-
-/// Where the validation worlds come from (their later episodes' worlds, with several).
-fn origin() -> LifeOrigin {
-    LifeOrigin::validation(berry_evolve::seed::TrialIndex(0))
 }
