@@ -647,7 +647,7 @@ function buildStrip(i){if(!stripEl)return;const info=e=>EP[e].learning&&EP[e].le
  b.fillStyle="#555";b.textAlign="right";b.fillText("events",GUTTER-4,MY+MARK/2-2);
  // ‖Δw‖ per tick.
  const BY=MY+MARK+2;b.fillStyle="#fafafa";b.fillRect(GUTTER,BY,w-GUTTER,BAND);b.strokeStyle="#ddd";b.strokeRect(GUTTER+0.5,BY+0.5,w-GUTTER-1,BAND-1);
- b.fillStyle="#555";b.fillText("‖Δw‖",GUTTER-4,BY+8);b.fillText(fmt(dmax),GUTTER-4,BY+BAND-8);
+ b.fillStyle="#555";b.fillText("‖Δw‖",GUTTER-4,BY+BAND/2);b.textAlign="left";b.fillText("max "+fmt(dmax),GUTTER+4,BY+7);
  if(dmax>0){b.strokeStyle="#444";b.beginPath();for(let p=0;p<P;p++){const v=BY+BAND-2-dn[p]/dmax*(BAND-4);if(p===0)b.moveTo(px(p),v);else b.lineTo(px(p),v);}b.stroke();}
  cursorStrip=p=>{x.drawImage(img,0,0);const q=Math.round(px(p))+0.5;x.strokeStyle="#000";x.beginPath();x.moveTo(q,TOP);x.lineTo(q,h);x.stroke();};}
 // State.
