@@ -649,7 +649,9 @@ function buildStrip(i){if(!stripEl)return;const info=e=>EP[e].learning&&EP[e].le
  const BY=MY+MARK+2;b.fillStyle="#fafafa";b.fillRect(GUTTER,BY,w-GUTTER,BAND);b.strokeStyle="#ddd";b.strokeRect(GUTTER+0.5,BY+0.5,w-GUTTER-1,BAND-1);
  b.fillStyle="#555";b.fillText("‖Δw‖",GUTTER-4,BY+BAND/2);b.textAlign="left";b.fillText("max "+fmt(dmax),GUTTER+4,BY+7);
  if(dmax>0){b.strokeStyle="#444";b.beginPath();for(let p=0;p<P;p++){const v=BY+BAND-2-dn[p]/dmax*(BAND-4);if(p===0)b.moveTo(px(p),v);else b.lineTo(px(p),v);}b.stroke();}
- cursorStrip=p=>{x.drawImage(img,0,0);const q=Math.round(px(p))+0.5;x.strokeStyle="#000";x.beginPath();x.moveTo(q,TOP);x.lineTo(q,h);x.stroke();};}
+ cursorStrip=p=>{x.drawImage(img,0,0);const q=Math.round(px(p))+0.5;x.strokeStyle="#000";x.beginPath();x.moveTo(q,TOP);x.lineTo(q,h);x.stroke();
+  const d=x.getImageData(Math.floor(q),h-3,1,1).data;stripStatus="strip cursor at "+q.toFixed(1)+" of "+w+" for position "+p+" of "+LAST+" pixel "+d[0]+","+d[1]+","+d[2];};}
+let stripStatus="";
 // State.
 let tick=0,playing=false,speed=1,acc=0,which=0,last=null;
 const scrub=document.getElementById("scrub");scrub.max=LAST;
@@ -699,6 +701,7 @@ function status(){const t=tick,lines=["tick "+t,"scale "+scale+" offset "+PAD];
  for(let i=0;i<N;i++){const x=X(cx[i][t]),y=Y(cy[i][t]);lines.push("creature "+i+" at "+x.toFixed(2)+","+y.toFixed(2)+" pixel "+pixel(x,y)+" alive "+alive[i][t]);}
  const w=walls[wallIndex];if(w){const mx=(w.from[0]+w.to[0])/2,my=(w.from[1]+w.to[1])/2;lines.push("wall "+wallIndex+" at "+X(mx).toFixed(2)+","+Y(my).toFixed(2)+" pixel "+pixel(X(mx),Y(my))+" colour "+rgb(w.colour));}
  if(EP.length>1)lines.push("episode "+(epi+1)+" of "+EP.length+" life position "+(OFF[epi]+t));
+ if(cursorStrip)lines.push(stripStatus);
  document.getElementById("status").textContent=lines.join("\n");}
 // Position p of the life: its episode (loaded when another), then the tick within it.
 function setPos(p){p=Math.max(0,Math.min(LAST,p|0));let k=EP.length-1;while(k>0&&OFF[k]>p)k--;if(k!==epi){load(k);buildCharts(which);}tick=p-OFF[k];draw();}
