@@ -198,7 +198,9 @@ pub enum SynapseError {
     #[error("`{0}` is not layer:from:to (e.g. h0:3:5 or out:7:1; the layer may also be its number from 0)")]
     Syntax(String),
     /// The brain is not a plastic MLP.
-    #[error("the brain is not plastic (set `brain.plasticity`), so it has no synapses that change")]
+    #[error(
+        "the brain is not plastic (set `brain.plasticity`), so it has no synapses that change"
+    )]
     NotPlastic,
     /// Out of range.
     #[error("`{given}`: {what}")]
@@ -222,7 +224,11 @@ fn plastic_layers(topology: &Topology) -> Option<Vec<(String, usize, usize, usiz
             .iter()
             .enumerate()
             .map(|(l, &(units, inputs))| {
-                let name = if l == last { "out".to_string() } else { format!("h{l}") };
+                let name = if l == last {
+                    "out".to_string()
+                } else {
+                    format!("h{l}")
+                };
                 let first = at;
                 at += units * inputs;
                 (name, units, inputs, first)
@@ -232,7 +238,12 @@ fn plastic_layers(topology: &Topology) -> Option<Vec<(String, usize, usize, usiz
 }
 
 /// The synapse of weight layer `layer` from `from` to `to`.
-fn synapse(layers: &[(String, usize, usize, usize)], layer: usize, from: usize, to: usize) -> Synapse {
+fn synapse(
+    layers: &[(String, usize, usize, usize)],
+    layer: usize,
+    from: usize,
+    to: usize,
+) -> Synapse {
     let (name, units, _, first) = &layers[layer];
     Synapse {
         layer,
@@ -281,7 +292,10 @@ pub fn parse_synapses(text: &str, topology: &Topology) -> Result<Vec<Synapse>, S
                 layers.len() - 1
             )));
         };
-        let number = |x: &str| x.parse::<usize>().map_err(|_| SynapseError::Syntax(given.into()));
+        let number = |x: &str| {
+            x.parse::<usize>()
+                .map_err(|_| SynapseError::Syntax(given.into()))
+        };
         let (from, to) = (number(from)?, number(to)?);
         if from >= inputs || to >= units {
             return Err(range(format!(

@@ -15,8 +15,8 @@
 //! existed (the benchmark figures do not move; see `docs/performance.md`).
 
 use crate::brain::genome::Genome;
-use crate::brain::{Brain, BrainController};
 use crate::brain::spec::Topology;
+use crate::brain::{Brain, BrainController};
 use crate::evo::episodes::{EpisodeChoices, Life, LifeOrigin};
 use crate::evo::life::{
     checked_controllers, outcomes, record_tick, start_scores, trial_world, CheckedController,

@@ -259,7 +259,10 @@ fn strip(life: &[TrialTrace]) -> String {
         .map(|(s, c)| key("synapse", &swatch(c), &s.name))
         .collect();
     let mut marks = String::new();
-    let episodes: Vec<_> = life.iter().filter_map(|t| t.world.episode.as_ref()).collect();
+    let episodes: Vec<_> = life
+        .iter()
+        .filter_map(|t| t.world.episode.as_ref())
+        .collect();
     if life.len() > 1 {
         marks.push_str(&key(
             "episode",
@@ -303,7 +306,9 @@ fn strip(life: &[TrialTrace]) -> String {
             let name = (b'A' + t as u8) as char;
             marks.push_str(&key(
                 &format!("bite-{}", name.to_ascii_lowercase()),
-                &format!(r#"<line x1="0" y1="-6" x2="0" y2="6" stroke="{colour}" stroke-width="2"/>"#),
+                &format!(
+                    r#"<line x1="0" y1="-6" x2="0" y2="6" stroke="{colour}" stroke-width="2"/>"#
+                ),
                 &format!("bite of food {name}"),
             ));
         }

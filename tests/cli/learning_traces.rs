@@ -98,7 +98,10 @@ fn a_plastic_trace_holds_m_g_the_norm_and_the_followed_weights_continuous_over_t
     let mut previous: Option<Vec<f64>> = None;
     let mut moved = 0;
     for (info, rows) in &eps {
-        assert_eq!(info["synapses"], first["synapses"], "the same synapses all life");
+        assert_eq!(
+            info["synapses"], first["synapses"],
+            "the same synapses all life"
+        );
         // Each episode starts where the one before ended: the brain kept its weights.
         let start = numbers(&info["start"]);
         if let Some(p) = &previous {
@@ -114,7 +117,11 @@ fn a_plastic_trace_holds_m_g_the_norm_and_the_followed_weights_continuous_over_t
             let norm = r["dw_norm"].as_f64().unwrap();
             // ‖Δw‖ over all weights is at least each followed weight's change.
             for (a, b) in w.iter().zip(&before) {
-                assert!(norm >= (a - b).abs(), "‖Δw‖ {norm} below a change {}", a - b);
+                assert!(
+                    norm >= (a - b).abs(),
+                    "‖Δw‖ {norm} below a change {}",
+                    a - b
+                );
             }
             if w != before {
                 moved += 1;
@@ -123,7 +130,10 @@ fn a_plastic_trace_holds_m_g_the_norm_and_the_followed_weights_continuous_over_t
         }
         previous = Some(before);
     }
-    assert!(moved > 10, "the followed weights change over the life ({moved} ticks)");
+    assert!(
+        moved > 10,
+        "the followed weights change over the life ({moved} ticks)"
+    );
     all_m.sort_by(f64::total_cmp);
     all_m.dedup();
     assert!(all_m.len() > 10, "m changes over ticks");
@@ -168,15 +178,18 @@ fn the_followed_synapses_are_those_that_moved_most_or_those_named() {
     let end = numbers(&eps.last().unwrap().1.last().unwrap()["weights"]);
     // The JSON lines round nothing: the largest |w_end − w_start|, ties to the lower index
     // (the live weights are input-major: h0 from input i to unit j is 8·i + j, then out).
-    let index = |n: &str| every.iter().position(|x| {
-        let p: Vec<&str> = x.split(':').collect();
-        let l = if p[0] == "h0" { "h0" } else { "out" };
-        format!("w_{l}[{}][{}]", p[2], p[1]) == n
-    });
+    let index = |n: &str| {
+        every.iter().position(|x| {
+            let p: Vec<&str> = x.split(':').collect();
+            let l = if p[0] == "h0" { "h0" } else { "out" };
+            format!("w_{l}[{}][{}]", p[2], p[1]) == n
+        })
+    };
     let mut order: Vec<usize> = (0..names.len()).collect();
     order.sort_by(|&a, &b| {
         let (ma, mb) = ((end[a] - start[a]).abs(), (end[b] - start[b]).abs());
-        mb.total_cmp(&ma).then(index(&names[a]).cmp(&index(&names[b])))
+        mb.total_cmp(&ma)
+            .then(index(&names[a]).cmp(&index(&names[b])))
     });
     let want: Vec<&str> = order[..6].iter().map(|&k| names[k].as_str()).collect();
     let dir2 = tempfile::tempdir().unwrap();
@@ -264,7 +277,10 @@ fn a_life_of_several_episodes_marks_each_episode_and_its_switch() {
         let ep = &w["episode"];
         assert_eq!(ep["episode"], k as u64 + 1);
         assert_eq!(ep["episodes"], 10);
-        assert_eq!(ep["switch_kinds"], serde_json::json!(["left_goal", "right_goal"]));
+        assert_eq!(
+            ep["switch_kinds"],
+            serde_json::json!(["left_goal", "right_goal"])
+        );
         switched.push(ep["switched"].as_bool().unwrap());
         exchanged.push(ep["exchanged"].as_bool().unwrap());
     }
@@ -273,7 +289,11 @@ fn a_life_of_several_episodes_marks_each_episode_and_its_switch() {
     assert_eq!(at.len(), 1, "{switched:?}");
     assert!((3..=6).contains(&at[0]), "{at:?}");
     for k in 1..10 {
-        assert_eq!(exchanged[k] != exchanged[k - 1], switched[k], "{exchanged:?}");
+        assert_eq!(
+            exchanged[k] != exchanged[k - 1],
+            switched[k],
+            "{exchanged:?}"
+        );
     }
     // The CSV files say which episode a row belongs to.
     let text = String::from_utf8(read(&csv)).unwrap();
@@ -307,12 +327,30 @@ fn a_fixed_brains_trace_of_one_episode_is_byte_for_byte_as_before() {
         jsonl.to_str().unwrap(),
     ]);
     let want = BTreeMap::from([
-        ("t.csv", "181150a8632d7993032151a842d646504428155812404dfb00f6a0a18c154de6"),
-        ("t-actors.csv", "34ec8a879fee232336b1590772aa16d8b8788b2f3984c142495af1f3213fc06f"),
-        ("t-objects.csv", "568af97e3699a601d50935e1ac844a0e591decd49286a54ccb93600ede28861f"),
-        ("t-events.csv", "91dc112e141cbffe6677aa74707eb7e5e43fe365b91162f4125ecc60896d0587"),
-        ("t-world.jsonl", "2c0aa2d8705c7a66efeff1fb9e04a953baab91cbb2f1ebed4451d61c2d7db6c9"),
-        ("t.jsonl", "1a027ddea8def19dc82841d73b303df1a0c71bae2bb0594d8b9b8a14c49d2ef0"),
+        (
+            "t.csv",
+            "181150a8632d7993032151a842d646504428155812404dfb00f6a0a18c154de6",
+        ),
+        (
+            "t-actors.csv",
+            "34ec8a879fee232336b1590772aa16d8b8788b2f3984c142495af1f3213fc06f",
+        ),
+        (
+            "t-objects.csv",
+            "568af97e3699a601d50935e1ac844a0e591decd49286a54ccb93600ede28861f",
+        ),
+        (
+            "t-events.csv",
+            "91dc112e141cbffe6677aa74707eb7e5e43fe365b91162f4125ecc60896d0587",
+        ),
+        (
+            "t-world.jsonl",
+            "2c0aa2d8705c7a66efeff1fb9e04a953baab91cbb2f1ebed4451d61c2d7db6c9",
+        ),
+        (
+            "t.jsonl",
+            "1a027ddea8def19dc82841d73b303df1a0c71bae2bb0594d8b9b8a14c49d2ef0",
+        ),
     ]);
     for (name, hash) in want {
         let digest = Sha256::digest(read(&dir.path().join(name)));
@@ -338,11 +376,20 @@ fn the_replay_page_has_the_strip_for_a_plastic_brain_and_none_for_a_fixed_one() 
         plastic.to_str().unwrap(),
     ]);
     let page = String::from_utf8(read(&plastic)).unwrap();
-    assert!(page.contains("<canvas id=\"strip\""), "a strip under the arena");
+    assert!(
+        page.contains("<canvas id=\"strip\""),
+        "a strip under the arena"
+    );
     let html = &page[..page.find("<script").unwrap()];
     assert_eq!(html.matches("data-kind=\"synapse\"").count(), 6, "6 keys");
-    assert!(html.contains("data-kind=\"switch\""), "the switch is marked");
-    assert!(html.contains("data-kind=\"episode\""), "the episodes are marked");
+    assert!(
+        html.contains("data-kind=\"switch\""),
+        "the switch is marked"
+    );
+    assert!(
+        html.contains("data-kind=\"episode\""),
+        "the episodes are marked"
+    );
     // The whole life is on the page: ten world lines.
     assert_eq!(page.matches("\"type\":\"world\"").count(), 10);
     let fixed = dir.path().join("fixed.html");

@@ -256,7 +256,11 @@ fn a_plastic_lifes_page_follows_the_life_across_episodes_with_its_strip_cursor()
         .arg(&html)
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     // Life position 500: episodes of 180 ticks have 181 positions each, so episode 3, tick 138.
     let dom = match dump_dom(&format!("file://{}#tick=500", html.display())) {
         Ok(dom) => dom,
@@ -272,9 +276,15 @@ fn a_plastic_lifes_page_follows_the_life_across_episodes_with_its_strip_cursor()
     let start = dom.find("<pre id=\"status\"").unwrap();
     let status = &dom[start..start + dom[start..].find("</pre>").unwrap()];
     assert!(status.contains("tick 138\n"), "{status}");
-    assert!(status.contains("episode 3 of 10 life position 500"), "{status}");
+    assert!(
+        status.contains("episode 3 of 10 life position 500"),
+        "{status}"
+    );
     // The strip's cursor stands at the position's share of the strip, drawn in black.
-    let line = status.lines().find(|l| l.starts_with("strip cursor")).expect(status);
+    let line = status
+        .lines()
+        .find(|l| l.starts_with("strip cursor"))
+        .expect(status);
     let n = numbers(line);
     let (q, w, p, last) = (n[0], n[1], n[2], n[3]);
     assert_eq!(p, 500.0, "{line}");

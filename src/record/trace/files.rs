@@ -215,7 +215,9 @@ pub fn write_csv_files(trials: &[TrialTrace], path: &Path) -> io::Result<()> {
         }
         Ok(())
     })?;
-    let header = lead(names(&["trial", "tick", "kind", "index", "x", "y", "heading"]));
+    let header = lead(names(&[
+        "trial", "tick", "kind", "index", "x", "y", "heading",
+    ]));
     write_csv(&actors, &header, |row| {
         let mut cells = Vec::new();
         for t in trials {
