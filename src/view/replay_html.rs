@@ -25,8 +25,8 @@
 //! P is episode e's tick P − (the positions of the episodes before)), and the page loads an
 //! episode's world when the position enters it; the label says `episode e / K · tick t / T`.
 //! For a plastic brain (the trace's `learning` lines) a strip under the arena shows the
-//! followed synapses' weights over the whole life, one line each, with ‖Δw‖ per tick in a band
-//! below, the episode starts (dashed), the switches (thick, purple; episodes whose payoffs
+//! followed synapses' weights over the whole life, one line each, with ‖Δw‖ and the gate g
+//! per tick in two bands below, the episode starts (dashed), the switches (thick, purple; episodes whose payoffs
 //! are exchanged shaded), the selected creature's bites coloured by food type and its shock
 //! onsets, and a cursor at the current tick. A fixed brain's page has no strip.
 
@@ -320,9 +320,14 @@ fn strip(life: &[TrialTrace]) -> String {
             "shock onset",
         ));
     }
-    marks.push_str(&key("dw-norm", &swatch("#444"), "‖Δw‖ per tick (band)"));
+    marks.push_str(&key("dw-norm", &swatch("#444"), "‖Δw‖ per tick"));
+    marks.push_str(&key(
+        "gate",
+        &swatch("#bb3e03"),
+        "gate g = tanh(m/2) per tick",
+    ));
     format!(
-        r#"<div id="learn"><div class="lbl" id="striplbl">{title}</div><div class="keys" id="synkeys">{synapses}</div><canvas id="strip" width="660" height="210"></canvas><div class="keys" id="stripkeys">{marks}</div></div>"#
+        r#"<div id="learn"><div class="lbl" id="striplbl">{title}</div><div class="keys" id="synkeys">{synapses}</div><canvas id="strip" width="660" height="250"></canvas><div class="keys" id="stripkeys">{marks}</div></div>"#
     )
 }
 
@@ -476,7 +481,7 @@ const TEMPLATE: &str = r##"<!DOCTYPE html>
 <style>
 body{font-family:sans-serif;font-size:13px;margin:10px;background:#fff;color:#222}
 #wrap{display:flex;gap:14px;align-items:flex-start}
-#main{display:flex;flex-direction:column;gap:4px}
+#main{display:flex;flex-direction:column;gap:4px;align-items:flex-start}
 #side{display:flex;flex-direction:column;gap:6px;min-width:380px}
 canvas{display:block}
 #arena{border:1px solid #ccc}
@@ -621,18 +626,18 @@ function eye(c0){const c=document.getElementById("eye"),x=c.getContext("2d");x.f
 const stripEl=document.getElementById("strip");let cursorStrip=null;
 const SYN=["#1b9e77","#d95f02","#7570b3","#e7298a","#66a61e","#a6761d","#e6ab02","#666666"];
 function buildStrip(i){if(!stripEl)return;const info=e=>EP[e].learning&&EP[e].learning.creatures.find(c=>c.creature===i);const L=info(0);
- const c=stripEl,x=c.getContext("2d");c.width=Math.max(480,arena.width);const w=c.width,h=c.height;
+ const c=stripEl,x=c.getContext("2d");c.width=Math.max(480,arena.width);const w=c.width,h=c.height;document.getElementById("learn").style.maxWidth=w+"px";
  const keys=document.getElementById("synkeys");
  if(!L){cursorStrip=null;x.fillStyle="#fff";x.fillRect(0,0,w,h);x.fillStyle="#888";x.font="11px sans-serif";x.fillText("creature "+i+"'s brain is not plastic",GUTTER+4,20);if(keys)keys.textContent="";return;}
- const K=L.synapses.length,vals=[],dn=new Float64Array(P);for(let k=0;k<K;k++)vals.push(new Float64Array(P));
+ const K=L.synapses.length,vals=[],dn=new Float64Array(P),gate=new Float64Array(P);for(let k=0;k<K;k++)vals.push(new Float64Array(P));
  if(keys)keys.innerHTML=L.synapses.map((s,k)=>'<span class="key" data-kind="synapse"><svg width="24" height="16" viewBox="-12 -8 24 16" aria-hidden="true"><line x1="-10" y1="0" x2="10" y2="0" stroke="'+SYN[k%SYN.length]+'" stroke-width="3"/></svg>'+s.name+'</span>').join("");
  let prev=L.start.slice();
  EP.forEach((E,e)=>{const o=OFF[e],li=info(e);if(li)prev=li.start.slice();for(let k=0;k<K;k++)vals[k][o]=prev[k];
-  E.ticks.forEach((tk,t)=>{const r=tk.learning&&tk.learning.find(l=>l.creature===i);if(r){prev=r.weights;dn[o+t+1]=r.dw_norm;}for(let k=0;k<K;k++)vals[k][o+t+1]=prev[k];});});
+  E.ticks.forEach((tk,t)=>{const r=tk.learning&&tk.learning.find(l=>l.creature===i);if(r){prev=r.weights;dn[o+t+1]=r.dw_norm;gate[o+t+1]=r.g;}for(let k=0;k<K;k++)vals[k][o+t+1]=prev[k];});});
  let lo=Infinity,hi=-Infinity;for(const v of vals)for(const a of v){lo=Math.min(lo,a);hi=Math.max(hi,a);}if(!(hi>lo)){lo-=0.5;hi+=0.5;}const pad=(hi-lo)*0.06;lo-=pad;hi+=pad;
  let dmax=0;for(const a of dn)dmax=Math.max(dmax,a);
  const img=document.createElement("canvas");img.width=w;img.height=h;const b=img.getContext("2d");
- const TOP=14,BAND=34,MARK=16,H1=h-TOP-BAND-MARK-6;const px=p=>GUTTER+1+p/Math.max(1,LAST)*(w-GUTTER-3);const y=v=>TOP+H1-(v-lo)/(hi-lo)*H1;
+ const TOP=14,BAND=30,MARK=16,H1=h-TOP-2*BAND-MARK-8;const px=p=>GUTTER+1+p/Math.max(1,LAST)*(w-GUTTER-3);const y=v=>TOP+H1-(v-lo)/(hi-lo)*H1;
  b.fillStyle="#fff";b.fillRect(0,0,w,h);
  // Episodes: exchanged ones shaded, boundaries dashed, switches thick, numbers on top.
  EP.forEach((E,e)=>{const ep=E.W.episode,x0=px(OFF[e]),x1=px(OFF[e]+E.ticks.length);
@@ -654,6 +659,11 @@ function buildStrip(i){if(!stripEl)return;const info=e=>EP[e].learning&&EP[e].le
  const BY=MY+MARK+2;b.fillStyle="#fafafa";b.fillRect(GUTTER,BY,w-GUTTER,BAND);b.strokeStyle="#ddd";b.strokeRect(GUTTER+0.5,BY+0.5,w-GUTTER-1,BAND-1);
  b.fillStyle="#555";b.fillText("‖Δw‖",GUTTER-4,BY+BAND/2);b.textAlign="left";b.fillText("max "+fmt(dmax),GUTTER+4,BY+7);
  if(dmax>0){b.strokeStyle="#444";b.beginPath();for(let p=0;p<P;p++){const v=BY+BAND-2-dn[p]/dmax*(BAND-4);if(p===0)b.moveTo(px(p),v);else b.lineTo(px(p),v);}b.stroke();}
+ // The gate g = tanh(m/2) per tick, in [-1, 1] (1 all along for a Hebbian rule).
+ const GY=BY+BAND+2,gy=v=>GY+BAND/2-v*(BAND/2-2);b.fillStyle="#fafafa";b.fillRect(GUTTER,GY,w-GUTTER,BAND);b.strokeStyle="#ddd";b.strokeRect(GUTTER+0.5,GY+0.5,w-GUTTER-1,BAND-1);
+ b.strokeStyle="#ccc";b.beginPath();b.moveTo(GUTTER,Math.round(gy(0))+0.5);b.lineTo(w,Math.round(gy(0))+0.5);b.stroke();
+ b.fillStyle="#555";b.textAlign="right";b.fillText("g",GUTTER-4,GY+BAND/2);b.textAlign="left";b.fillText("±1",GUTTER+4,GY+7);
+ b.strokeStyle="#bb3e03";b.beginPath();for(let p=1;p<P;p++){const v=gy(gate[p]);if(p===1)b.moveTo(px(p),v);else b.lineTo(px(p),v);}b.stroke();
  cursorStrip=p=>{x.drawImage(img,0,0);const q=Math.round(px(p))+0.5;x.strokeStyle="#000";x.beginPath();x.moveTo(q,TOP);x.lineTo(q,h);x.stroke();
   const d=x.getImageData(Math.floor(q),h-3,1,1).data;stripStatus="strip cursor at "+q.toFixed(1)+" of "+w+" for position "+p+" of "+LAST+" pixel "+d[0]+","+d[1]+","+d[2];};}
 let stripStatus="";
