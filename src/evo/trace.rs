@@ -275,22 +275,32 @@ pub fn parse_synapses(text: &str, topology: &Topology) -> Result<Vec<Synapse>, S
         let [layer, from, to] = parts[..] else {
             return Err(SynapseError::Syntax(given.into()));
         };
-        let l = match names.iter().position(|&n| n == layer) {
-            Some(l) => l,
-            None => layer
-                .parse::<usize>()
-                .map_err(|_| SynapseError::Syntax(given.into()))?,
-        };
         let range = |what: String| SynapseError::OutOfRange {
             given: given.into(),
             what,
         };
-        let Some(&(ref name, units, inputs, _)) = layers.get(l) else {
-            return Err(range(format!(
+        let listed = || {
+            format!(
                 "the brain has weight layers {} (0 to {})",
                 names.join(", "),
                 layers.len() - 1
-            )));
+            )
+        };
+        let l = match names.iter().position(|&n| n == layer) {
+            Some(l) => l,
+            // A hidden layer the brain does not have, e.g. h3.
+            None if layer
+                .strip_prefix('h')
+                .is_some_and(|n| n.parse::<usize>().is_ok()) =>
+            {
+                return Err(range(listed()));
+            }
+            None => layer
+                .parse::<usize>()
+                .map_err(|_| SynapseError::Syntax(given.into()))?,
+        };
+        let Some(&(ref name, units, inputs, _)) = layers.get(l) else {
+            return Err(range(listed()));
         };
         let number = |x: &str| {
             x.parse::<usize>()

@@ -9,7 +9,7 @@
 //! modulatory neuron (tests/fixtures/plastic-t-maze.toml, the run folder's experiment file);
 //! the fixed one, generation 0 of the shipped file (t-maze-switch-mlp-best.json).
 
-use crate::cli_common::{experiment, fixture, read, run_ok};
+use crate::cli_common::{experiment, fixture, read, run_err, run_ok};
 use berry_evolve::brain::activation::tanh;
 use berry_evolve::experiment::Experiment;
 use serde_json::Value;
@@ -406,4 +406,58 @@ fn the_replay_page_has_the_strip_for_a_plastic_brain_and_none_for_a_fixed_one() 
     ]);
     let page = String::from_utf8(read(&fixed)).unwrap();
     assert!(!page.contains("id=\"strip\"") && !page.contains("\"type\":\"learning\""));
+}
+
+#[test]
+fn synapses_that_the_brain_lacks_are_refused_naming_the_flag() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.jsonl");
+    let plastic = [
+        fixture("plastic-t-maze-best.json"),
+        fixture("plastic-t-maze.toml"),
+    ];
+    let baseline = Path::new(env!("CARGO_MANIFEST_DIR")).join("genomes/t-maze-baseline.json");
+    for (genome, exp, synapses, says) in [
+        (
+            &plastic[0],
+            plastic[1].clone(),
+            "h3:1:1",
+            "weight layers h0, out (0 to 1)",
+        ),
+        (
+            &plastic[0],
+            plastic[1].clone(),
+            "h0:1",
+            "is not layer:from:to",
+        ),
+        (
+            &plastic[0],
+            plastic[1].clone(),
+            "h0:24:0",
+            "layer h0 has inputs 0..24",
+        ),
+        (
+            &baseline,
+            experiment("t-maze.toml").into(),
+            "out:0:0",
+            "the brain is not plastic",
+        ),
+    ] {
+        let stderr = run_err(&[
+            "replay",
+            genome.to_str().unwrap(),
+            "--experiment",
+            exp.to_str().unwrap(),
+            "--trial",
+            "0",
+            "--trace-jsonl",
+            out.to_str().unwrap(),
+            "--synapses",
+            synapses,
+        ]);
+        assert!(
+            stderr.contains(&format!("--synapses {synapses}")) && stderr.contains(says),
+            "{stderr}"
+        );
+    }
 }
