@@ -310,6 +310,21 @@ impl Mlp {
         }
     }
 
+    /// A plastic network's live weights, borrowed ([`Mlp::live_weights`]'s order); None for
+    /// fixed weights. A read accessor for traces: the tick does no work for it.
+    pub fn plastic_weights(&self) -> Option<&[f64]> {
+        match (&self.plastic, &self.numbers) {
+            (Some(_), Numbers::F64 { buffers, .. }) => Some(&buffers.transposed),
+            _ => None,
+        }
+    }
+
+    /// A neuromodulated network's last modulatory signal m (see
+    /// [`crate::brain::plasticity`]); None for Hebbian and fixed networks.
+    pub fn last_modulation(&self) -> Option<f64> {
+        self.plastic.as_ref().and_then(|p| p.last_modulation())
+    }
+
     /// The parameters, exactly as given (a plastic network's whole genome).
     pub fn parameters(&self) -> &[f64] {
         self.genome.as_deref().unwrap_or(&self.parameters)

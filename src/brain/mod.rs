@@ -236,6 +236,25 @@ impl Brain {
         matches!(self, Brain::Mlp(b) if !b.is_plastic())
     }
 
+    /// A plastic brain's live weights (input-major per weight layer, hidden layers then the
+    /// output layer, as [`Mlp::live_weights`]); None for a brain whose weights are fixed.
+    /// Only reads: what a trace records after each tick.
+    pub fn plastic_weights(&self) -> Option<&[f64]> {
+        match self {
+            Brain::Mlp(b) => b.plastic_weights(),
+            _ => None,
+        }
+    }
+
+    /// A neuromodulated brain's modulatory signal m of its last tick (gate g = tanh(m/2));
+    /// None for other brains.
+    pub fn last_modulation(&self) -> Option<f64> {
+        match self {
+            Brain::Mlp(b) => b.last_modulation(),
+            _ => None,
+        }
+    }
+
     /// Tells a plastic brain with random initial weights which life it lives (its weights
     /// are drawn from that life's stream, see [`LifeKey`]) and resets it; other brains
     /// ignore it (their reset does not depend on the life).

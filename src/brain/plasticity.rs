@@ -488,6 +488,9 @@ pub(crate) struct Plastic {
     /// C·post + D of each receiving unit of a layer with shared coefficients (scratch, as
     /// wide as the widest layer, so that the tick allocates nothing).
     post_terms: Vec<f64>,
+    /// The last tick's m (0 before the first): one store per tick, kept because a trace
+    /// cannot recompute it after the tick (the metabolism term's s_{t−1} is overwritten).
+    last_m: f64,
 }
 
 impl Plastic {
@@ -584,6 +587,7 @@ impl Plastic {
             previous: 0.0,
             has_previous: false,
             post_terms: vec![0.0; sizes.iter().map(|&(units, _)| units).max().unwrap_or(0)],
+            last_m: 0.0,
         };
         plastic.reset(transposed);
         plastic
@@ -611,6 +615,14 @@ impl Plastic {
         self.has_previous = false;
         // Scratch only, cleared so that a reset brain equals a new one.
         self.post_terms.fill(0.0);
+        self.last_m = 0.0;
+    }
+
+    /// The modulatory signal m of the last tick (0 before the first tick of a life), for a
+    /// neuromodulated rule; None for a Hebbian one (g = 1). Its gate g is
+    /// [`tanh`]`(m * 0.5)`, the same expression the update computes, so the same bits.
+    pub(crate) fn last_modulation(&self) -> Option<f64> {
+        (self.rule == Plasticity::Neuromodulated).then_some(self.last_m)
     }
 
     /// The tick's modulatory signal m from the observation `inputs` and `source` (the last
@@ -663,7 +675,10 @@ impl Plastic {
         source: &[f64],
     ) {
         let g = match self.rule {
-            Plasticity::Neuromodulated => tanh(self.modulation(inputs, source) * 0.5),
+            Plasticity::Neuromodulated => {
+                self.last_m = self.modulation(inputs, source);
+                tanh(self.last_m * 0.5)
+            }
             _ => 1.0,
         };
         let [lo, hi] = self.bounds;

@@ -18,11 +18,13 @@ use berry_evolve::brain::spec::Topology;
 use berry_evolve::evo::episodes::LifeOrigin;
 use berry_evolve::evo::evaluate::aggregate;
 use berry_evolve::evo::life::TrialOutcome;
-use berry_evolve::evo::trace::{TraceRecorder, TrialTrace};
+use berry_evolve::evo::trace::{parse_synapses, TraceRecorder, TrialTrace};
 use berry_evolve::evo::trial::{self, NoObserver, TickObserver, TrialId};
 use berry_evolve::experiment::{Aggregate, Experiment};
 use berry_evolve::record::genome_file::GenomeFile;
-use berry_evolve::record::trace::files::{csv_paths, write_csv_files, write_jsonl};
+use berry_evolve::record::trace::files::{
+    csv_paths, learning_paths, write_csv_files, write_jsonl, written_paths,
+};
 use berry_evolve::seed::{Generation, TrialIndex};
 use berry_evolve::sim::world::World;
 use berry_evolve::view::replay_html;
@@ -60,8 +62,14 @@ pub struct ReplayArgs {
     /// Write the same trace as JSON lines to this file.
     #[arg(long)]
     pub trace_jsonl: Option<PathBuf>,
-    /// Write a self-contained page that animates the replayed trial (the first one replayed)
-    /// to this HTML file.
+    /// A plastic brain's synapses to follow in the trace and on the page, as
+    /// layer:from:to,... (layer h0, h1, ..., out, or its number from 0; e.g. h0:3:5,out:7:1).
+    /// Default: the 6 whose weight moved most over the life.
+    #[arg(long, value_name = "LAYER:FROM:TO,...")]
+    pub synapses: Option<String>,
+    /// Write a self-contained page that animates the replayed trial (the first one replayed,
+    /// every episode of its life) to this HTML file; a plastic brain's page adds a strip of
+    /// its weights over the life.
     #[arg(long)]
     pub html: Option<PathBuf>,
     /// Print one JSON document (schema `berry-evolve/replay/1`) instead of text: fitness,
@@ -229,7 +237,19 @@ impl Replay {
         for &t in &self.trials {
             self.run(t, Some(&mut recorder))?;
         }
-        Ok(recorder.trials)
+        Ok(recorder.into_trials())
+    }
+
+    /// The recorder of this replay's trials, following the synapses `--synapses` names.
+    pub fn recorder(&self, synapses: Option<&str>) -> anyhow::Result<TraceRecorder> {
+        let recorder = TraceRecorder::new(&self.experiment);
+        Ok(match synapses {
+            Some(text) => recorder.with_synapses(
+                parse_synapses(text, &self.topology)
+                    .with_context(|| format!("--synapses {text}"))?,
+            ),
+            None => recorder,
+        })
     }
 }
 
@@ -269,7 +289,8 @@ pub(crate) fn refuse_overwriting_inputs(
 #[derive(Debug, Default, Serialize)]
 pub struct ReplayFiles {
     /// `--trace`: the creatures' CSV first, then its -actors.csv, -objects.csv, -events.csv
-    /// and -world.jsonl (empty without `--trace`).
+    /// and -world.jsonl, and a plastic brain's -learning.csv and -synapses.csv (empty
+    /// without `--trace`).
     pub trace: Vec<String>,
     /// `--trace-jsonl`.
     pub trace_jsonl: Option<String>,
@@ -365,8 +386,8 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
     )?;
     let inputs = [args.genome.as_path(), experiment_path.as_path()];
     if let Some(path) = &args.trace {
-        for p in csv_paths(path) {
-            refuse_overwriting_inputs("--trace", &p, &inputs)?;
+        for p in csv_paths(path).iter().chain(&learning_paths(path)) {
+            refuse_overwriting_inputs("--trace", p, &inputs)?;
         }
     }
     if let Some(path) = &args.trace_jsonl {
@@ -385,7 +406,13 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
     )?;
     let experiment = &replay.experiment;
     let recording = args.trace.is_some() || args.trace_jsonl.is_some() || args.html.is_some();
-    let mut recorder = recording.then(|| TraceRecorder::new(experiment));
+    if args.synapses.is_some() && !recording {
+        errln!("note: --synapses applies to --trace, --trace-jsonl and --html; none was given");
+    }
+    let mut recorder = match recording {
+        true => Some(replay.recorder(args.synapses.as_deref())?),
+        false => None,
+    };
     let mut outcomes = Vec::new();
     let mut trials = Vec::new();
     for &t in &replay.trials {
@@ -394,18 +421,21 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
         outcomes.push(o);
     }
     let evaluation = aggregate(experiment, &outcomes);
-    let traces = recorder.map(|r| r.trials).unwrap_or_default();
+    let traces = recorder.map(|r| r.into_trials()).unwrap_or_default();
     let mut files = ReplayFiles::default();
     if let Some(path) = &args.trace {
         write_csv_files(&traces, path)?;
+        let written = written_paths(&traces, path);
         errln!(
-            "trace written to {} (and its -actors.csv, -objects.csv, -events.csv, -world.jsonl)",
-            path.display()
+            "trace written to {} (and its -actors.csv, -objects.csv, -events.csv, -world.jsonl{})",
+            path.display(),
+            if written.len() > 5 {
+                ", -learning.csv, -synapses.csv"
+            } else {
+                ""
+            }
         );
-        files.trace = csv_paths(path)
-            .iter()
-            .map(|p| p.display().to_string())
-            .collect();
+        files.trace = written.iter().map(|p| p.display().to_string()).collect();
     }
     if let Some(path) = &args.trace_jsonl {
         write_jsonl(&traces, path)?;
@@ -416,8 +446,9 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
         let first = traces
             .first()
             .context("no trial was replayed, so there is no page to write")?;
-        replay_html::write_titled(
-            first,
+        // The first life replayed, all its episodes.
+        replay_html::write_life(
+            replay_html::life_of(&traces),
             &replay.title(first.world.trial),
             &experiment.output_names(),
             path,

@@ -365,6 +365,8 @@ mod tests {
         every: u64,
     }
 
+    impl crate::evo::trial::BrainOf for Flaky {}
+
     impl Controller for Flaky {
         fn act(&mut self, observation: &[f64]) -> MotorCommand {
             let sum: f64 = observation.iter().sum();

@@ -26,9 +26,32 @@
 //!   `door_close`, in door order.
 //!
 //! Shock, attack and death rows stand at the creature's position after the tick.
+//!
+//! # Episodes
+//!
+//! A life of several episodes (`[evaluation] episodes_per_life`) stays one trial per episode
+//! here (each its own world, ticks from 1, its own outcome), as the trial path shows it; each
+//! carries an [`EpisodeInfo`] (which episode, whether a switch came before it and whether the
+//! switch kinds' payoffs are exchanged). Keeping episodes apart keeps every world-drawing
+//! consumer as it was; what crosses episodes (a plastic brain's weights) runs on continuously.
+//!
+//! # Learning
+//!
+//! For a plastic brain the recorder also reads the brain after each tick
+//! ([`TickObserver::brain`]): the modulatory signal m and its gate g = tanh(m/2) (g = 1 for a
+//! Hebbian rule), ‖Δw‖ (the L2 norm of the tick's change over all plastic weights, from the
+//! weights after the tick before, or at the life's start), and the weights of a few chosen
+//! synapses ([`LearningTick`]). The synapses are those named ([`TraceRecorder::with_synapses`])
+//! or else the [`DEFAULT_SYNAPSES`] whose weight moved most over the life (|w_end − w_start|,
+//! ties to the lower index): the recorder keeps every weight of the life in progress and keeps
+//! the chosen ones when the life ends (the next life's start, or
+//! [`TraceRecorder::into_trials`]), so the choice is exact and the life is lived once.
 
+use crate::brain::activation::tanh;
+use crate::brain::spec::Topology;
+use crate::brain::Brain;
 use crate::evo::life::TrialOutcome;
-use crate::evo::trial::{TickObserver, TrialId};
+use crate::evo::trial::{EpisodeMark, TickObserver, TrialId};
 use crate::experiment::Experiment;
 use crate::geometry::Vec2;
 use crate::sim::events::{Attacker, ShockCause, WorldEvent};
@@ -37,6 +60,7 @@ use crate::sim::metabolism::Metabolism;
 use crate::sim::spec::Effect;
 use crate::sim::world::World;
 use serde::{Deserialize, Serialize};
+use thiserror::Error;
 
 /// A 2-D point or vector `[x, y]` in LU.
 pub type Point = [f64; 2];
@@ -95,6 +119,205 @@ pub struct WorldDescription {
     pub actors: Vec<ActorInfo>,
     /// Air predators, in file order, at their start.
     pub air_predators: Vec<AirPredatorInfo>,
+    /// Which episode of its life this world is (absent for a life of one episode).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub episode: Option<EpisodeInfo>,
+}
+
+/// Which episode of a life of several a trial is.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct EpisodeInfo {
+    /// The episode, numbered from 1 (as `[evaluation.switch] at` numbers them).
+    pub episode: u64,
+    /// Episodes in the life.
+    pub episodes: u64,
+    /// A switch came before this episode: the two switch kinds' payoffs were exchanged
+    /// relative to the episode before.
+    pub switched: bool,
+    /// In this episode the switch kinds' payoffs are exchanged relative to `[world.kinds]`.
+    pub exchanged: bool,
+    /// The two switch kinds (`[evaluation.switch] kinds`; empty without a switch).
+    pub switch_kinds: Vec<String>,
+}
+
+/// A synapse of a plastic MLP: weight layer `layer` (0 = the first hidden layer, …, the last
+/// = the output layer), from input or unit `from` of the layer before to unit `to`.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Synapse {
+    /// Weight layer: 0 = the first hidden layer, the last = the output layer.
+    pub layer: usize,
+    /// The presynaptic input (or unit of the layer before).
+    pub from: usize,
+    /// The receiving unit.
+    pub to: usize,
+    /// Its genome name (`w_h0[to][from]`, `w_out[to][from]`), as `inspect` names it.
+    pub name: String,
+    /// Its index in the brain's live weights ([`Brain::plastic_weights`]).
+    pub index: usize,
+}
+
+/// How many synapses a trace follows when none are named: those that moved most.
+pub const DEFAULT_SYNAPSES: usize = 6;
+
+/// One creature's plastic brain in a trial: the synapses followed and their weights at the
+/// trial's start (tick 0: the genome's initial weights in a life's first episode, the last
+/// episode's final weights later).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LearningInfo {
+    /// Creature index.
+    pub creature: usize,
+    /// `moved_most` (the synapses whose weight moved most over the life) or `named`.
+    pub chosen: String,
+    /// The synapses followed, in [`LearningTick::weights`] order.
+    pub synapses: Vec<Synapse>,
+    /// Their weights at tick 0.
+    pub start: Vec<f64>,
+}
+
+/// A plastic brain after one tick.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct LearningTick {
+    /// Ticks done.
+    pub tick: u64,
+    /// Creature index.
+    pub creature: usize,
+    /// The tick's modulatory signal m (None for a Hebbian rule).
+    pub m: Option<f64>,
+    /// The gate g = tanh(m/2) (1 for a Hebbian rule).
+    pub g: f64,
+    /// ‖Δw‖: the L2 norm of this tick's change of all plastic weights.
+    pub dw_norm: f64,
+    /// The followed synapses' weights after the tick ([`LearningInfo::synapses`] order).
+    pub weights: Vec<f64>,
+}
+
+/// Why a list of synapses cannot be followed.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+pub enum SynapseError {
+    /// Not `layer:from:to`.
+    #[error("`{0}` is not layer:from:to (e.g. h0:3:5 or out:7:1; the layer may also be its number from 0)")]
+    Syntax(String),
+    /// The brain is not a plastic MLP.
+    #[error(
+        "the brain is not plastic (set `brain.plasticity`), so it has no synapses that change"
+    )]
+    NotPlastic,
+    /// Out of range.
+    #[error("`{given}`: {what}")]
+    OutOfRange {
+        /// The entry.
+        given: String,
+        /// What the brain has.
+        what: String,
+    },
+}
+
+/// The plastic weight layers of `topology`: (name, units, inputs, first index in the live
+/// weights), or None when the brain is not a plastic MLP.
+fn plastic_layers(topology: &Topology) -> Option<Vec<(String, usize, usize, usize)>> {
+    topology.spec.plastic_settings()?;
+    let (sizes, _) = topology.weight_layers();
+    let last = sizes.len() - 1;
+    let mut at = 0;
+    Some(
+        sizes
+            .iter()
+            .enumerate()
+            .map(|(l, &(units, inputs))| {
+                let name = if l == last {
+                    "out".to_string()
+                } else {
+                    format!("h{l}")
+                };
+                let first = at;
+                at += units * inputs;
+                (name, units, inputs, first)
+            })
+            .collect(),
+    )
+}
+
+/// The synapse of weight layer `layer` from `from` to `to`.
+fn synapse(
+    layers: &[(String, usize, usize, usize)],
+    layer: usize,
+    from: usize,
+    to: usize,
+) -> Synapse {
+    let (name, units, _, first) = &layers[layer];
+    Synapse {
+        layer,
+        from,
+        to,
+        name: format!("w_{name}[{to}][{from}]"),
+        index: first + from * units + to,
+    }
+}
+
+/// The synapse at `index` of the live weights.
+fn synapse_at(layers: &[(String, usize, usize, usize)], index: usize) -> Option<Synapse> {
+    let l = layers
+        .iter()
+        .rposition(|&(_, _, _, first)| first <= index)?;
+    let (_, units, inputs, first) = layers[l];
+    let k = index - first;
+    (k < units * inputs).then(|| synapse(layers, l, k / units, k % units))
+}
+
+/// Parses `layer:from:to,...` (layer `h0`, `h1`, …, `out`, or its number from 0) against
+/// `topology`'s plastic weight layers.
+pub fn parse_synapses(text: &str, topology: &Topology) -> Result<Vec<Synapse>, SynapseError> {
+    let layers = plastic_layers(topology).ok_or(SynapseError::NotPlastic)?;
+    let names: Vec<&str> = layers.iter().map(|l| l.0.as_str()).collect();
+    let mut out = Vec::new();
+    for given in text.split(',').map(str::trim).filter(|t| !t.is_empty()) {
+        let parts: Vec<&str> = given.split(':').collect();
+        let [layer, from, to] = parts[..] else {
+            return Err(SynapseError::Syntax(given.into()));
+        };
+        let range = |what: String| SynapseError::OutOfRange {
+            given: given.into(),
+            what,
+        };
+        let listed = || {
+            format!(
+                "the brain has weight layers {} (0 to {})",
+                names.join(", "),
+                layers.len() - 1
+            )
+        };
+        let l = match names.iter().position(|&n| n == layer) {
+            Some(l) => l,
+            // A hidden layer the brain does not have, e.g. h3.
+            None if layer
+                .strip_prefix('h')
+                .is_some_and(|n| n.parse::<usize>().is_ok()) =>
+            {
+                return Err(range(listed()));
+            }
+            None => layer
+                .parse::<usize>()
+                .map_err(|_| SynapseError::Syntax(given.into()))?,
+        };
+        let Some(&(ref name, units, inputs, _)) = layers.get(l) else {
+            return Err(range(listed()));
+        };
+        let number = |x: &str| {
+            x.parse::<usize>()
+                .map_err(|_| SynapseError::Syntax(given.into()))
+        };
+        let (from, to) = (number(from)?, number(to)?);
+        if from >= inputs || to >= units {
+            return Err(range(format!(
+                "layer {name} has inputs 0..{inputs} and units 0..{units}"
+            )));
+        }
+        out.push(synapse(&layers, l, from, to));
+    }
+    if out.is_empty() {
+        return Err(SynapseError::Syntax(text.into()));
+    }
+    Ok(out)
 }
 
 /// A wall segment.
@@ -403,6 +626,10 @@ pub struct TrialTrace {
     pub events: Vec<Event>,
     /// Each creature's outcome, when the trial finished.
     pub outcomes: Vec<OutcomeInfo>,
+    /// Per plastic creature, the synapses followed (empty for fixed brains).
+    pub learning: Vec<LearningInfo>,
+    /// Per tick, one row per plastic creature (empty for fixed brains).
+    pub learning_ticks: Vec<LearningTick>,
 }
 
 impl TrialTrace {
@@ -452,9 +679,21 @@ pub struct TraceRecorder {
     whisker_length: f64,
     whisker_angle: f64,
     waypoints: Vec<Vec<Point>>,
-    /// The trials recorded, in the order they ran.
+    /// The trials recorded, in the order they ran (a plastic brain's synapses are chosen
+    /// when its life ends: read them through [`TraceRecorder::into_trials`]).
     pub trials: Vec<TrialTrace>,
     previous: Previous,
+    switch_kinds: Vec<String>,
+    /// The episode the next trial starts (lives of several episodes).
+    mark: Option<EpisodeMark>,
+    /// The plastic weight layers (None for other brains).
+    layers: Option<Vec<(String, usize, usize, usize)>>,
+    /// The synapses to follow (None: those that move most).
+    named: Option<Vec<Synapse>>,
+    /// The life in progress: its first trial, and per creature the weights at its start and
+    /// after the last tick seen.
+    life_start: usize,
+    weights: Vec<(Vec<f64>, Vec<f64>)>,
 }
 
 impl TraceRecorder {
@@ -474,7 +713,79 @@ impl TraceRecorder {
                 .collect(),
             trials: Vec::new(),
             previous: Previous::default(),
+            switch_kinds: experiment
+                .evaluation
+                .switch
+                .as_ref()
+                .map(|s| s.kinds.to_vec())
+                .unwrap_or_default(),
+            mark: None,
+            layers: plastic_layers(&experiment.topology()),
+            named: None,
+            life_start: 0,
+            weights: Vec::new(),
         }
+    }
+
+    /// Follows `synapses` (see [`parse_synapses`]) instead of those that move most.
+    pub fn with_synapses(mut self, synapses: Vec<Synapse>) -> TraceRecorder {
+        self.named = Some(synapses);
+        self
+    }
+
+    /// The trials recorded, a plastic brain's synapses chosen.
+    pub fn into_trials(mut self) -> Vec<TrialTrace> {
+        self.end_life();
+        self.trials
+    }
+
+    /// The life in progress is over: chooses each plastic creature's synapses (named, or
+    /// the [`DEFAULT_SYNAPSES`] that moved most, |w_end − w_start|, ties to the lower index)
+    /// and keeps only their weights in the life's trials.
+    fn end_life(&mut self) {
+        let Some(layers) = &self.layers else {
+            return;
+        };
+        let (named, chosen) = match &self.named {
+            Some(list) => (Some(list), "named"),
+            None => (None, "moved_most"),
+        };
+        let picks: Vec<Vec<Synapse>> = self
+            .weights
+            .iter()
+            .map(|(start, last)| match named {
+                Some(list) => list.clone(),
+                None => {
+                    let mut order: Vec<usize> = (0..start.len()).collect();
+                    let moved = |k: usize| (last[k] - start[k]).abs();
+                    // Stable sort: equal movements keep index order.
+                    order.sort_by(|&a, &b| moved(b).total_cmp(&moved(a)));
+                    order.truncate(DEFAULT_SYNAPSES);
+                    order
+                        .into_iter()
+                        .filter_map(|k| synapse_at(layers, k))
+                        .collect()
+                }
+            })
+            .collect();
+        let from = self.life_start.min(self.trials.len());
+        for trace in &mut self.trials[from..] {
+            for info in &mut trace.learning {
+                let Some(list) = picks.get(info.creature) else {
+                    continue;
+                };
+                info.start = list.iter().map(|s| info.start[s.index]).collect();
+                info.synapses = list.clone();
+                info.chosen = chosen.into();
+            }
+            for row in &mut trace.learning_ticks {
+                if let Some(list) = picks.get(row.creature) {
+                    row.weights = list.iter().map(|s| row.weights[s.index]).collect();
+                }
+            }
+        }
+        self.weights.clear();
+        self.life_start = self.trials.len();
     }
 
     fn describe(&self, id: TrialId, world: &World) -> WorldDescription {
@@ -609,6 +920,13 @@ impl TraceRecorder {
                     velocity: point(f.velocity),
                 })
                 .collect(),
+            episode: self.mark.map(|m| EpisodeInfo {
+                episode: m.index + 1,
+                episodes: m.episodes,
+                switched: m.switched,
+                exchanged: m.exchanged,
+                switch_kinds: self.switch_kinds.clone(),
+            }),
         }
     }
 
@@ -758,7 +1076,12 @@ impl TickObserver for TraceRecorder {
     }
 
     fn start(&mut self, trial: TrialId, world: &World) {
+        // A new life: the first episode of one, or a life of one episode.
+        if self.mark.is_none_or(|m| m.index == 0) {
+            self.end_life();
+        }
         let world_description = self.describe(trial, world);
+        self.mark = None;
         self.trials.push(TrialTrace {
             world: world_description,
             creatures: Vec::new(),
@@ -766,8 +1089,61 @@ impl TickObserver for TraceRecorder {
             objects: Vec::new(),
             events: Vec::new(),
             outcomes: Vec::new(),
+            learning: Vec::new(),
+            learning_ticks: Vec::new(),
         });
         self.previous = Previous::of(world);
+    }
+
+    fn episode(&mut self, mark: EpisodeMark) {
+        self.mark = Some(mark);
+    }
+
+    fn watches_brains(&self) -> bool {
+        self.layers.is_some()
+    }
+
+    fn brain(&mut self, tick: u64, creature: usize, brain: &Brain) {
+        let Some(w) = brain.plastic_weights() else {
+            return;
+        };
+        let Some(trace) = self.trials.last_mut() else {
+            return;
+        };
+        if self.weights.len() <= creature {
+            self.weights.resize(creature + 1, (Vec::new(), Vec::new()));
+        }
+        let (start, last) = &mut self.weights[creature];
+        if start.is_empty() {
+            // The life's first look: the weights it starts from.
+            *start = w.to_vec();
+            *last = w.to_vec();
+        }
+        if tick == 0 {
+            // Every weight for now; the followed ones are kept when the life ends.
+            trace.learning.push(LearningInfo {
+                creature,
+                chosen: String::new(),
+                synapses: Vec::new(),
+                start: w.to_vec(),
+            });
+            return;
+        }
+        let mut sum = 0.0;
+        for (now, before) in w.iter().zip(last.iter()) {
+            let d = now - before;
+            sum += d * d;
+        }
+        last.copy_from_slice(w);
+        let m = brain.last_modulation();
+        trace.learning_ticks.push(LearningTick {
+            tick,
+            creature,
+            m,
+            g: m.map_or(1.0, |m| tanh(m * 0.5)),
+            dw_norm: sum.sqrt(),
+            weights: w.to_vec(),
+        });
     }
 
     fn tick(&mut self, world: &World, tick: u64) {

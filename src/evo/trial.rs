@@ -16,6 +16,7 @@
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
+use crate::brain::{Brain, BrainController};
 use crate::evo::episodes::{EpisodeChoices, Life, LifeOrigin};
 use crate::evo::life::{
     checked_controllers, outcomes, record_tick, start_scores, trial_world, CheckedController,
@@ -59,6 +60,65 @@ pub trait TickObserver {
     /// The trial is over: `outcomes` holds one outcome per creature, in index order.
     #[inline(always)]
     fn finish(&mut self, _world: &World, _outcomes: &[TrialOutcome]) {}
+
+    /// In a life of several episodes, which episode the next [`TickObserver::start`] begins
+    /// (not called for a life of one).
+    #[inline(always)]
+    fn episode(&mut self, _mark: EpisodeMark) {}
+
+    /// Does it read the creatures' brains ([`TickObserver::brain`])? Off (the default), the
+    /// trial never calls that hook.
+    #[inline(always)]
+    fn watches_brains(&self) -> bool {
+        false
+    }
+
+    /// Creature `creature`'s brain after tick `tick` (0: at the start of the episode, after
+    /// [`TickObserver::start`]), when [`TickObserver::watches_brains`]; only reads it.
+    #[inline(always)]
+    fn brain(&mut self, _tick: u64, _creature: usize, _brain: &Brain) {}
+}
+
+/// Which episode of a life a trial is (see [`crate::evo::episodes`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct EpisodeMark {
+    /// The episode, 0-based.
+    pub index: u64,
+    /// Episodes in the life.
+    pub episodes: u64,
+    /// The switch kinds' payoffs are exchanged in this episode.
+    pub exchanged: bool,
+    /// A switch comes before this episode (never before the first).
+    pub switched: bool,
+}
+
+/// A controller whose brain an observer may read ([`TickObserver::brain`]): a
+/// [`BrainController`]'s; none for the scripted controllers of tests.
+pub trait BrainOf {
+    /// The brain behind the controller, if it has one.
+    fn brain_of(&self) -> Option<&Brain> {
+        None
+    }
+}
+
+impl BrainOf for BrainController {
+    fn brain_of(&self) -> Option<&Brain> {
+        Some(self.brain())
+    }
+}
+
+/// Shows each creature's brain after tick `tick` to `observer` (only called when it
+/// watches brains).
+fn show_brains<C: BrainOf, O: TickObserver>(
+    observer: &mut O,
+    controllers: &[CheckedController<C>],
+    tick: u64,
+) {
+    for (i, c) in controllers.iter().enumerate() {
+        if let Some(brain) = c.inner.brain_of() {
+            observer.brain(tick, i, brain);
+        }
+    }
 }
 
 /// The observer that watches nothing (evaluation's): every hook is empty and inlined away.
@@ -89,6 +149,21 @@ impl<O: TickObserver + ?Sized> TickObserver for &mut O {
     #[inline(always)]
     fn finish(&mut self, world: &World, outcomes: &[TrialOutcome]) {
         (**self).finish(world, outcomes);
+    }
+
+    #[inline(always)]
+    fn episode(&mut self, mark: EpisodeMark) {
+        (**self).episode(mark);
+    }
+
+    #[inline(always)]
+    fn watches_brains(&self) -> bool {
+        (**self).watches_brains()
+    }
+
+    #[inline(always)]
+    fn brain(&mut self, tick: u64, creature: usize, brain: &Brain) {
+        (**self).brain(tick, creature, brain);
     }
 }
 
@@ -189,7 +264,7 @@ pub type LifeEpisodes = Vec<Vec<(TrialOutcome, Option<EpisodeChoices>)>>;
 /// `observer` as a trial of its own (`start`, every tick, `finish` with the episode's
 /// outcomes). Returns each creature's life outcome and its episodes. A life of one episode is
 /// the trial [`live`] lives, bit for bit.
-pub(crate) fn live_life<C: Controller, O: TickObserver>(
+pub(crate) fn live_life<C: Controller + BrainOf, O: TickObserver>(
     experiment: &Experiment,
     first: Option<World>,
     origin: LifeOrigin,
@@ -220,6 +295,13 @@ pub(crate) fn live_life<C: Controller, O: TickObserver>(
     for e in 0..life.episodes() {
         let mut world = life.world_or(&mut first, n, e)?;
         world.set_event_log(observer.listens());
+        let schedule = life.schedule();
+        observer.episode(EpisodeMark {
+            index: e,
+            episodes: life.episodes(),
+            exchanged: life.exchanged(e),
+            switched: e > 0 && schedule.phase_start[e as usize],
+        });
         observer.start(id, &world);
         let (outcomes, choices) = live_episode(experiment, world, controllers, &mut observer);
         // A non-finite output ends the life (its creature stood still since).
@@ -239,7 +321,7 @@ pub(crate) fn live_life<C: Controller, O: TickObserver>(
 /// Steps `world` for at most `ticks` ticks with `controllers` (one per creature), showing
 /// each tick to `observer`, and stops after the first tick in which no creature recorded a
 /// score (nothing it could still record).
-pub(crate) fn live<C: Controller, O: TickObserver>(
+pub(crate) fn live<C: Controller + BrainOf, O: TickObserver>(
     experiment: &Experiment,
     world: World,
     controllers: &mut [CheckedController<C>],
@@ -249,7 +331,7 @@ pub(crate) fn live<C: Controller, O: TickObserver>(
 }
 
 /// [`live`], also returning each creature's bites of the switch kinds.
-fn live_episode<C: Controller, O: TickObserver>(
+fn live_episode<C: Controller + BrainOf, O: TickObserver>(
     experiment: &Experiment,
     mut world: World,
     controllers: &mut [CheckedController<C>],
@@ -257,12 +339,19 @@ fn live_episode<C: Controller, O: TickObserver>(
 ) -> (Vec<TrialOutcome>, Vec<Option<EpisodeChoices>>) {
     let (plan, mut scores) = start_scores(experiment, &mut world);
     let mut invalid = vec![false; controllers.len()];
+    let brains = observer.watches_brains();
+    if brains {
+        show_brains(&mut observer, controllers, 0);
+    }
     for _ in 0..experiment.evaluation.ticks {
         world.step(controllers);
         for (flag, controller) in invalid.iter_mut().zip(controllers.iter()) {
             *flag = controller.non_finite;
         }
         observer.tick(&world, world.tick());
+        if brains {
+            show_brains(&mut observer, controllers, world.tick());
+        }
         if !record_tick(&world, &invalid, &mut scores, &plan) {
             break;
         }

@@ -19,6 +19,16 @@
 //! `<pre id="status">` the tick, each creature's drawn canvas position and the colour of the
 //! canvas pixels there, and the same for the middle of a wall, so that a test can check the
 //! drawing against the trace (a reader of the page never sees it).
+//!
+//! A life of several episodes is one page ([`page_life`]): every episode's trace is embedded,
+//! the slider and `#tick=P` run over the life (each episode keeps its own tick 0, so position
+//! P is episode e's tick P − (the positions of the episodes before)), and the page loads an
+//! episode's world when the position enters it; the label says `episode e / K · tick t / T`.
+//! For a plastic brain (the trace's `learning` lines) a strip under the arena shows the
+//! followed synapses' weights over the whole life, one line each, with ‖Δw‖ and the gate g
+//! per tick in two bands below, the episode starts (dashed), the switches (thick, purple; episodes whose payoffs
+//! are exchanged shaded), the selected creature's bites coloured by food type and its shock
+//! onsets, and a cursor at the current tick. A fixed brain's page has no strip.
 
 use crate::evo::trace::{EventKind, TrialTrace, WorldDescription};
 use crate::record::atomic::write_atomic_with;
@@ -40,8 +50,23 @@ pub fn page(trace: &TrialTrace, outputs: &[String]) -> io::Result<String> {
 /// [`page`] under `title` (the caller names the worlds, e.g. `held-out world 2`, which the
 /// trace alone cannot tell).
 pub fn page_titled(trace: &TrialTrace, title: &str, outputs: &[String]) -> io::Result<String> {
+    page_life(std::slice::from_ref(trace), title, outputs)
+}
+
+/// The page of a whole life: `life` holds its episodes in order (one trace each, see
+/// [`life_of`]; a single trace for a life of one episode). The slider runs over the life and
+/// the page shows the episode the current tick is in; a plastic brain's life adds the strip
+/// of its followed weights under the arena (see the module docs).
+/// An empty `life` is an error (there is nothing to draw).
+pub fn page_life(life: &[TrialTrace], title: &str, outputs: &[String]) -> io::Result<String> {
+    if life.is_empty() {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            "no trial was recorded, so there is no page to draw",
+        ));
+    }
     let mut data = Vec::new();
-    write_jsonl_to(std::slice::from_ref(trace), Some(4), &mut data)?;
+    write_jsonl_to(life, Some(4), &mut data)?;
     let data =
         String::from_utf8(data).map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e))?;
     // Inside a <script> element "</" could end it; "<\/" is the same JSON string.
@@ -72,7 +97,8 @@ pub fn page_titled(trace: &TrialTrace, title: &str, outputs: &[String]) -> io::R
     );
     Ok(TEMPLATE
         .replace("{{TITLE}}", &title)
-        .replace("{{LEGEND}}", &arena_legend(trace))
+        .replace("{{LEGEND}}", &arena_legend(life))
+        .replace("{{STRIP}}", &strip(life))
         .replace("{{MOTOR_TITLE}}", &motor_title)
         .replace("{{MOTOR_KEYS}}", &motor_keys)
         .replace("{{METAB_KEYS}}", &metab_keys)
@@ -84,6 +110,33 @@ pub fn page_titled(trace: &TrialTrace, title: &str, outputs: &[String]) -> io::R
 pub fn write(trace: &TrialTrace, outputs: &[String], path: &Path) -> io::Result<()> {
     let html = page(trace, outputs)?;
     write_atomic_with(path, |w| w.write_all(html.as_bytes()))
+}
+
+/// Writes the page of the life `life` under `title` ([`page_life`]) to `path` (atomically).
+pub fn write_life(
+    life: &[TrialTrace],
+    title: &str,
+    outputs: &[String],
+    path: &Path,
+) -> io::Result<()> {
+    let html = page_life(life, title, outputs)?;
+    write_atomic_with(path, |w| w.write_all(html.as_bytes()))
+}
+
+/// The traces of the life that `traces` begins with: its first trace, then the later
+/// episodes of the same life (a life of several episodes records one trace per episode).
+pub fn life_of(traces: &[TrialTrace]) -> &[TrialTrace] {
+    let Some(first) = traces.first() else {
+        return traces;
+    };
+    let later = traces[1..]
+        .iter()
+        .take_while(|t| {
+            t.world.trial == first.world.trial
+                && t.world.episode.as_ref().is_some_and(|e| e.episode > 1)
+        })
+        .count();
+    &traces[..1 + later]
 }
 
 /// Writes the page for `trace` under `title` ([`page_titled`]) to `path` (atomically).
@@ -168,12 +221,114 @@ fn segment(colour: &str, width: f64, dash: &str, opacity: f64) -> String {
     )
 }
 
-/// The key to the arena's symbols: only the kinds `trace`'s world has (and the marks of the
-/// events it had), each drawn as the canvas draws it.
-fn arena_legend(trace: &TrialTrace) -> String {
-    let mut out = world_keys(&trace.world);
-    out.push_str(&event_keys(trace));
+/// The key to the arena's symbols: only the kinds the first episode's world has (and the
+/// marks of the events the life had), each drawn as the canvas draws it.
+fn arena_legend(life: &[TrialTrace]) -> String {
+    let mut out = world_keys(&life[0].world);
+    out.push_str(&event_keys(life));
     out
+}
+
+/// Colours of the followed synapses' lines (the script has the same list).
+const SYNAPSE_COLOURS: [&str; 8] = [
+    "#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#a6761d", "#e6ab02", "#666666",
+];
+
+/// The strip under the arena for a plastic brain's life (empty for a fixed brain): its
+/// title, the keys of creature 0's followed synapses and of the marks, and the canvas the
+/// script draws.
+fn strip(life: &[TrialTrace]) -> String {
+    let Some(info) = life[0].learning.first() else {
+        return String::new();
+    };
+    let which = match info.chosen.as_str() {
+        "named" => format!("the {} synapses named", info.synapses.len()),
+        _ => format!(
+            "the {} synapses whose weight moved most over the life",
+            info.synapses.len()
+        ),
+    };
+    let title = escape(&format!(
+        "plastic weights over the {}: {which}",
+        if life.len() > 1 { "life" } else { "trial" }
+    ));
+    let synapses: String = info
+        .synapses
+        .iter()
+        .zip(SYNAPSE_COLOURS.iter().cycle())
+        .map(|(s, c)| key("synapse", &swatch(c), &s.name))
+        .collect();
+    let mut marks = String::new();
+    let episodes: Vec<_> = life
+        .iter()
+        .filter_map(|t| t.world.episode.as_ref())
+        .collect();
+    if life.len() > 1 {
+        marks.push_str(&key(
+            "episode",
+            r##"<line x1="0" y1="-7" x2="0" y2="7" stroke="#999" stroke-dasharray="4 3"/>"##,
+            "episode start",
+        ));
+    }
+    if episodes.iter().any(|e| e.switched) {
+        let kinds = episodes[0].switch_kinds.join(" and ");
+        marks.push_str(&key(
+            "switch",
+            r##"<line x1="0" y1="-7" x2="0" y2="7" stroke="#7b2cbf" stroke-width="2.5"/>"##,
+            &format!("switch ({kinds} exchange payoffs)"),
+        ));
+    }
+    if episodes.iter().any(|e| e.exchanged) {
+        marks.push_str(&key(
+            "exchanged",
+            r#"<rect x="-10" y="-6" width="20" height="12" fill="rgba(123,44,191,0.15)"/>"#,
+            "payoffs exchanged",
+        ));
+    }
+    let creature = info.creature;
+    let mut bitten = [false; 4];
+    let mut shocked = false;
+    for t in life {
+        for e in t.events.iter().filter(|e| e.creature == Some(creature)) {
+            match e.event {
+                EventKind::Eat => {
+                    if let Some(f) = e.target.and_then(|k| t.world.food.get(k)) {
+                        bitten[f.food_type.min(3)] = true;
+                    }
+                }
+                EventKind::Shock => shocked = true,
+                _ => {}
+            }
+        }
+    }
+    for (t, colour) in FOOD_COLOURS.iter().enumerate() {
+        if bitten[t] {
+            let name = (b'A' + t as u8) as char;
+            marks.push_str(&key(
+                &format!("bite-{}", name.to_ascii_lowercase()),
+                &format!(
+                    r#"<line x1="0" y1="-6" x2="0" y2="6" stroke="{colour}" stroke-width="2"/>"#
+                ),
+                &format!("bite of food {name}"),
+            ));
+        }
+    }
+    if shocked {
+        marks.push_str(&key(
+            "strip-shock",
+            r##"<path d="M0,-6 L4,4 L-4,4 z" fill="#ffb703"/>"##,
+            "shock onset",
+        ));
+    }
+    marks.push_str(&key("dw-norm", &swatch("#444"), "‖Δw‖ per tick"));
+    marks.push_str(&key(
+        "gate",
+        &swatch("#bb3e03"),
+        "gate g = tanh(m/2) per tick",
+    ));
+    format!(
+        r#"<div id="learn"><div class="lbl" id="striplbl">{title}</div><div class="keys" id="synkeys">{synapses}</div><canvas id="strip" width="660" height="250"></canvas><div class="keys" id="stripkeys">{marks}</div></div>"#
+    )
 }
 
 /// The keys of the kinds of object the world has, and only those.
@@ -292,11 +447,11 @@ fn world_keys(w: &WorldDescription) -> String {
     out
 }
 
-/// The keys of the marks of the events the trial had, and only those.
-fn event_keys(trace: &TrialTrace) -> String {
+/// The keys of the marks of the events the life had, and only those.
+fn event_keys(life: &[TrialTrace]) -> String {
     let mut out = String::new();
     let mut add = |kind: &str, symbol: String, text: &str| out.push_str(&key(kind, &symbol, text));
-    let had = |k: EventKind| trace.events.iter().any(|e| e.event == k);
+    let had = |k: EventKind| life.iter().any(|t| t.events.iter().any(|e| e.event == k));
     if had(EventKind::Eat) {
         add(
             "mark-eat",
@@ -326,6 +481,7 @@ const TEMPLATE: &str = r##"<!DOCTYPE html>
 <style>
 body{font-family:sans-serif;font-size:13px;margin:10px;background:#fff;color:#222}
 #wrap{display:flex;gap:14px;align-items:flex-start}
+#main{display:flex;flex-direction:column;gap:4px;align-items:flex-start}
 #side{display:flex;flex-direction:column;gap:6px;min-width:380px}
 canvas{display:block}
 #arena{border:1px solid #ccc}
@@ -350,7 +506,7 @@ button{min-width:34px}
 <label id="whichlabel">creature <select id="which"></select></label>
 </div>
 <div id="wrap">
-<canvas id="arena"></canvas>
+<div id="main"><canvas id="arena"></canvas>{{STRIP}}</div>
 <div id="side">
 <div class="lbl">in the arena</div><div id="legend">{{LEGEND}}</div>
 <div class="lbl">whiskers (left, right) · food detectors A–D · shock</div><canvas id="touch" width="380" height="34"></canvas>
@@ -368,40 +524,50 @@ button{min-width:34px}
 "use strict";
 (function(){
 const lines=document.getElementById("trace").textContent.split("\n").filter(l=>l.trim().length);
-let W=null,outcome=null;const ticks=[];
-for(const l of lines){const r=JSON.parse(l);if(r.type==="world")W=r;else if(r.type==="tick")ticks.push(r);else if(r.type==="outcome")outcome=r;}
-const T=ticks.length,N=W.creatures.length;
+// The life's episodes (one for a life of one episode), each from its world line on. The page
+// shows one episode at a time; the slider and #tick=P run over the life: position P is tick
+// P - OFF[e] of episode e (each episode has its own tick 0).
+const EP=[];
+for(const l of lines){const r=JSON.parse(l);if(r.type==="world")EP.push({W:r,ticks:[],outcome:null,learning:null});else{const e=EP[EP.length-1];if(r.type==="tick")e.ticks.push(r);else if(r.type==="outcome")e.outcome=r;else if(r.type==="learning")e.learning=r;}}
+const OFF=[];let P=0;for(const e of EP){OFF.push(P);P+=e.ticks.length+1;}
+const LAST=P-1;
+let epi=-1,W=null,outcome=null,ticks=[],T=0,N=0;
+let cx,cy,ch,alive,crow,actorKeys,ax,ay,changes,doorOpen,marks,scale,cw,chh,walls,wallIndex;
 const FOOD=["#d62728","#1f77b4","#2ca02c","#ff7f0e"],CREATURE="rgb(31,63,191)";
 const rgb=c=>"rgb("+c.map(x=>Math.round(Math.max(0,Math.min(1,x))*255)).join(",")+")";
-// Per-tick arrays, index 0 = the start.
-const cx=[],cy=[],ch=[],alive=[];
+const PX=640,PAD=10;
+const X=x=>PAD+x*scale,Y=y=>PAD+y*scale;
+const arena=document.getElementById("arena");
+const g=arena.getContext("2d",{willReadFrequently:true});
+const bg=document.createElement("canvas");
+function akey(kind,index){return kind+":"+index;}
+function amountAt(k,t){const c=changes[k];let lo=0,hi=c.length-1;while(lo<hi){const m=(lo+hi+1)>>1;if(c[m][0]<=t)lo=m;else hi=m-1;}return c[lo][1];}
+// Episode k: its per-tick arrays (index 0 = its start) and its cached background.
+function load(k){epi=k;const E=EP[k];W=E.W;outcome=E.outcome;ticks=E.ticks;T=ticks.length;N=W.creatures.length;
+cx=[];cy=[];ch=[];alive=[];
 for(let i=0;i<N;i++){cx.push(new Float64Array(T+1));cy.push(new Float64Array(T+1));ch.push(new Float64Array(T+1));alive.push(new Uint8Array(T+1));
  cx[i][0]=W.creatures[i].position[0];cy[i][0]=W.creatures[i].position[1];ch[i][0]=W.creatures[i].heading;alive[i][0]=1;}
-const crow=[];for(let i=0;i<N;i++)crow.push(new Array(T+1).fill(null));
+crow=[];for(let i=0;i<N;i++)crow.push(new Array(T+1).fill(null));
 for(let t=1;t<=T;t++){const k=ticks[t-1];for(const c of k.creatures){const i=c.creature;cx[i][t]=c.x;cy[i][t]=c.y;ch[i][t]=c.heading;alive[i][t]=c.alive?1:0;crow[i][t]=c;}}
 for(let i=0;i<N;i++)crow[i][0]=crow[i][1];
 // Actors: wanderers, predators, air predators.
-const actorKeys=[];const ax={},ay={};
-function akey(kind,index){return kind+":"+index;}
+actorKeys=[];ax={};ay={};
 W.actors.forEach((a,n)=>{const kind=a.role,index=W.actors.slice(0,n).filter(b=>b.role===kind).length;const key=akey(kind,index);actorKeys.push([key,kind,a.colour]);ax[key]=new Float64Array(T+1);ay[key]=new Float64Array(T+1);ax[key][0]=a.start.position[0];ay[key][0]=a.start.position[1];});
 W.air_predators.forEach((a,k)=>{const key=akey("air_predator",k);actorKeys.push([key,"air_predator",[0.73,0.24,0.01],a.strike_radius]);ax[key]=new Float64Array(T+1);ay[key]=new Float64Array(T+1);ax[key][0]=a.position[0];ay[key][0]=a.position[1];});
 for(let t=1;t<=T;t++)for(const a of ticks[t-1].actors){const key=akey(a.kind,a.index);if(ax[key]){ax[key][t]=a.x;ay[key][t]=a.y;}}
 // Food amounts: the changes of each object, found by binary search.
-const changes=W.food.map(f=>[[0,f.amount]]);
+changes=W.food.map(f=>[[0,f.amount]]);
 for(let t=1;t<=T;t++)for(const o of ticks[t-1].objects)changes[o.object].push([t,o.amount]);
-function amountAt(k,t){const c=changes[k];let lo=0,hi=c.length-1;while(lo<hi){const m=(lo+hi+1)>>1;if(c[m][0]<=t)lo=m;else hi=m-1;}return c[lo][1];}
 // Doors: open state per tick from the events.
-const doorOpen=W.doors.map(()=>new Uint8Array(T+1));
-const eats=[];const marks=[];
+doorOpen=W.doors.map(()=>new Uint8Array(T+1));
+marks=[];
 for(let t=1;t<=T;t++){for(let d=0;d<W.doors.length;d++)doorOpen[d][t]=doorOpen[d][t-1];
  for(const e of ticks[t-1].events){if(e.event==="door_open")doorOpen[e.target][t]=1;else if(e.event==="door_close")doorOpen[e.target][t]=0;else marks.push([t,e]);}}
 // Drawing frame: LU to canvas pixels.
-const PX=640,PAD=10,scale=PX/Math.max(W.arena[0],W.arena[1]);
-const cw=Math.round(W.arena[0]*scale+2*PAD),chh=Math.round(W.arena[1]*scale+2*PAD);
-const X=x=>PAD+x*scale,Y=y=>PAD+y*scale;
-const arena=document.getElementById("arena");arena.width=cw;arena.height=chh;
-const g=arena.getContext("2d",{willReadFrequently:true});
-const bg=document.createElement("canvas");bg.width=cw;bg.height=chh;
+scale=PX/Math.max(W.arena[0],W.arena[1]);
+cw=Math.round(W.arena[0]*scale+2*PAD);chh=Math.round(W.arena[1]*scale+2*PAD);
+if(arena.width!==cw||arena.height!==chh){arena.width=cw;arena.height=chh;}
+bg.width=cw;bg.height=chh;
 (function drawBackground(){const b=bg.getContext("2d");b.fillStyle="#ffffff";b.fillRect(0,0,cw,chh);
  b.fillStyle="rgb(247,247,242)";b.fillRect(X(0),Y(0),W.arena[0]*scale,W.arena[1]*scale);
  for(const a of W.areas){b.fillStyle=a.kind==="safe"?"rgba(160,215,150,0.55)":"rgba(235,220,140,0.55)";b.fillRect(X(a.lo[0]),Y(a.lo[1]),(a.hi[0]-a.lo[0])*scale,(a.hi[1]-a.lo[1])*scale);}
@@ -417,8 +583,9 @@ const bg=document.createElement("canvas");bg.width=cw;bg.height=chh;
  for(const w of W.walls){b.strokeStyle=rgb(w.colour);b.lineWidth=w.opaque?3.5:5;if(!w.opaque){b.globalAlpha=0.55;b.setLineDash([7,4]);}b.beginPath();b.moveTo(X(w.from[0]),Y(w.from[1]));b.lineTo(X(w.to[0]),Y(w.to[1]));b.stroke();b.globalAlpha=1;b.setLineDash([]);}
  b.lineCap="butt";})();
 // The wall whose middle the status reports: the first opaque interior wall, else the first wall.
-const walls=W.walls;const boundary=walls.length>=4&&walls[0].from[0]===0&&walls[0].from[1]===0?4:0;
-let wallIndex=walls.findIndex((w,k)=>k>=boundary&&w.opaque);if(wallIndex<0)wallIndex=walls.findIndex(w=>w.opaque);if(wallIndex<0)wallIndex=0;
+walls=W.walls;const boundary=walls.length>=4&&walls[0].from[0]===0&&walls[0].from[1]===0?4:0;
+wallIndex=walls.findIndex((w,k)=>k>=boundary&&w.opaque);if(wallIndex<0)wallIndex=walls.findIndex(w=>w.opaque);if(wallIndex<0)wallIndex=0;}
+load(0);
 // Side charts, drawn once; the cursor per frame. The value labels stand in a gutter left of
 // the plotting area, so that no curve runs over them.
 const GUTTER=44;
@@ -453,13 +620,60 @@ function eye(c0){const c=document.getElementById("eye"),x=c.getContext("2d");x.f
  if(!eyeCols.length){x.fillStyle="#888";x.font="11px sans-serif";x.fillText("no eye input",4,18);return;}
  const cols=1+Math.max(...eyeCols.map(e=>e[1])),pw=Math.min(20,(c.width-8)/cols),ph=Math.min(20,(c.height-4)/eyeRows);
  for(const [r,col,k] of eyeCols){const v=[c0.inputs[k],c0.inputs[k+1],c0.inputs[k+2]];x.fillStyle=rgb(v);x.fillRect(4+col*pw,2+r*ph,pw-1,ph-1);}}
+// A plastic brain's strip (only when the page has one): the followed synapses' weights over
+// the whole life, one line each, ‖Δw‖ per tick in a band below, the episodes (exchanged ones
+// shaded), switches, the creature's bites (by food type) and shock onsets; a cursor per frame.
+const stripEl=document.getElementById("strip");let cursorStrip=null;
+const SYN=["#1b9e77","#d95f02","#7570b3","#e7298a","#66a61e","#a6761d","#e6ab02","#666666"];
+function buildStrip(i){if(!stripEl)return;const info=e=>EP[e].learning&&EP[e].learning.creatures.find(c=>c.creature===i);const L=info(0);
+ const c=stripEl,x=c.getContext("2d");c.width=Math.max(480,arena.width);const w=c.width,h=c.height;document.getElementById("learn").style.maxWidth=w+"px";
+ const keys=document.getElementById("synkeys");
+ if(!L){cursorStrip=null;x.fillStyle="#fff";x.fillRect(0,0,w,h);x.fillStyle="#888";x.font="11px sans-serif";x.fillText("creature "+i+"'s brain is not plastic",GUTTER+4,20);if(keys)keys.textContent="";return;}
+ const K=L.synapses.length,vals=[],dn=new Float64Array(P),gate=new Float64Array(P);for(let k=0;k<K;k++)vals.push(new Float64Array(P));
+ if(keys)keys.innerHTML=L.synapses.map((s,k)=>'<span class="key" data-kind="synapse"><svg width="24" height="16" viewBox="-12 -8 24 16" aria-hidden="true"><line x1="-10" y1="0" x2="10" y2="0" stroke="'+SYN[k%SYN.length]+'" stroke-width="3"/></svg>'+s.name+'</span>').join("");
+ let prev=L.start.slice();
+ EP.forEach((E,e)=>{const o=OFF[e],li=info(e);if(li)prev=li.start.slice();for(let k=0;k<K;k++)vals[k][o]=prev[k];
+  E.ticks.forEach((tk,t)=>{const r=tk.learning&&tk.learning.find(l=>l.creature===i);if(r){prev=r.weights;dn[o+t+1]=r.dw_norm;gate[o+t+1]=r.g;}for(let k=0;k<K;k++)vals[k][o+t+1]=prev[k];});});
+ let lo=Infinity,hi=-Infinity;for(const v of vals)for(const a of v){lo=Math.min(lo,a);hi=Math.max(hi,a);}if(!(hi>lo)){lo-=0.5;hi+=0.5;}const pad=(hi-lo)*0.06;lo-=pad;hi+=pad;
+ let dmax=0;for(const a of dn)dmax=Math.max(dmax,a);
+ const img=document.createElement("canvas");img.width=w;img.height=h;const b=img.getContext("2d");
+ const TOP=14,BAND=30,MARK=16,H1=h-TOP-2*BAND-MARK-8;const px=p=>GUTTER+1+p/Math.max(1,LAST)*(w-GUTTER-3);const y=v=>TOP+H1-(v-lo)/(hi-lo)*H1;
+ b.fillStyle="#fff";b.fillRect(0,0,w,h);
+ // Episodes: exchanged ones shaded, boundaries dashed, switches thick, numbers on top.
+ EP.forEach((E,e)=>{const ep=E.W.episode,x0=px(OFF[e]),x1=px(OFF[e]+E.ticks.length);
+  if(ep&&ep.exchanged){b.fillStyle="rgba(123,44,191,0.08)";b.fillRect(x0,TOP,x1-x0,H1);}
+  if(e>0){b.strokeStyle=ep&&ep.switched?"#7b2cbf":"#999";b.lineWidth=ep&&ep.switched?2.5:1;b.setLineDash(ep&&ep.switched?[]:[4,3]);b.beginPath();b.moveTo(Math.round(x0)+0.5,TOP-2);b.lineTo(Math.round(x0)+0.5,h-2);b.stroke();b.setLineDash([]);b.lineWidth=1;}
+  if(EP.length>1){b.fillStyle=ep&&ep.switched?"#7b2cbf":"#666";b.font="10px sans-serif";b.textAlign="left";b.textBaseline="alphabetic";b.fillText((ep&&ep.switched?"switch · ":"")+"ep "+(e+1),x0+3,TOP-3);}});
+ b.strokeStyle="#ddd";b.strokeRect(GUTTER+0.5,TOP+0.5,w-GUTTER-1,H1);
+ b.fillStyle="#555";b.font="10px sans-serif";b.textAlign="right";b.textBaseline="middle";
+ b.fillText(fmt(hi),GUTTER-4,TOP+6);b.fillText(fmt(lo),GUTTER-4,TOP+H1-6);
+ if(lo<0&&hi>0){b.strokeStyle="#ccc";b.beginPath();b.moveTo(GUTTER,Math.round(y(0))+0.5);b.lineTo(w,Math.round(y(0))+0.5);b.stroke();b.fillText("0",GUTTER-4,y(0));}
+ vals.forEach((v,k)=>{b.strokeStyle=SYN[k%SYN.length];b.lineWidth=1.3;b.beginPath();EP.forEach((E,e)=>{const o=OFF[e];for(let t=0;t<=E.ticks.length;t++){const p=o+t;if(t===0)b.moveTo(px(p),y(v[p]));else b.lineTo(px(p),y(v[p]));}});b.stroke();});
+ // Bites (coloured by the food's main type) and shock onsets of this creature.
+ const MY=TOP+H1+4;
+ EP.forEach((E,e)=>E.ticks.forEach((tk,t)=>{for(const ev of tk.events){if(ev.creature!==i)continue;const p=px(OFF[e]+t+1);
+  if(ev.event==="eat"){const f=E.W.food[ev.target];b.strokeStyle=FOOD[Math.min(3,f?f.food_type:0)];b.lineWidth=2;b.beginPath();b.moveTo(p,MY);b.lineTo(p,MY+MARK-4);b.stroke();b.lineWidth=1;}
+  else if(ev.event==="shock"){b.fillStyle="#ffb703";b.beginPath();b.moveTo(p,MY);b.lineTo(p+4,MY+MARK-4);b.lineTo(p-4,MY+MARK-4);b.fill();}}}));
+ b.fillStyle="#555";b.textAlign="right";b.fillText("events",GUTTER-4,MY+MARK/2-2);
+ // ‖Δw‖ per tick.
+ const BY=MY+MARK+2;b.fillStyle="#fafafa";b.fillRect(GUTTER,BY,w-GUTTER,BAND);b.strokeStyle="#ddd";b.strokeRect(GUTTER+0.5,BY+0.5,w-GUTTER-1,BAND-1);
+ b.fillStyle="#555";b.fillText("‖Δw‖",GUTTER-4,BY+BAND/2);b.textAlign="left";b.fillText("max "+fmt(dmax),GUTTER+4,BY+7);
+ if(dmax>0){b.strokeStyle="#444";b.beginPath();for(let p=0;p<P;p++){const v=BY+BAND-2-dn[p]/dmax*(BAND-4);if(p===0)b.moveTo(px(p),v);else b.lineTo(px(p),v);}b.stroke();}
+ // The gate g = tanh(m/2) per tick, in [-1, 1] (1 all along for a Hebbian rule).
+ const GY=BY+BAND+2,gy=v=>GY+BAND/2-v*(BAND/2-2);b.fillStyle="#fafafa";b.fillRect(GUTTER,GY,w-GUTTER,BAND);b.strokeStyle="#ddd";b.strokeRect(GUTTER+0.5,GY+0.5,w-GUTTER-1,BAND-1);
+ b.strokeStyle="#ccc";b.beginPath();b.moveTo(GUTTER,Math.round(gy(0))+0.5);b.lineTo(w,Math.round(gy(0))+0.5);b.stroke();
+ b.fillStyle="#555";b.textAlign="right";b.fillText("g",GUTTER-4,GY+BAND/2);b.textAlign="left";b.fillText("±1",GUTTER+4,GY+7);
+ b.strokeStyle="#bb3e03";b.beginPath();for(let p=1;p<P;p++){const v=gy(gate[p]);if(p===1)b.moveTo(px(p),v);else b.lineTo(px(p),v);}b.stroke();
+ cursorStrip=p=>{x.drawImage(img,0,0);const q=Math.round(px(p))+0.5;x.strokeStyle="#000";x.beginPath();x.moveTo(q,TOP);x.lineTo(q,h);x.stroke();
+  const d=x.getImageData(Math.floor(q),h-3,1,1).data;stripStatus="strip cursor at "+q.toFixed(1)+" of "+w+" for position "+p+" of "+LAST+" pixel "+d[0]+","+d[1]+","+d[2];};}
+let stripStatus="";
 // State.
 let tick=0,playing=false,speed=1,acc=0,which=0,last=null;
-const scrub=document.getElementById("scrub");scrub.max=T;
+const scrub=document.getElementById("scrub");scrub.max=LAST;
 const sel=document.getElementById("which");for(let i=0;i<N;i++){const o=document.createElement("option");o.value=i;o.textContent=i;sel.appendChild(o);}
 if(N<2)document.getElementById("whichlabel").style.display="none";
-sel.onchange=()=>{which=+sel.value;buildCharts(which);draw();};
-buildCharts(0);
+sel.onchange=()=>{which=+sel.value;buildCharts(which);buildStrip(which);draw();};
+buildCharts(0);buildStrip(0);
 function draw(){g.drawImage(bg,0,0);const t=tick;
  g.lineCap="round";
  W.doors.forEach((d,k)=>{g.strokeStyle=rgb(d.colour);if(doorOpen[k][t]){g.lineWidth=2;g.setLineDash([2,5]);}else{g.lineWidth=6;}g.beginPath();g.moveTo(X(d.from[0]),Y(d.from[1]));g.lineTo(X(d.to[0]),Y(d.to[1]));g.stroke();g.setLineDash([]);});
@@ -492,28 +706,32 @@ function draw(){g.drawImage(bg,0,0);const t=tick;
   if(smellIdx.every(k=>k>=0))bars("smell",smellIdx.map(k=>c.inputs[k]),["1","2","3","4","5","6","7","8","1","2","3","4","5","6","7","8"]);
   else{const sc=document.getElementById("smell").getContext("2d");sc.fillStyle="#fff";sc.fillRect(0,0,380,60);sc.fillStyle="#888";sc.font="11px sans-serif";sc.fillText("smell is not an input of this brain",4,30);}
   eye(c);}
- cursorMotor(t);cursorMetab(t);
- scrub.value=t;document.getElementById("ticklabel").textContent="tick "+t+" / "+T;
+ cursorMotor(t);cursorMetab(t);if(cursorStrip)cursorStrip(OFF[epi]+t);
+ scrub.value=OFF[epi]+t;document.getElementById("ticklabel").textContent=(EP.length>1?"episode "+(epi+1)+" / "+EP.length+" · ":"")+"tick "+t+" / "+T;
  const o=outcome&&outcome.creatures[which];
- document.getElementById("info").textContent=(c?"m = ["+c.metabolism.map(v=>v.toFixed(2)).join(", ")+"], travelled "+c.travelled.toFixed(0)+" LU":"")+(o?" · trial score "+o.score.toFixed(4):"");
+ document.getElementById("info").textContent=(c?"m = ["+c.metabolism.map(v=>v.toFixed(2)).join(", ")+"], travelled "+c.travelled.toFixed(0)+" LU":"")+(o?(EP.length>1?" · episode score ":" · trial score ")+o.score.toFixed(4):"");
  status();}
 function pixel(x,y){const d=g.getImageData(Math.floor(x),Math.floor(y),1,1).data;return d[0]+","+d[1]+","+d[2];}
 function status(){const t=tick,lines=["tick "+t,"scale "+scale+" offset "+PAD];
  for(let i=0;i<N;i++){const x=X(cx[i][t]),y=Y(cy[i][t]);lines.push("creature "+i+" at "+x.toFixed(2)+","+y.toFixed(2)+" pixel "+pixel(x,y)+" alive "+alive[i][t]);}
  const w=walls[wallIndex];if(w){const mx=(w.from[0]+w.to[0])/2,my=(w.from[1]+w.to[1])/2;lines.push("wall "+wallIndex+" at "+X(mx).toFixed(2)+","+Y(my).toFixed(2)+" pixel "+pixel(X(mx),Y(my))+" colour "+rgb(w.colour));}
+ if(EP.length>1)lines.push("episode "+(epi+1)+" of "+EP.length+" life position "+(OFF[epi]+t));
+ if(cursorStrip)lines.push(stripStatus);
  document.getElementById("status").textContent=lines.join("\n");}
-function setTick(t){tick=Math.max(0,Math.min(T,t|0));draw();}
-document.getElementById("play").onclick=()=>{playing=!playing;document.getElementById("play").textContent=playing?"pause":"play";if(playing){if(tick>=T)tick=0;last=null;requestAnimationFrame(frame);}};
-document.getElementById("back").onclick=()=>{playing=false;document.getElementById("play").textContent="play";setTick(tick-1);};
-document.getElementById("fwd").onclick=()=>{playing=false;document.getElementById("play").textContent="play";setTick(tick+1);};
+// Position p of the life: its episode (loaded when another), then the tick within it.
+function setPos(p){p=Math.max(0,Math.min(LAST,p|0));let k=EP.length-1;while(k>0&&OFF[k]>p)k--;if(k!==epi){load(k);buildCharts(which);}tick=p-OFF[k];draw();}
+const pos=()=>OFF[epi]+tick;
+document.getElementById("play").onclick=()=>{playing=!playing;document.getElementById("play").textContent=playing?"pause":"play";if(playing){if(pos()>=LAST)setPos(0);last=null;requestAnimationFrame(frame);}};
+document.getElementById("back").onclick=()=>{playing=false;document.getElementById("play").textContent="play";setPos(pos()-1);};
+document.getElementById("fwd").onclick=()=>{playing=false;document.getElementById("play").textContent="play";setPos(pos()+1);};
 document.getElementById("speed").onchange=e=>{speed=+e.target.value;};
-scrub.oninput=()=>setTick(+scrub.value);
+scrub.oninput=()=>setPos(+scrub.value);
 document.addEventListener("keydown",e=>{if(e.key===" "){e.preventDefault();document.getElementById("play").click();}else if(e.key==="ArrowLeft")document.getElementById("back").click();else if(e.key==="ArrowRight")document.getElementById("fwd").click();});
 // 30 ticks a second at 1×.
-function frame(now){if(!playing)return;if(last!==null){acc+=(now-last)/1000*30*speed;const n=Math.floor(acc);if(n>0){acc-=n;setTick(tick+n);}}last=now;if(tick>=T){playing=false;document.getElementById("play").textContent="play";return;}requestAnimationFrame(frame);}
+function frame(now){if(!playing)return;if(last!==null){acc+=(now-last)/1000*30*speed;const n=Math.floor(acc);if(n>0){acc-=n;setPos(pos()+n);}}last=now;if(pos()>=LAST){playing=false;document.getElementById("play").textContent="play";return;}requestAnimationFrame(frame);}
 const m=/tick=(\d+)/.exec(location.hash);
-if(m){setTick(+m[1]);}else{setTick(0);playing=true;document.getElementById("play").textContent="pause";requestAnimationFrame(frame);}
-window.addEventListener("hashchange",()=>{const m=/tick=(\d+)/.exec(location.hash);if(m){playing=false;setTick(+m[1]);}});
+if(m){setPos(+m[1]);}else{setPos(0);playing=true;document.getElementById("play").textContent="pause";requestAnimationFrame(frame);}
+window.addEventListener("hashchange",()=>{const m=/tick=(\d+)/.exec(location.hash);if(m){playing=false;setPos(+m[1]);}});
 })();
 </script>
 </body></html>

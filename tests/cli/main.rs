@@ -18,6 +18,7 @@ mod held_out_by_name;
 mod hostile_inputs;
 mod json_output;
 mod landmark_experiments;
+mod learning_traces;
 mod old_cpus;
 mod one_writer_per_folder;
 mod pictures;

@@ -377,13 +377,12 @@ fn render_and_replay_work_on_every_shipped_experiment() {
         }
         let walls = world["walls"].as_array().unwrap();
         let areas = world["areas"].as_array().unwrap();
-        // The page shows the first trial (the first episode of a life of several): its
-        // events are those before the next world record.
+        // The page shows the first trial, every episode of its life (--trial 0 replays one
+        // life): its key names the marks of the whole life's events.
         let events: Vec<String> = first
             .lines()
             .skip(1)
             .filter_map(|l| serde_json::from_str::<serde_json::Value>(l).ok())
-            .take_while(|r| r["type"] != "world")
             .filter(|r| r["type"] == "tick")
             .flat_map(|r| r["events"].as_array().cloned().unwrap_or_default())
             .map(|e| e["event"].as_str().unwrap().to_string())

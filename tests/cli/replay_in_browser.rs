@@ -4,7 +4,9 @@
 //! the trace (`--trace`) says, in the creature's and the wall's colours.
 //!
 //! The status element is for tests only: the page keeps it hidden. The charts' keys name the
-//! brain's outputs (the eat output only when the creature eats by action).
+//! brain's outputs (the eat output only when the creature eats by action). A plastic brain's
+//! life of several episodes is one page: `#tick=P` is a position in the life, and the strip of
+//! weights under the arena has its cursor there.
 //!
 //! Without Chromium the test says so and passes, unless `BERRY_REQUIRE_CHROMIUM=1` (set by
 //! `.ci/run`), when it fails.
@@ -239,4 +241,55 @@ fn the_page_hides_its_status_and_its_motor_chart_names_the_brains_outputs() {
             assert!(!legend.contains(&format!("data-kind=\"{kind}\"")), "{kind}");
         }
     }
+}
+
+#[test]
+fn a_plastic_lifes_page_follows_the_life_across_episodes_with_its_strip_cursor() {
+    let tmp = tempfile::tempdir().unwrap();
+    let html = tmp.path().join("page.html");
+    let out = Command::new(bin())
+        .arg("replay")
+        .arg(fixture("plastic-t-maze-best.json"))
+        .arg("--experiment")
+        .arg(fixture("plastic-t-maze.toml"))
+        .args(["--trial", "0", "--html"])
+        .arg(&html)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // Life position 500: episodes of 180 ticks have 181 positions each, so episode 3, tick 138.
+    let dom = match dump_dom(&format!("file://{}#tick=500", html.display())) {
+        Ok(dom) => dom,
+        Err(why) => {
+            assert!(
+                std::env::var("BERRY_REQUIRE_CHROMIUM").as_deref() != Ok("1"),
+                "BERRY_REQUIRE_CHROMIUM=1 but {why}"
+            );
+            eprintln!("skipped: headless Chromium could not run ({why})");
+            return;
+        }
+    };
+    let start = dom.find("<pre id=\"status\"").unwrap();
+    let status = &dom[start..start + dom[start..].find("</pre>").unwrap()];
+    assert!(status.contains("tick 138\n"), "{status}");
+    assert!(
+        status.contains("episode 3 of 10 life position 500"),
+        "{status}"
+    );
+    // The strip's cursor stands at the position's share of the strip, drawn in black.
+    let line = status
+        .lines()
+        .find(|l| l.starts_with("strip cursor"))
+        .expect(status);
+    let n = numbers(line);
+    let (q, w, p, last) = (n[0], n[1], n[2], n[3]);
+    assert_eq!(p, 500.0, "{line}");
+    let share = (q - 45.5) / (w - 47.0);
+    assert!((share - p / last).abs() < 0.01, "{line}");
+    assert!(line.ends_with("pixel 0,0,0"), "{line}");
+    assert!(dom.contains("episode 3 / 10 · tick 138 / 180"), "the label");
 }

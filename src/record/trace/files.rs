@@ -31,14 +31,33 @@
 //!   wanderers, predators and their waypoints, air predators), so that a picture can be drawn
 //!   from the trace alone.
 //!
+//! A life of several episodes is one trial per episode (ticks from 1 in each): the creatures',
+//! actors', objects' and events' CSV files then have an `episode` column (from 1) after
+//! `trial`, and each world line an `episode` object (`episode`, `episodes`, `switched`,
+//! `exchanged`, `switch_kinds`). A life of one episode has neither: its files are as they
+//! always were.
+//!
+//! A plastic brain (`[brain] plasticity`) adds two files ([`learning_paths`]):
+//!
+//! - `STEM-learning.csv`: `trial, episode, tick, creature, m, g, dw_norm`: per tick the
+//!   modulatory signal m (empty for a Hebbian rule), its gate g = tanh(m/2) (1 for Hebbian)
+//!   and ‖Δw‖, the L2 norm of the tick's change over all plastic weights.
+//! - `STEM-synapses.csv`: `trial, episode, tick, creature, synapse, layer, from, to, weight`:
+//!   the followed synapses' weights (see [`crate::evo::trace`] for which), at tick 0 (the
+//!   episode's start) and after every tick; `synapse` is the genome name (`w_h0[3][5]`).
+//!
 //! `--trace-jsonl PATH` writes the same data as JSON lines, each with a `type`: `world` (the
-//! description, once per trial), `tick` (`trial`, `tick`, `creatures`, `actors`, `objects`,
-//! `events` of that tick) and `outcome` (`trial` and each creature's score, metabolism,
-//! shocked ticks). Numbers are written shortest-round-trip, or rounded to a number of
-//! decimals (the replay page uses 4: a ten-thousandth of an LU).
+//! description, once per trial), `learning` (a plastic brain's followed synapses and their
+//! weights at tick 0, after the world line), `tick` (`trial`, `tick`, `creatures`, `actors`,
+//! `objects`, `events` of that tick, and `learning`: m, g, `dw_norm` and `weights` per
+//! plastic creature) and `outcome` (`trial` and each creature's score, metabolism, shocked
+//! ticks). Fixed brains' lines have no learning fields. Numbers are written
+//! shortest-round-trip, or rounded to a number of decimals (the replay page uses 4: a
+//! ten-thousandth of an LU).
 
 use crate::evo::trace::{
-    ActorTick, CreatureTick, Event, ObjectTick, OutcomeInfo, TrialTrace, WorldDescription,
+    ActorTick, CreatureTick, Event, LearningInfo, LearningTick, ObjectTick, OutcomeInfo,
+    TrialTrace, WorldDescription,
 };
 use crate::record::atomic::write_atomic_with;
 use serde::Serialize;
@@ -62,8 +81,43 @@ pub fn csv_paths(path: &Path) -> [PathBuf; 5] {
     ]
 }
 
+/// The two files a plastic brain's trace adds beside `--trace PATH`: `STEM-learning.csv`
+/// and `STEM-synapses.csv`.
+pub fn learning_paths(path: &Path) -> [PathBuf; 2] {
+    let stem = path.with_extension("");
+    let sibling = |suffix: &str| {
+        let mut name = stem.file_name().unwrap_or_default().to_os_string();
+        name.push(suffix);
+        stem.with_file_name(name)
+    };
+    [sibling("-learning.csv"), sibling("-synapses.csv")]
+}
+
+/// The files `--trace PATH` writes for `trials`: [`csv_paths`], then [`learning_paths`]
+/// when a brain is plastic.
+pub fn written_paths(trials: &[TrialTrace], path: &Path) -> Vec<PathBuf> {
+    let mut out = csv_paths(path).to_vec();
+    if has_learning(trials) {
+        out.extend(learning_paths(path));
+    }
+    out
+}
+
+fn has_learning(trials: &[TrialTrace]) -> bool {
+    trials.iter().any(|t| !t.learning.is_empty())
+}
+
+fn has_episodes(trials: &[TrialTrace]) -> bool {
+    trials.iter().any(|t| t.world.episode.is_some())
+}
+
+/// The episode number of a trial (1 for a life of one episode).
+fn episode_of(t: &TrialTrace) -> u64 {
+    t.world.episode.as_ref().map_or(1, |e| e.episode)
+}
+
 /// One CSV cell.
-#[derive(Serialize)]
+#[derive(Clone, Copy, Serialize)]
 #[serde(untagged)]
 enum Cell<'a> {
     U(u64),
@@ -107,6 +161,22 @@ pub fn write_csv_files(trials: &[TrialTrace], path: &Path) -> io::Result<()> {
         .first()
         .map(|t| t.world.inputs.clone())
         .unwrap_or_default();
+    let episodes = has_episodes(trials);
+    // The trial column, then the episode column in lives of several episodes.
+    let lead = |header: Vec<String>| -> Vec<String> {
+        let mut header = header;
+        if episodes {
+            header.insert(1, "episode".into());
+        }
+        header
+    };
+    fn lead_cells(episodes: bool, t: &TrialTrace, cells: &mut Vec<Cell<'_>>) {
+        cells.push(Cell::U(t.world.trial));
+        if episodes {
+            cells.push(Cell::U(episode_of(t)));
+        }
+    }
+    let key = |t: &TrialTrace, cells: &mut Vec<Cell<'_>>| lead_cells(episodes, t, cells);
     let mut header = names(&[
         "trial",
         "tick",
@@ -132,46 +202,55 @@ pub fn write_csv_files(trials: &[TrialTrace], path: &Path) -> io::Result<()> {
         "travelled",
     ]);
     header.extend(inputs.iter().map(|n| format!("in_{n}")));
+    let header = lead(header);
     write_csv(&creatures, &header, |row| {
         let mut cells = Vec::new();
         for t in trials {
             for c in &t.creatures {
                 cells.clear();
-                creature_cells(t.world.trial, c, &mut cells);
+                key(t, &mut cells);
+                creature_cells(c, &mut cells);
                 row(&cells)?;
             }
         }
         Ok(())
     })?;
-    let header = names(&["trial", "tick", "kind", "index", "x", "y", "heading"]);
+    let header = lead(names(&[
+        "trial", "tick", "kind", "index", "x", "y", "heading",
+    ]));
     write_csv(&actors, &header, |row| {
+        let mut cells = Vec::new();
         for t in trials {
             for a in &t.actors {
-                row(&[
-                    Cell::U(t.world.trial),
+                cells.clear();
+                key(t, &mut cells);
+                cells.extend([
                     Cell::U(a.tick),
                     Cell::S(a.kind.name()),
                     Cell::U(a.index as u64),
                     Cell::F(a.x),
                     Cell::F(a.y),
                     Cell::F(a.heading),
-                ])?;
+                ]);
+                row(&cells)?;
             }
         }
         Ok(())
     })?;
-    let header = names(&[
+    let header = lead(names(&[
         "trial", "tick", "object", "kind", "x", "y", "amount_a", "amount_b", "amount_c", "amount_d",
-    ]);
+    ]));
     write_csv(&objects, &header, |row| {
+        let mut cells = Vec::new();
         for t in trials {
             let food = &t.world.food;
             let start = food.iter().enumerate().map(|(k, f)| (0, k, f.amount));
             let changes = t.objects.iter().map(|o| (o.tick, o.object, o.amount));
             for (tick, k, amount) in start.chain(changes) {
                 let f = &food[k];
-                row(&[
-                    Cell::U(t.world.trial),
+                cells.clear();
+                key(t, &mut cells);
+                cells.extend([
                     Cell::U(tick),
                     Cell::U(k as u64),
                     Cell::S(&f.kind),
@@ -181,12 +260,13 @@ pub fn write_csv_files(trials: &[TrialTrace], path: &Path) -> io::Result<()> {
                     Cell::F(amount[1]),
                     Cell::F(amount[2]),
                     Cell::F(amount[3]),
-                ])?;
+                ]);
+                row(&cells)?;
             }
         }
         Ok(())
     })?;
-    let header = names(&[
+    let header = lead(names(&[
         "trial",
         "tick",
         "event",
@@ -201,14 +281,16 @@ pub fn write_csv_files(trials: &[TrialTrace], path: &Path) -> io::Result<()> {
         "amount_b",
         "amount_c",
         "amount_d",
-    ]);
+    ]));
     write_csv(&events, &header, |row| {
+        let mut cells = Vec::new();
         for t in trials {
             for e in &t.events {
                 let from = |k: usize| e.from.map_or(EMPTY, |p| Cell::F(p[k]));
                 let amount = |k: usize| e.amount.map_or(EMPTY, |a| Cell::F(a[k]));
-                row(&[
-                    Cell::U(t.world.trial),
+                cells.clear();
+                key(t, &mut cells);
+                cells.extend([
                     Cell::U(e.tick),
                     Cell::S(e.event.name()),
                     opt_u(e.creature),
@@ -222,7 +304,8 @@ pub fn write_csv_files(trials: &[TrialTrace], path: &Path) -> io::Result<()> {
                     amount(1),
                     amount(2),
                     amount(3),
-                ])?;
+                ]);
+                row(&cells)?;
             }
         }
         Ok(())
@@ -233,12 +316,67 @@ pub fn write_csv_files(trials: &[TrialTrace], path: &Path) -> io::Result<()> {
             w.write_all(b"\n")?;
         }
         Ok(())
+    })?;
+    if has_learning(trials) {
+        write_learning_csv(trials, path)?;
+    }
+    Ok(())
+}
+
+/// Writes the two files of [`learning_paths`] (see the module docs).
+fn write_learning_csv(trials: &[TrialTrace], path: &Path) -> io::Result<()> {
+    let [learning, synapses] = learning_paths(path);
+    let lead = |t: &TrialTrace, tick: u64, creature: usize| {
+        [
+            Cell::U(t.world.trial),
+            Cell::U(episode_of(t)),
+            Cell::U(tick),
+            Cell::U(creature as u64),
+        ]
+    };
+    let header = names(&["trial", "episode", "tick", "creature", "m", "g", "dw_norm"]);
+    write_csv(&learning, &header, |row| {
+        for t in trials {
+            for l in &t.learning_ticks {
+                let mut cells = lead(t, l.tick, l.creature).to_vec();
+                cells.extend([l.m.map_or(EMPTY, Cell::F), Cell::F(l.g), Cell::F(l.dw_norm)]);
+                row(&cells)?;
+            }
+        }
+        Ok(())
+    })?;
+    let header = names(&[
+        "trial", "episode", "tick", "creature", "synapse", "layer", "from", "to", "weight",
+    ]);
+    write_csv(&synapses, &header, |row| {
+        for t in trials {
+            let info = |creature: usize| t.learning.iter().find(|i| i.creature == creature);
+            let starts = t.learning.iter().map(|i| (0, i.creature, &i.start));
+            let ticks = t
+                .learning_ticks
+                .iter()
+                .map(|l| (l.tick, l.creature, &l.weights));
+            for (tick, creature, weights) in starts.chain(ticks) {
+                let Some(info) = info(creature) else { continue };
+                for (s, &w) in info.synapses.iter().zip(weights) {
+                    let mut cells = lead(t, tick, creature).to_vec();
+                    cells.extend([
+                        Cell::S(&s.name),
+                        Cell::U(s.layer as u64),
+                        Cell::U(s.from as u64),
+                        Cell::U(s.to as u64),
+                        Cell::F(w),
+                    ]);
+                    row(&cells)?;
+                }
+            }
+        }
+        Ok(())
     })
 }
 
-fn creature_cells(trial: u64, c: &CreatureTick, cells: &mut Vec<Cell<'static>>) {
+fn creature_cells(c: &CreatureTick, cells: &mut Vec<Cell<'static>>) {
     cells.extend([
-        Cell::U(trial),
         Cell::U(c.tick),
         Cell::U(c.creature as u64),
         Cell::F(c.x),
@@ -262,6 +400,10 @@ fn creature_cells(trial: u64, c: &CreatureTick, cells: &mut Vec<Cell<'static>>) 
 #[serde(tag = "type", rename_all = "snake_case")]
 enum Line<'a> {
     World(&'a WorldDescription),
+    Learning {
+        trial: u64,
+        creatures: &'a [LearningInfo],
+    },
     Tick {
         trial: u64,
         tick: u64,
@@ -269,6 +411,8 @@ enum Line<'a> {
         actors: &'a [ActorTick],
         objects: &'a [ObjectTick],
         events: &'a [Event],
+        #[serde(skip_serializing_if = "Vec::is_empty")]
+        learning: Vec<LearningTick>,
     },
     Outcome {
         trial: u64,
@@ -334,7 +478,16 @@ pub fn write_jsonl_to(
         let trial = t.world.trial;
         serde_json::to_writer(&mut *w, &Line::World(&t.world))?;
         w.write_all(b"\n")?;
+        if !t.learning.is_empty() {
+            let line = Line::Learning {
+                trial,
+                creatures: &t.learning,
+            };
+            serde_json::to_writer(&mut *w, &line)?;
+            w.write_all(b"\n")?;
+        }
         let mut creatures = by_tick(&t.creatures, |c| c.tick);
+        let mut learning = by_tick(&t.learning_ticks, |l| l.tick);
         let mut actors = by_tick(&t.actors, |a| a.tick);
         let mut objects = by_tick(&t.objects, |o| o.tick);
         let mut events = by_tick(&t.events, |e| e.tick);
@@ -360,6 +513,16 @@ pub fn write_jsonl_to(
                 actors: &acts_rounded,
                 objects: objects(tick),
                 events: events(tick),
+                learning: learning(tick)
+                    .iter()
+                    .map(|l| LearningTick {
+                        m: l.m.map(|m| round(m, decimals)),
+                        g: round(l.g, decimals),
+                        dw_norm: round(l.dw_norm, decimals.map(|d| d + 4)),
+                        weights: l.weights.iter().map(|&x| round(x, decimals)).collect(),
+                        ..*l
+                    })
+                    .collect(),
             };
             serde_json::to_writer(&mut *w, &line)?;
             w.write_all(b"\n")?;
