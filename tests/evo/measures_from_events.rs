@@ -6,7 +6,7 @@
 //! (lockstep and trial by trial) switch the log on.
 
 use berry_evolve::brain::genome::Genome;
-use berry_evolve::evo::evaluate::{evaluate_group, evaluate_population};
+use crate::door::{evaluate_group, evaluate_population};
 use berry_evolve::evo::fitness::{LifePlan, LifeScore, MEASURE_COUNT};
 use berry_evolve::evo::lockstep;
 use berry_evolve::experiment::{Experiment, Measure};
