@@ -233,7 +233,7 @@ impl Replay {
 
     /// Lives every selected trial, recording them.
     pub fn record(&self) -> anyhow::Result<Vec<TrialTrace>> {
-        let mut recorder = TraceRecorder::new(&self.experiment);
+        let mut recorder = TraceRecorder::new(&self.experiment).for_brain(&self.topology);
         for &t in &self.trials {
             self.run(t, Some(&mut recorder))?;
         }
@@ -242,7 +242,7 @@ impl Replay {
 
     /// The recorder of this replay's trials, following the synapses `--synapses` names.
     pub fn recorder(&self, synapses: Option<&str>) -> anyhow::Result<TraceRecorder> {
-        let recorder = TraceRecorder::new(&self.experiment);
+        let recorder = TraceRecorder::new(&self.experiment).for_brain(&self.topology);
         Ok(match synapses {
             Some(text) => recorder.with_synapses(
                 parse_synapses(text, &self.topology)

@@ -727,6 +727,14 @@ impl TraceRecorder {
         }
     }
 
+    /// Records the brain `topology` describes (the genome file's, which may differ from the
+    /// experiment's: a plastic genome replayed in a file whose brain is fixed is still
+    /// plastic, and its weights are still followed).
+    pub fn for_brain(mut self, topology: &Topology) -> TraceRecorder {
+        self.layers = plastic_layers(topology);
+        self
+    }
+
     /// Follows `synapses` (see [`parse_synapses`]) instead of those that move most.
     pub fn with_synapses(mut self, synapses: Vec<Synapse>) -> TraceRecorder {
         self.named = Some(synapses);

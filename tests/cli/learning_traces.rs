@@ -408,6 +408,37 @@ fn the_replay_page_has_the_strip_for_a_plastic_brain_and_none_for_a_fixed_one() 
     assert!(!page.contains("id=\"strip\"") && !page.contains("\"type\":\"learning\""));
 }
 
+/// The brain replayed is the genome file's: the hand-designed learner (a plastic MLP 24 → 3
+/// → 2) replayed in experiments/t-maze-switch.toml, whose own brain is a fixed MLP, still has
+/// its plastic weights followed and drawn.
+#[test]
+fn a_plastic_genome_in_a_fixed_brains_experiment_still_gets_its_strip() {
+    let dir = tempfile::tempdir().unwrap();
+    let page = dir.path().join("learner.html");
+    let genome = Path::new(env!("CARGO_MANIFEST_DIR")).join("genomes/t-maze-switch-baseline.json");
+    run_ok(&[
+        "replay",
+        genome.to_str().unwrap(),
+        "--experiment",
+        &experiment("t-maze-switch.toml"),
+        "--trial",
+        "0",
+        "--html",
+        page.to_str().unwrap(),
+    ]);
+    let page = String::from_utf8(read(&page)).unwrap();
+    assert!(
+        page.contains("<canvas id=\"strip\""),
+        "a strip under the arena"
+    );
+    let html = &page[..page.find("<script").unwrap()];
+    // Its one plastic synapse (the memory's bias weight) moves; the page names it first.
+    assert!(
+        html.contains("w_h0[2][23]"),
+        "the memory synapse is followed"
+    );
+}
+
 #[test]
 fn synapses_that_the_brain_lacks_are_refused_naming_the_flag() {
     let dir = tempfile::tempdir().unwrap();
