@@ -15,6 +15,7 @@
 //! Every row is one `<polyline>` of stroke width 2 per panel (the legend uses `<line>`), text
 //! is SVG `<text>` for the viewer to set, as in [`crate::view::plot`].
 
+use super::TAB10;
 use crate::view::render::text_width;
 use plotters::prelude::*;
 use thiserror::Error;
@@ -28,17 +29,12 @@ const STRIP: u32 = 90;
 const LEGEND_FONT: f64 = 14.0;
 const LEGEND_ROW: f64 = 22.0;
 
-/// Row colours in order (the genome files and their ablations); the random genomes are grey.
-const COLOURS: [RGBColor; 7] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
+/// Row colours in order (the genome files and their ablations): tab10 without its grey,
+/// which is the random genomes'.
+const COLOURS: [RGBColor; 9] = [
+    TAB10[0], TAB10[1], TAB10[2], TAB10[3], TAB10[4], TAB10[5], TAB10[6], TAB10[8], TAB10[9],
 ];
-const GREY: RGBColor = RGBColor(127, 127, 127);
+const GREY: RGBColor = TAB10[7];
 
 /// Why the curve cannot be made.
 #[derive(Debug, Error)]

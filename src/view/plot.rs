@@ -21,6 +21,7 @@
 //! font-kit, or a TTF compiled in for ab_glyph) and the `image` crate; convert the SVG
 //! instead (`rsvg-convert plot.svg -o plot.png`).
 
+use super::TAB10;
 use crate::record::plot::{PlotError, Table};
 use crate::view::render::text_width;
 use plotters::prelude::*;
@@ -42,14 +43,7 @@ struct Curve {
 
 /// Colours of the curves, in order (best, mean, median, worst, validation; then more).
 const COLOURS: [RGBColor; 8] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
+    TAB10[0], TAB10[1], TAB10[2], TAB10[3], TAB10[4], TAB10[5], TAB10[6], TAB10[7],
 ];
 
 /// The curves of a run's `fitness.csv`, in the order of [`RUN_COLUMNS`] (the ones present).
