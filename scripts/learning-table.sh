@@ -1,13 +1,17 @@
 #!/usr/bin/env bash
 # The learning table (issue 31): for t-maze-switch and which-food, evolve 5 seeds each of the
 # fixed-weight MLP (the shipped file), an Elman network, the neuromodulated plastic MLP and
-# (t-maze-switch) the plastic MLP under novelty search (experiments/learning/), all at the
+# (t-maze-switch) the plastic MLP under novelty search and a small plastic MLP of the
+# hand-designed learner's shape (experiments/learning/), all at the
 # shipped file's budget; then compare every seed's champions on the same 20 held-out lives
 # (`compare --trials 20`, the seed's worlds), with the plastic champions also frozen and
 # ungated (`--ablate`) and 32 random genomes, and print a Markdown table: per row the median
 # and range over the seeds of held-out fitness and of the behaviour measure (adapted_choice,
-# good_bite_share), and each seed's behaviour value. Also draws the per-episode curve of
-# seed CURVE_SEED (default 1) to docs/pictures/learning-<family>-curve.svg.
+# good_bite_share), and each seed's behaviour value; t-maze-switch's hand-designed learner
+# (genomes/t-maze-switch-baseline.json, scripts/genomes/learner.py) is a row too. Also draws the
+# per-episode curve of seed CURVE_SEED (default 1) to docs/pictures/learning-<family>-curve.svg:
+# the fixed MLP, the plastic champion and the hand-designed learner, the plastic ones also
+# frozen, and the random genomes.
 #
 #   bash scripts/learning-table.sh                       # both families
 #   bash scripts/learning-table.sh --only which-food     # one family
@@ -34,15 +38,16 @@ while [ $# -gt 0 ]; do
 done
 [ -x "$BIN" ] || cargo build --release
 
-# family, behaviour measure, experiment files (the first is the fixed-weight control).
+# family, behaviour measure, hand-designed controller (- for none), experiment files (the
+# first is the fixed-weight control).
 FAMILIES=(
-  "t-maze-switch adapted_choice experiments/t-maze-switch.toml experiments/learning/t-maze-switch-elman.toml experiments/learning/t-maze-switch-plastic.toml experiments/learning/t-maze-switch-plastic-novelty.toml"
-  "which-food good_bite_share experiments/which-food.toml experiments/learning/which-food-elman.toml experiments/learning/which-food-plastic.toml"
+  "t-maze-switch adapted_choice genomes/t-maze-switch-baseline.json experiments/t-maze-switch.toml experiments/learning/t-maze-switch-elman.toml experiments/learning/t-maze-switch-plastic.toml experiments/learning/t-maze-switch-plastic-novelty.toml experiments/learning/t-maze-switch-plastic-small.toml"
+  "which-food good_bite_share - experiments/which-food.toml experiments/learning/which-food-elman.toml experiments/learning/which-food-plastic.toml"
 )
 
 # 1. The runs, one after another, each on every core.
 for family in "${FAMILIES[@]}"; do
-  read -r name _ files <<<"$family"
+  read -r name _ _ files <<<"$family"
   case "$name" in *"$ONLY"*) ;; *) continue ;; esac
   for exp in $files; do
     for seed in $SEEDS; do
@@ -74,7 +79,7 @@ def med_range(values):
 
 
 for line in os.environ["FAMILIES_TEXT"].splitlines():
-    family, measure, *files = line.split()
+    family, measure, designed, *files = line.split()
     if only not in family:
         continue
     names = [os.path.basename(f)[:-5] for f in files]
@@ -87,14 +92,22 @@ for line in os.environ["FAMILIES_TEXT"].splitlines():
         for n in names:
             walls[n].append(float(open(f"{runs}/{n}/seed-{seed}/wall.txt").read()))
         experiment = f"{runs}/{names[0]}/seed-{seed}/experiment.toml"
-        args = [binary, "compare", *champs, "--experiment", experiment, "--trials", "20",
+        extra = [designed] if designed != "-" else []
+        args = [binary, "compare", *champs, *extra, "--experiment", experiment, "--trials", "20",
                 "--random", "32", "--ablate", "--measure", measure, "--json"]
         if seed == curve_seed:
-            args += ["--episode-curve", f"docs/pictures/learning-{family}-curve.svg"]
+            # The curve shows few rows, so that each can be told apart: the fixed control,
+            # the plastic champion and the hand-designed learner, each plastic one frozen.
+            shown = [champs[0], champs[2], *extra]
+            subprocess.run([binary, "compare", *shown, "--experiment", experiment, "--trials",
+                            "20", "--random", "32", "--ablate=frozen", "--episode-curve",
+                            f"docs/pictures/learning-{family}-curve.svg"],
+                           capture_output=True, text=True, check=True)
         report = json.loads(subprocess.run(args, capture_output=True, text=True,
                                            check=True).stdout)
         for g in report["genomes"]:
-            name = g["path"].split("/")[-3]
+            name = (g["path"].split("/")[-3] if g["path"].startswith(runs)
+                    else "hand-designed learner (" + g["path"] + ")")
             label = name + (f" ({g['ablation']})" if g.get("ablation") else "")
             row = rows.setdefault(label, {"fitness": [], "measure": []})
             row["fitness"].append(g["fitness"])

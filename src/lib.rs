@@ -20,17 +20,21 @@
 //! - `brain`: genomes and the controllers they encode (MLP, recurrent, CTRNN).
 //! - `experiment`: TOML experiment files (raw `ExperimentConfig`, validated `Experiment`),
 //!   `[evolution]` included; the shipped ones built into the program (`experiment::templates`).
-//! - `evo`: the genetic algorithm and PGPE, and parallel, deterministic evaluation: one trial
-//!   path (`evo::trial`), the parts evaluation and lockstep share (`evo::life`), the named
-//!   world sets and evaluating genomes on them (`evo::worlds`: training g, validation,
-//!   held-out), one creature's trial stepped by a caller (`evo::episode`), the whole-world
-//!   trace of a trial recorded by a watcher of the trial path (`evo::trace`).
+//! - `evo`: the searches behind one ask/tell trait (`evo::search`: GA, PGPE, CMA-ES,
+//!   novelty, MAP-Elites), and parallel, deterministic evaluation through one door
+//!   (`evo::door`: `Evaluate { genomes, worlds }`, worlds of training generation g, a named
+//!   set alone or built worlds, here or on MPI ranks): one trial path (`evo::trial`), the
+//!   parts evaluation and lockstep share (`evo::life`), the named world sets, held-out and
+//!   design included, and the random baselines (`evo::worlds`), the fitness plan and scoring
+//!   (`evo::fitness`, which reads the world's events), lives of several episodes
+//!   (`evo::episodes`), one creature's trial stepped by a caller (`evo::episode`), the
+//!   whole-world trace of a trial recorded by a watcher of the trial path (`evo::trace`).
 //! - `record`: file I/O: fitness CSV, checkpoints, genome files, trace files, the MAP-Elites
 //!   archive, the tables plots read.
 //! - `view`: the pictures, drawn from traces and tables: the trajectory picture
 //!   (`view::render`, one function per layer of the picture), the replay page
 //!   (`view::replay_html`), the fitness plots (`view::plot`), the archive's heat map
-//!   (`view::heat_map`).
+//!   (`view::heat_map`), the per-episode curve of learning (`view::episode_curve`).
 //! - `run`: one run folder, by concern: errors, the folder (names, lock, own files),
 //!   checkpoints, start, resume (a pure plan, then an apply step), the generation loop.
 //! - `cli`: the command-line front end (lives in the binary). The Python package (`python/`,
