@@ -5,8 +5,8 @@
 //! jump onto or off an aversive object is measured at the exit; and both evaluation paths
 //! (lockstep and trial by trial) switch the log on.
 
-use berry_evolve::brain::genome::Genome;
 use crate::door::{evaluate_group, evaluate_population};
+use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::fitness::{LifePlan, LifeScore, MEASURE_COUNT};
 use berry_evolve::evo::lockstep;
 use berry_evolve::experiment::{Experiment, Measure};
