@@ -361,21 +361,29 @@ fn a_fixed_brains_trace_of_one_episode_is_byte_for_byte_as_before() {
     assert!(!dir.path().join("t-synapses.csv").exists());
 }
 
-#[test]
-fn the_replay_page_has_the_strip_for_a_plastic_brain_and_none_for_a_fixed_one() {
+/// The replay page (`replay GENOME --experiment EXPERIMENT --trial 0 --html`) as text.
+fn replay_page(genome: &Path, experiment: &str) -> String {
     let dir = tempfile::tempdir().unwrap();
-    let plastic = dir.path().join("plastic.html");
+    let page = dir.path().join("page.html");
     run_ok(&[
         "replay",
-        fixture("plastic-t-maze-best.json").to_str().unwrap(),
+        genome.to_str().unwrap(),
         "--experiment",
-        fixture("plastic-t-maze.toml").to_str().unwrap(),
+        experiment,
         "--trial",
         "0",
         "--html",
-        plastic.to_str().unwrap(),
+        page.to_str().unwrap(),
     ]);
-    let page = String::from_utf8(read(&plastic)).unwrap();
+    String::from_utf8(read(&page)).unwrap()
+}
+
+#[test]
+fn the_replay_page_has_the_strip_for_a_plastic_brain_and_none_for_a_fixed_one() {
+    let page = replay_page(
+        &fixture("plastic-t-maze-best.json"),
+        fixture("plastic-t-maze.toml").to_str().unwrap(),
+    );
     assert!(
         page.contains("<canvas id=\"strip\""),
         "a strip under the arena"
@@ -392,19 +400,8 @@ fn the_replay_page_has_the_strip_for_a_plastic_brain_and_none_for_a_fixed_one() 
     );
     // The whole life is on the page: ten world lines.
     assert_eq!(page.matches("\"type\":\"world\"").count(), 10);
-    let fixed = dir.path().join("fixed.html");
     let genome = Path::new(env!("CARGO_MANIFEST_DIR")).join("genomes/t-maze-baseline.json");
-    run_ok(&[
-        "replay",
-        genome.to_str().unwrap(),
-        "--experiment",
-        &experiment("t-maze.toml"),
-        "--trial",
-        "0",
-        "--html",
-        fixed.to_str().unwrap(),
-    ]);
-    let page = String::from_utf8(read(&fixed)).unwrap();
+    let page = replay_page(&genome, &experiment("t-maze.toml"));
     assert!(!page.contains("id=\"strip\"") && !page.contains("\"type\":\"learning\""));
 }
 
@@ -413,20 +410,8 @@ fn the_replay_page_has_the_strip_for_a_plastic_brain_and_none_for_a_fixed_one() 
 /// its plastic weights followed and drawn.
 #[test]
 fn a_plastic_genome_in_a_fixed_brains_experiment_still_gets_its_strip() {
-    let dir = tempfile::tempdir().unwrap();
-    let page = dir.path().join("learner.html");
     let genome = Path::new(env!("CARGO_MANIFEST_DIR")).join("genomes/t-maze-switch-baseline.json");
-    run_ok(&[
-        "replay",
-        genome.to_str().unwrap(),
-        "--experiment",
-        &experiment("t-maze-switch.toml"),
-        "--trial",
-        "0",
-        "--html",
-        page.to_str().unwrap(),
-    ]);
-    let page = String::from_utf8(read(&page)).unwrap();
+    let page = replay_page(&genome, &experiment("t-maze-switch.toml"));
     assert!(
         page.contains("<canvas id=\"strip\""),
         "a strip under the arena"
