@@ -19,6 +19,7 @@ use berry_evolve::evo::evaluate::aggregate;
 use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::stats::FitnessStats;
 use berry_evolve::evo::worlds::{self, alone};
+use berry_evolve::evo::TrialPlan;
 use berry_evolve::experiment::{Aggregate, Experiment, Measure, MEASURES};
 use berry_evolve::record::atomic::{refuse_output_over_input, write_atomic};
 use berry_evolve::record::genome_file::GenomeFile;
@@ -242,7 +243,7 @@ impl GenomeReport {
         path: Option<String>,
         outcomes: &[TrialOutcome],
     ) -> GenomeReport {
-        let e = aggregate(experiment, outcomes);
+        let e = aggregate(&TrialPlan::new(experiment), outcomes);
         let scores: Vec<f64> = outcomes
             .iter()
             .map(|o| o.score)

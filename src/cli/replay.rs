@@ -20,6 +20,7 @@ use berry_evolve::evo::evaluate::aggregate;
 use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::trace::{parse_synapses, TraceRecorder, TrialTrace};
 use berry_evolve::evo::trial::{self, NoObserver, TickObserver, TrialId};
+use berry_evolve::evo::TrialPlan;
 use berry_evolve::experiment::{Aggregate, Experiment};
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::record::trace::files::{
@@ -209,7 +210,7 @@ impl Replay {
     /// one), in the validation world built beforehand or in the world its stream builds.
     fn live<O: TickObserver>(&self, t: u64, observer: O) -> anyhow::Result<Vec<TrialOutcome>> {
         let genomes = std::slice::from_ref(&self.genome);
-        let (e, topology) = (&self.experiment, &self.topology);
+        let (plan, topology) = (&TrialPlan::new(&self.experiment), &self.topology);
         let (generation, group, trial) = (self.generation, self.group, TrialIndex(t));
         Ok(match &self.built {
             Some(worlds) => {
@@ -225,9 +226,9 @@ impl Replay {
                 };
                 // Built worlds are the validation worlds (`WorldSet::built_worlds`).
                 let origin = LifeOrigin::validation(trial);
-                trial::run_trial_in_world(e, topology, genomes, id, origin, world, observer)?
+                trial::run_trial_in_world(plan, topology, genomes, id, origin, world, observer)?
             }
-            None => trial::run_trial(e, topology, genomes, generation, group, trial, observer)?,
+            None => trial::run_trial(plan, topology, genomes, generation, group, trial, observer)?,
         })
     }
 
@@ -420,7 +421,7 @@ pub fn run(args: ReplayArgs) -> anyhow::Result<()> {
         trials.push(TrialReport::new(experiment, t, &o));
         outcomes.push(o);
     }
-    let evaluation = aggregate(experiment, &outcomes);
+    let evaluation = aggregate(&TrialPlan::new(experiment), &outcomes);
     let traces = recorder.map(|r| r.into_trials()).unwrap_or_default();
     let mut files = ReplayFiles::default();
     if let Some(path) = &args.trace {

@@ -2,7 +2,7 @@
 //! `good_bite_share`) follow them: which food objects belong to the two switch kinds, which
 //! of them pays in this episode's world, and the creature's bites of them in order.
 
-use crate::experiment::Experiment;
+use crate::evo::trial_plan::TrialPlan;
 use crate::sim::metabolism::weighted;
 use crate::sim::world::World;
 
@@ -18,8 +18,8 @@ impl ChoicePlan {
     /// paying kind is read off the world's objects as built (their substance, weighted by
     /// `[fitness] weights`), so it holds whatever the episode's payoffs are; a kind with no
     /// object in the world is never the paying one. Made before the first tick.
-    pub fn new(experiment: &Experiment, world: &World) -> Option<ChoicePlan> {
-        let switch = experiment.evaluation.switch.as_ref()?;
+    pub fn new(plan: &TrialPlan, world: &World) -> Option<ChoicePlan> {
+        let switch = plan.switch?;
         let index = |name: &String| world.kinds().iter().position(|k| k == name);
         let kinds = [index(&switch.kinds[0])?, index(&switch.kinds[1])?];
         let value = |kind: usize| {
@@ -28,7 +28,7 @@ impl ChoicePlan {
                 .iter()
                 .find(|f| f.kind == kind)
                 .map_or(f64::NEG_INFINITY, |f| {
-                    weighted(&experiment.fitness.weights, &f.amount)
+                    weighted(&plan.fitness.weights, &f.amount)
                 })
         };
         let paying = if value(kinds[0]) >= value(kinds[1]) {

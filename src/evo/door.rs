@@ -21,6 +21,7 @@ use crate::evo::evaluate::{
 use crate::evo::life::{EvaluationError, TrialOutcome};
 use crate::evo::lockstep;
 use crate::evo::trial::{run_life, NoObserver, TrialId};
+use crate::evo::trial_plan::TrialPlan;
 use crate::evo::worlds::{BuiltWorlds, WorldSet, WorldsError};
 use crate::experiment::Experiment;
 use crate::seed::{Generation, TrialIndex};
@@ -67,10 +68,13 @@ pub struct LifeChoices {
 }
 
 /// A request: `genomes` (brains of `topology`) evaluated under `experiment` in `worlds`,
-/// optionally watched job by job.
+/// optionally watched job by job. Its trials see only the experiment's [`TrialPlan`]; the
+/// experiment itself names the world sets (validation's trials, held-out) and a
+/// generation's jobs.
 #[derive(Clone, Copy)]
 pub struct Evaluate<'a> {
     experiment: &'a Experiment,
+    plan: TrialPlan<'a>,
     topology: &'a Topology,
     genomes: &'a [Genome],
     worlds: Worlds<'a>,
@@ -78,7 +82,8 @@ pub struct Evaluate<'a> {
 }
 
 impl<'a> Evaluate<'a> {
-    /// The request to evaluate `genomes` in `worlds`.
+    /// The request to evaluate `genomes` in `worlds` (resolves the experiment's
+    /// [`TrialPlan`] once for all its trials).
     pub fn new(
         experiment: &'a Experiment,
         topology: &'a Topology,
@@ -87,6 +92,7 @@ impl<'a> Evaluate<'a> {
     ) -> Evaluate<'a> {
         Evaluate {
             experiment,
+            plan: TrialPlan::new(experiment),
             topology,
             genomes,
             worlds,
@@ -106,7 +112,7 @@ impl<'a> Evaluate<'a> {
         match self.worlds {
             Worlds::Alone(set) => set.check(self.experiment),
             Worlds::Training(_) => {
-                let k = self.experiment.evaluation.group_size.max(1);
+                let k = self.plan.group_size.max(1);
                 if self.genomes.len() as u64 % k != 0 {
                     return Err(WorldsError::PartialGroup {
                         genomes: self.genomes.len(),
@@ -137,7 +143,7 @@ impl<'a> Evaluate<'a> {
         Ok(self
             .lives()?
             .iter()
-            .map(|trials| aggregate(self.experiment, trials))
+            .map(|trials| aggregate(&self.plan, trials))
             .collect())
     }
 
@@ -164,8 +170,8 @@ impl<'a> Evaluate<'a> {
     ) -> Result<Vec<Vec<(TrialOutcome, LifeChoices)>>, EvaluationError> {
         let (k, trials, built) = match self.worlds {
             Worlds::Training(_) => {
-                let k = self.experiment.evaluation.group_size.max(1) as usize;
-                (k, self.experiment.evaluation.trials, None)
+                let k = self.plan.group_size.max(1) as usize;
+                (k, self.plan.trials, None)
             }
             Worlds::Alone(_) | Worlds::Built(_) => {
                 let built = self.built()?;
@@ -191,7 +197,7 @@ impl<'a> Evaluate<'a> {
                         let Worlds::Training(generation) = self.worlds else {
                             unreachable!("only training worlds are built trial by trial")
                         };
-                        let origin = LifeOrigin::trial(self.experiment, generation, group, trial);
+                        let origin = LifeOrigin::trial(&self.plan, generation, group, trial);
                         (origin, None)
                     }
                 };
@@ -202,7 +208,7 @@ impl<'a> Evaluate<'a> {
                 };
                 let genomes = &self.genomes[g * k..(g + 1) * k];
                 let (outcomes, episodes) = run_life(
-                    self.experiment,
+                    &self.plan,
                     self.topology,
                     genomes,
                     id,
@@ -211,7 +217,7 @@ impl<'a> Evaluate<'a> {
                     NoObserver,
                 )?;
                 self.job_done();
-                let life = Life::new(self.experiment, origin);
+                let life = Life::new(&self.plan, origin);
                 Ok(outcomes
                     .into_iter()
                     .zip(&episodes)
@@ -275,7 +281,7 @@ impl<'a> Evaluate<'a> {
     /// evolution (lockstep for stateless brains), every (genome, job) pair in parallel and
     /// collected in order.
     fn alone_lives(&self, built: &BuiltWorlds) -> Result<Vec<Vec<TrialOutcome>>, EvaluationError> {
-        let (experiment, topology, genomes) = (self.experiment, self.topology, self.genomes);
+        let (plan, topology, genomes) = (&self.plan, self.topology, self.genomes);
         let worlds = &built.worlds[..];
         let origin = built.origin;
         let trials = worlds.len() as u64;
@@ -289,7 +295,7 @@ impl<'a> Evaluate<'a> {
                 .with_max_len(JOBS_APART)
                 .map(|(g, chunk)| {
                     let lives = lockstep::run_trials_in(
-                        experiment,
+                        plan,
                         topology,
                         std::slice::from_ref(&genomes[*g]),
                         Generation(0),
@@ -316,7 +322,7 @@ impl<'a> Evaluate<'a> {
             .with_max_len(JOBS_APART)
             .map(|&(g, t)| {
                 let life = run_trial_in(
-                    experiment,
+                    plan,
                     topology,
                     std::slice::from_ref(&genomes[g]),
                     self.group_number(g),

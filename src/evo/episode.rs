@@ -15,7 +15,7 @@ use crate::evo::fitness::{LifePlan, LifeScore};
 use crate::evo::life::{
     finite_command, outcomes, record_tick, start_scores, trial_world, EvaluationError, TrialOutcome,
 };
-use crate::experiment::Experiment;
+use crate::evo::trial_plan::TrialPlan;
 use crate::seed::{Generation, TrialIndex};
 use crate::sim::controller::MotorCommand;
 use crate::sim::world::World;
@@ -52,33 +52,33 @@ impl Episode {
     /// --generation G`; the held-out worlds for
     /// [`crate::evo::worlds::HELD_OUT_GENERATION`]), before its first tick.
     pub fn new(
-        experiment: &Experiment,
+        plan: &TrialPlan,
         generation: Generation,
         trial: TrialIndex,
     ) -> Result<Episode, EvaluationError> {
-        let episodes = experiment.evaluation.episodes_per_life;
+        let episodes = plan.episodes_per_life;
         if episodes > 1 {
             return Err(EvaluationError::Episodes {
                 episodes,
                 path: "the step-by-step episode (the Python package's environments)",
             });
         }
-        let world = trial_world(experiment, 1, generation, 0, trial)?;
-        Ok(Episode::in_world(experiment, world))
+        let world = trial_world(plan, 1, generation, 0, trial)?;
+        Ok(Episode::in_world(plan, world))
     }
 
     /// An episode in a world built beforehand for one creature (e.g. a validation world).
-    pub fn in_world(experiment: &Experiment, mut world: World) -> Episode {
-        let (plan, scores) = start_scores(experiment, &mut world);
+    pub fn in_world(plan: &TrialPlan, mut world: World) -> Episode {
+        let (life_plan, scores) = start_scores(plan, &mut world);
         let mut episode = Episode {
             observation: vec![0.0; world.layout().len()],
             world,
-            plan,
+            plan: life_plan,
             scores,
             score: 0.0,
-            ticks: experiment.evaluation.ticks,
+            ticks: plan.ticks,
             non_finite: false,
-            over: experiment.evaluation.ticks == 0,
+            over: plan.ticks == 0,
         };
         if !episode.over {
             episode.sense();

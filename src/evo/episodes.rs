@@ -11,7 +11,8 @@
 
 use crate::evo::fitness::MEASURE_COUNT;
 use crate::evo::life::{world_error, EvaluationError, TrialOutcome};
-use crate::experiment::{Experiment, Measure, SwitchStart};
+use crate::evo::trial_plan::TrialPlan;
+use crate::experiment::{Measure, SwitchStart};
 use crate::seed::{below, sub_stream, Generation, IndividualId, Purpose, Rng, TrialIndex};
 use crate::sim::spec::{KindSpec, WorldSpec};
 use crate::sim::world::{ValidSpecs, World};
@@ -37,12 +38,12 @@ impl LifeOrigin {
     /// The life in trial `trial` of generation `generation` for group `group`: the origin
     /// of [`crate::evo::life::trial_stream`]'s world.
     pub fn trial(
-        experiment: &Experiment,
+        plan: &TrialPlan,
         generation: Generation,
         group: u64,
         trial: TrialIndex,
     ) -> LifeOrigin {
-        let who = if experiment.evaluation.common_random_numbers {
+        let who = if plan.common_random_numbers {
             0
         } else {
             group
@@ -74,10 +75,10 @@ impl LifeOrigin {
 
     /// The stream of episode `episode`'s world (0-based; episode 0 is the life's first
     /// world, the stream a life of one episode has always had).
-    pub fn episode_stream(&self, experiment: &Experiment, episode: u64) -> Rng {
+    pub fn episode_stream(&self, plan: &TrialPlan, episode: u64) -> Rng {
         let extra: &[u64] = if episode == 0 { &[] } else { &[episode] };
         sub_stream(
-            experiment.seed(),
+            plan.seed,
             self.purpose,
             self.generation,
             self.individual,
@@ -87,9 +88,9 @@ impl LifeOrigin {
     }
 
     /// The stream of the life's switch draws.
-    fn switch_stream(&self, experiment: &Experiment) -> Rng {
+    fn switch_stream(&self, plan: &TrialPlan) -> Rng {
         sub_stream(
-            experiment.seed(),
+            plan.seed,
             Purpose::Switch,
             self.generation,
             self.individual,
@@ -112,18 +113,18 @@ impl Schedule {
     /// The schedule of the life at `origin`: `start = "random"` draws first (one draw, 50:50),
     /// then each `at` range one uniform draw in lo..=hi, in order. Without
     /// `[evaluation.switch]` nothing is exchanged and only episode 0 starts a phase.
-    pub fn draw(experiment: &Experiment, origin: LifeOrigin) -> Schedule {
-        let k = experiment.evaluation.episodes_per_life.max(1) as usize;
+    pub fn draw(plan: &TrialPlan, origin: LifeOrigin) -> Schedule {
+        let k = plan.episodes_per_life.max(1) as usize;
         let mut exchanged = vec![false; k];
         let mut phase_start = vec![false; k];
         phase_start[0] = true;
-        let Some(switch) = &experiment.evaluation.switch else {
+        let Some(switch) = plan.switch else {
             return Schedule {
                 exchanged,
                 phase_start,
             };
         };
-        let mut rng = switch_rng(experiment, origin);
+        let mut rng = switch_rng(plan, origin);
         let mut now = switch.start == SwitchStart::Random && below(&mut rng, 2) == 1;
         let mut at = Vec::with_capacity(switch.at.len());
         for &[lo, hi] in &switch.at {
@@ -152,8 +153,8 @@ impl Schedule {
     }
 }
 
-fn switch_rng(experiment: &Experiment, origin: LifeOrigin) -> Rng {
-    origin.switch_stream(experiment)
+fn switch_rng(plan: &TrialPlan, origin: LifeOrigin) -> Rng {
+    origin.switch_stream(plan)
 }
 
 /// `world` with the payoffs (substance, capacity, bite, regen, depletes) of food kinds `a`
@@ -182,7 +183,7 @@ pub fn exchange_payoffs(world: &WorldSpec, a: &str, b: &str) -> WorldSpec {
 /// payoffs exchanged (when there is a switch).
 #[derive(Debug, Clone)]
 pub struct Life<'a> {
-    experiment: &'a Experiment,
+    plan: TrialPlan<'a>,
     origin: LifeOrigin,
     schedule: Schedule,
     exchanged: Option<WorldSpec>,
@@ -190,16 +191,14 @@ pub struct Life<'a> {
 
 impl<'a> Life<'a> {
     /// The life at `origin`.
-    pub fn new(experiment: &'a Experiment, origin: LifeOrigin) -> Life<'a> {
-        let exchanged = experiment
-            .evaluation
+    pub fn new(plan: &TrialPlan<'a>, origin: LifeOrigin) -> Life<'a> {
+        let exchanged = plan
             .switch
-            .as_ref()
-            .map(|s| exchange_payoffs(&experiment.world, &s.kinds[0], &s.kinds[1]));
+            .map(|s| exchange_payoffs(plan.world, &s.kinds[0], &s.kinds[1]));
         Life {
-            experiment,
+            plan: *plan,
             origin,
-            schedule: Schedule::draw(experiment, origin),
+            schedule: Schedule::draw(plan, origin),
             exchanged,
         }
     }
@@ -223,16 +222,16 @@ impl<'a> Life<'a> {
     pub fn world(&self, creatures: usize, episode: u64) -> Result<World, EvaluationError> {
         let spec: Cow<'_, WorldSpec> = match &self.exchanged {
             Some(spec) if self.exchanged(episode) => Cow::Borrowed(spec),
-            _ => Cow::Borrowed(&self.experiment.world),
+            _ => Cow::Borrowed(self.plan.world),
         };
         let trial = self.origin.trial;
         let generation = self.origin.generation;
-        let specs = ValidSpecs::new(&spec, &self.experiment.creature)
+        let specs = ValidSpecs::new(&spec, self.plan.creature)
             .map_err(|error| world_error(generation, trial, error))?;
         World::build(
             specs,
             creatures,
-            self.origin.episode_stream(self.experiment, episode),
+            self.origin.episode_stream(&self.plan, episode),
         )
         .map_err(|error| world_error(generation, trial, error))
     }

@@ -2,7 +2,7 @@
 //! jobs a generation's evaluation splits into. Callers come through the one door,
 //! [`crate::evo::door::Evaluate`]; this file holds what it is made of.
 //!
-//! One trial is a pure function of (experiment, the genomes of one group, generation, group
+//! One trial is a pure function of (the [`TrialPlan`], the genomes of one group, generation, group
 //! index, trial index): its world comes from its own seed stream and it shares nothing with
 //! other trials. (With common random numbers that stream does not depend on the group, so
 //! [`PopulationJobs`] builds each trial world once and hands every group a clone: the same
@@ -22,6 +22,7 @@ use crate::evo::life::{
 };
 use crate::evo::lockstep;
 use crate::evo::trial;
+use crate::evo::trial_plan::TrialPlan;
 use crate::experiment::{Aggregate, Experiment};
 use crate::seed::{Generation, TrialIndex};
 use crate::sim::metabolism::Metabolism;
@@ -61,7 +62,7 @@ impl Evaluation {
 /// from [`shared_worlds`], or a world built beforehand from the stream at `origin` (the first
 /// of the life's worlds).
 pub(crate) fn run_trial_in(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     topology: &Topology,
     genomes: &[Genome],
     group: u64,
@@ -69,13 +70,13 @@ pub(crate) fn run_trial_in(
     world: World,
 ) -> Result<Vec<TrialOutcome>, EvaluationError> {
     let mut controllers = checked_controllers(
-        experiment,
+        plan,
         topology,
         genomes,
         group,
         (origin.generation, origin.trial),
     )?;
-    if experiment.evaluation.episodes_per_life > 1 {
+    if plan.episodes_per_life > 1 {
         let id = trial::TrialId {
             generation: origin.generation,
             group,
@@ -83,7 +84,7 @@ pub(crate) fn run_trial_in(
         };
         let observer = trial::NoObserver;
         return Ok(trial::live_life(
-            experiment,
+            plan,
             Some(world),
             origin,
             id,
@@ -93,7 +94,7 @@ pub(crate) fn run_trial_in(
         .0);
     }
     Ok(trial::live(
-        experiment,
+        plan,
         world,
         &mut controllers,
         trial::NoObserver,
@@ -109,26 +110,26 @@ pub(crate) fn run_trial_in(
 /// build every trial world 64 times. Built in trial order, so a world that cannot be built
 /// is reported for the first such trial.
 pub(crate) fn shared_worlds(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     creatures: usize,
     generation: Generation,
 ) -> Result<Option<Vec<World>>, EvaluationError> {
-    if !experiment.evaluation.common_random_numbers {
+    if !plan.common_random_numbers {
         return Ok(None);
     }
-    let trials = experiment.evaluation.trials;
+    let trials = plan.trials;
     if trials == 0 {
         return Ok(Some(Vec::new()));
     }
-    let specs = valid_specs(experiment, generation, TrialIndex(0))?;
+    let specs = valid_specs(plan, generation, TrialIndex(0))?;
     (0..trials)
-        .map(|t| build_trial_world(specs, experiment, creatures, generation, 0, TrialIndex(t)))
+        .map(|t| build_trial_world(specs, plan, creatures, generation, 0, TrialIndex(t)))
         .collect::<Result<Vec<_>, _>>()
         .map(Some)
 }
 
 /// Combines an individual's trials (in trial order) into its evaluation.
-pub fn aggregate(experiment: &Experiment, trials: &[TrialOutcome]) -> Evaluation {
+pub fn aggregate(plan: &TrialPlan, trials: &[TrialOutcome]) -> Evaluation {
     let n = trials.len() as f64;
     let mut metabolism = [0.0; 4];
     for t in trials {
@@ -142,12 +143,12 @@ pub fn aggregate(experiment: &Experiment, trials: &[TrialOutcome]) -> Evaluation
     let fitness = if trials.iter().any(|t| t.non_finite || !t.score.is_finite()) {
         None
     } else {
-        Some(match experiment.evaluation.aggregate {
+        Some(match plan.aggregate {
             Aggregate::Mean => trials.iter().map(|t| t.score).sum::<f64>() / n,
             Aggregate::Min => trials.iter().map(|t| t.score).fold(f64::INFINITY, f64::min),
         })
     };
-    let measures = experiment
+    let measures = plan
         .behaviour
         .measures
         .iter()
@@ -182,9 +183,12 @@ pub type JobLives = Vec<Vec<TrialOutcome>>;
 /// population and the generation); [`PopulationJobs::reduce`] combines their results in job
 /// order, so where and in which order they ran changes no bit. This is the seam between the
 /// generation and where its work runs: this process's threads ([`ThisProcess`]) or, with the
-/// `mpi` feature, other processes (`crate::evo::ranks`).
+/// `mpi` feature, other processes (`crate::evo::ranks`). The jobs live their trials by the
+/// generation's [`TrialPlan`]; the experiment itself is kept only to be sent to other
+/// processes, which resolve the same plan from it.
 pub struct PopulationJobs<'a> {
     experiment: &'a Experiment,
+    plan: TrialPlan<'a>,
     topology: &'a Topology,
     population: &'a [Genome],
     generation: Generation,
@@ -196,18 +200,19 @@ pub struct PopulationJobs<'a> {
 impl<'a> PopulationJobs<'a> {
     /// The jobs of evaluating `population` as generation `generation`: with a stateless brain
     /// (an MLP) one per group and chunk of up to [`lockstep::CHUNK_TRIALS`] trials, otherwise
-    /// one per (group, trial) pair; group-major. Builds the shared trial worlds once (see
-    /// `shared_worlds`).
+    /// one per (group, trial) pair; group-major. Resolves the generation's [`TrialPlan`] and
+    /// builds the shared trial worlds once (see `shared_worlds`).
     pub fn new(
         experiment: &'a Experiment,
         topology: &'a Topology,
         population: &'a [Genome],
         generation: Generation,
     ) -> Result<Self, EvaluationError> {
-        let k = experiment.evaluation.group_size as usize;
-        let trials = experiment.evaluation.trials;
+        let plan = TrialPlan::new(experiment);
+        let k = plan.group_size as usize;
+        let trials = plan.trials;
         let groups = population.len() / k;
-        let shared = shared_worlds(experiment, k, generation)?;
+        let shared = shared_worlds(&plan, k, generation)?;
         let jobs = if lockstep::stateless(topology) {
             let chunks = lockstep::chunks(trials);
             (0..groups)
@@ -225,6 +230,7 @@ impl<'a> PopulationJobs<'a> {
         };
         Ok(PopulationJobs {
             experiment,
+            plan,
             topology,
             population,
             generation,
@@ -257,7 +263,7 @@ impl<'a> PopulationJobs<'a> {
         self.jobs.is_empty()
     }
 
-    /// The experiment evaluated.
+    /// The experiment evaluated (what other processes rebuild the jobs from).
     pub fn experiment(&self) -> &'a Experiment {
         self.experiment
     }
@@ -274,7 +280,7 @@ impl<'a> PopulationJobs<'a> {
 
     /// The shape of job `index`'s result: (trials, genomes per trial).
     pub fn shape(&self, index: usize) -> (usize, usize) {
-        let k = self.experiment.evaluation.group_size as usize;
+        let k = self.plan.group_size as usize;
         match &self.jobs[index] {
             Job::Chunk { trials, .. } => ((trials.end - trials.start) as usize, k),
             Job::Trial { .. } => (1, k),
@@ -283,11 +289,11 @@ impl<'a> PopulationJobs<'a> {
 
     /// Runs job `index` on the calling thread.
     pub fn run(&self, index: usize) -> Result<JobLives, EvaluationError> {
-        let k = self.experiment.evaluation.group_size as usize;
+        let k = self.plan.group_size as usize;
         let shared = self.shared.as_deref();
         match &self.jobs[index] {
             Job::Chunk { group, trials } => lockstep::run_trials_in(
-                self.experiment,
+                &self.plan,
                 self.topology,
                 &self.population[group * k..(group + 1) * k],
                 self.generation,
@@ -295,7 +301,7 @@ impl<'a> PopulationJobs<'a> {
                 trials.clone(),
                 shared,
                 LifeOrigin::trial(
-                    self.experiment,
+                    &self.plan,
                     self.generation,
                     *group as u64,
                     TrialIndex(0),
@@ -308,9 +314,9 @@ impl<'a> PopulationJobs<'a> {
                         let world = worlds[*trial as usize].clone();
                         let (generation, trial) = (self.generation, TrialIndex(*trial));
                         let origin =
-                            LifeOrigin::trial(self.experiment, generation, *group as u64, trial);
+                            LifeOrigin::trial(&self.plan, generation, *group as u64, trial);
                         run_trial_in(
-                            self.experiment,
+                            &self.plan,
                             self.topology,
                             genomes,
                             *group as u64,
@@ -319,7 +325,7 @@ impl<'a> PopulationJobs<'a> {
                         )
                     }
                     None => trial::run_trial(
-                        self.experiment,
+                        &self.plan,
                         self.topology,
                         genomes,
                         self.generation,
@@ -353,8 +359,8 @@ impl<'a> PopulationJobs<'a> {
     /// Every individual's lives from every job's result (`per_job[j]` is job j's): per
     /// individual, in population order, its trial outcomes in trial order.
     pub fn lives(&self, per_job: Vec<JobLives>) -> Vec<Vec<TrialOutcome>> {
-        let k = self.experiment.evaluation.group_size as usize;
-        let trials = self.experiment.evaluation.trials as usize;
+        let k = self.plan.group_size as usize;
+        let trials = self.plan.trials as usize;
         // outcomes[g * trials + t][i] is individual g*k + i's life in trial t.
         let outcomes: Vec<Vec<TrialOutcome>> = per_job.into_iter().flatten().collect();
         let mut lives = Vec::with_capacity(self.population.len());
@@ -371,7 +377,7 @@ impl<'a> PopulationJobs<'a> {
     pub fn reduce(&self, per_job: Vec<JobLives>) -> Vec<Evaluation> {
         self.lives(per_job)
             .iter()
-            .map(|trials| aggregate(self.experiment, trials))
+            .map(|trials| aggregate(&self.plan, trials))
             .collect()
     }
 }

@@ -9,7 +9,7 @@ use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;
 use crate::brain::{Brain, BrainController, LifeKey};
 use crate::evo::fitness::{LifePlan, LifeScore, MEASURE_COUNT};
-use crate::experiment::Experiment;
+use crate::evo::trial_plan::TrialPlan;
 use crate::seed::{stream, Generation, IndividualId, Purpose, Rng, TrialIndex};
 use crate::sim::controller::{Controller, MotorCommand};
 use crate::sim::metabolism::Metabolism;
@@ -78,23 +78,17 @@ pub struct TrialOutcome {
 /// The random stream that builds trial `trial` of generation `generation` for `group`.
 /// With common random numbers every group of a generation gets the same stream.
 pub fn trial_stream(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     generation: Generation,
     group: u64,
     trial: TrialIndex,
 ) -> Rng {
-    let who = if experiment.evaluation.common_random_numbers {
+    let who = if plan.common_random_numbers {
         IndividualId(0)
     } else {
         IndividualId(group)
     };
-    stream(
-        experiment.seed(),
-        Purpose::TrialWorld,
-        generation,
-        who,
-        trial,
-    )
+    stream(plan.seed, Purpose::TrialWorld, generation, who, trial)
 }
 
 /// The command a creature gets from `command`: itself when every field is finite, else None
@@ -127,7 +121,7 @@ impl<C: Controller> Controller for CheckedController<C> {
 
 /// Builds the controller of every genome of group `group` (errors name the individual).
 pub(crate) fn controllers(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     topology: &Topology,
     genomes: &[Genome],
     group: u64,
@@ -144,8 +138,8 @@ pub(crate) fn controllers(
             })?;
             Ok(BrainController::new(
                 brain,
-                experiment.creature.max_rpt,
-                experiment.creature.eats_by_action(),
+                plan.creature.max_rpt,
+                plan.creature.eats_by_action(),
             ))
         })
         .collect()
@@ -153,36 +147,36 @@ pub(crate) fn controllers(
 
 /// Builds trial `trial`'s world for `creatures` creatures of group `group`.
 pub(crate) fn trial_world(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     creatures: usize,
     generation: Generation,
     group: u64,
     trial: TrialIndex,
 ) -> Result<World, EvaluationError> {
-    let specs = valid_specs(experiment, generation, trial)?;
-    build_trial_world(specs, experiment, creatures, generation, group, trial)
+    let specs = valid_specs(plan, generation, trial)?;
+    build_trial_world(specs, plan, creatures, generation, group, trial)
 }
 
 /// The experiment's world and creature specifications, validated (the error names `trial`).
-pub(crate) fn valid_specs(
-    experiment: &Experiment,
+pub(crate) fn valid_specs<'a>(
+    plan: &TrialPlan<'a>,
     generation: Generation,
     trial: TrialIndex,
-) -> Result<ValidSpecs<'_>, EvaluationError> {
-    ValidSpecs::new(&experiment.world, &experiment.creature)
+) -> Result<ValidSpecs<'a>, EvaluationError> {
+    ValidSpecs::new(plan.world, plan.creature)
         .map_err(|error| world_error(generation, trial, error))
 }
 
 /// [`trial_world`] from specifications validated once for several trials.
 pub(crate) fn build_trial_world(
     specs: ValidSpecs<'_>,
-    experiment: &Experiment,
+    plan: &TrialPlan,
     creatures: usize,
     generation: Generation,
     group: u64,
     trial: TrialIndex,
 ) -> Result<World, EvaluationError> {
-    let rng = trial_stream(experiment, generation, group, trial);
+    let rng = trial_stream(plan, generation, group, trial);
     World::build(specs, creatures, rng).map_err(|error| world_error(generation, trial, error))
 }
 
@@ -235,16 +229,13 @@ pub(crate) fn record_tick(
 /// paths set up before the first tick (bite tracking and the event log turned on in `world`
 /// when the plan needs them, [`LifePlan::prepare`]; the log only ever on, so a watcher's
 /// switch made before stands).
-pub(crate) fn start_scores(
-    experiment: &Experiment,
-    world: &mut World,
-) -> (LifePlan, Vec<LifeScore>) {
-    let plan = LifePlan::new(experiment, world);
-    plan.prepare(world);
+pub(crate) fn start_scores(plan: &TrialPlan, world: &mut World) -> (LifePlan, Vec<LifeScore>) {
+    let life_plan = LifePlan::new(plan, world);
+    life_plan.prepare(world);
     let scores = (0..world.creatures().len())
-        .map(|i| LifeScore::start(&plan, world, i))
+        .map(|i| LifeScore::start(&life_plan, world, i))
         .collect();
-    (plan, scores)
+    (life_plan, scores)
 }
 
 /// Every creature's outcome at the end of a trial.
@@ -277,19 +268,19 @@ pub(crate) fn outcomes(
 /// (trial `trial` of generation `generation`): a plastic brain with random initial weights
 /// draws them from that life's stream ([`crate::brain::LifeKey`]); other brains ignore it.
 pub(crate) fn checked_controllers(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     topology: &Topology,
     genomes: &[Genome],
     group: u64,
     (generation, trial): (Generation, TrialIndex),
 ) -> Result<Vec<CheckedController<BrainController>>, EvaluationError> {
     let first = group * genomes.len() as u64;
-    Ok(controllers(experiment, topology, genomes, group)?
+    Ok(controllers(plan, topology, genomes, group)?
         .into_iter()
         .enumerate()
         .map(|(k, mut inner)| {
             inner.brain_mut().start_life(LifeKey {
-                seed: experiment.seed(),
+                seed: plan.seed,
                 generation,
                 individual: IndividualId(first + k as u64),
                 trial,

@@ -21,7 +21,7 @@ use crate::evo::life::{
     valid_specs, EvaluationError, TrialOutcome,
 };
 use crate::evo::trial::LifeEpisodes;
-use crate::experiment::Experiment;
+use crate::evo::trial_plan::TrialPlan;
 use crate::seed::{Generation, TrialIndex};
 use crate::sim::controller::MotorCommand;
 use crate::sim::world::World;
@@ -182,16 +182,16 @@ impl Lockstep {
 /// # Panics
 /// When the brains are not stateless ([`stateless`]) (a programming error: check first).
 pub fn run_trials(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     topology: &Topology,
     genomes: &[Genome],
     generation: Generation,
     group: u64,
     trials: Range<u64>,
 ) -> Result<Vec<Vec<TrialOutcome>>, EvaluationError> {
-    let origin = LifeOrigin::trial(experiment, generation, group, TrialIndex(0));
+    let origin = LifeOrigin::trial(plan, generation, group, TrialIndex(0));
     run_trials_in(
-        experiment, topology, genomes, generation, group, trials, None, origin,
+        plan, topology, genomes, generation, group, trials, None, origin,
     )
 }
 
@@ -200,7 +200,7 @@ pub fn run_trials(
 /// is at `origin.with_trial(t)` (its later episodes' worlds come from there).
 #[allow(clippy::too_many_arguments)] // the trial coordinates, each needed
 pub(crate) fn run_trials_in(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     topology: &Topology,
     genomes: &[Genome],
     generation: Generation,
@@ -209,11 +209,11 @@ pub(crate) fn run_trials_in(
     shared: Option<&[World]>,
     origin: LifeOrigin,
 ) -> Result<Vec<Vec<TrialOutcome>>, EvaluationError> {
-    let mut controllers = controllers(experiment, topology, genomes, group)?;
-    if experiment.evaluation.episodes_per_life > 1 {
+    let mut controllers = controllers(plan, topology, genomes, group)?;
+    if plan.episodes_per_life > 1 {
         let lives: Vec<Life<'_>> = trials
             .clone()
-            .map(|t| Life::new(experiment, origin.with_trial(TrialIndex(t))))
+            .map(|t| Life::new(plan, origin.with_trial(TrialIndex(t))))
             .collect();
         let firsts: Vec<Option<World>> = match shared {
             Some(worlds) => worlds[trials.start as usize..trials.end as usize]
@@ -222,21 +222,21 @@ pub(crate) fn run_trials_in(
                 .collect(),
             None => vec![None; lives.len()],
         };
-        return live_lives(experiment, &lives, firsts, &mut controllers);
+        return live_lives(plan, &lives, firsts, &mut controllers);
     }
     let worlds = match shared {
         Some(worlds) => worlds[trials.start as usize..trials.end as usize].to_vec(),
         None => {
-            let specs = valid_specs(experiment, generation, TrialIndex(trials.start))?;
+            let specs = valid_specs(plan, generation, TrialIndex(trials.start))?;
             trials
                 .map(|t| {
                     let trial = TrialIndex(t);
-                    build_trial_world(specs, experiment, genomes.len(), generation, group, trial)
+                    build_trial_world(specs, plan, genomes.len(), generation, group, trial)
                 })
                 .collect::<Result<Vec<_>, _>>()?
         }
     };
-    Ok(live_trials(experiment, worlds, &mut controllers))
+    Ok(live_trials(plan, worlds, &mut controllers))
 }
 
 /// Lives `lives` (of several episodes each) in lockstep, episode by episode: episode e of
@@ -245,7 +245,7 @@ pub(crate) fn run_trials_in(
 /// episodes of other lives in between changes nothing: each life gets the bits of
 /// [`crate::evo::trial::run_trial`]'s.
 pub(crate) fn live_lives<B: BatchController>(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     lives: &[Life<'_>],
     mut firsts: Vec<Option<World>>,
     controllers: &mut [B],
@@ -262,7 +262,7 @@ pub(crate) fn live_lives<B: BatchController>(
             .iter()
             .map(|&w| lives[w].world_or(&mut firsts[w], k, e))
             .collect::<Result<Vec<_>, _>>()?;
-        let (outcomes, choices) = live_trials_scored(experiment, worlds, controllers);
+        let (outcomes, choices) = live_trials_scored(plan, worlds, controllers);
         for ((&w, outcomes), choices) in now.iter().zip(outcomes).zip(choices) {
             going[w] = !outcomes.iter().all(|o| o.non_finite);
             for ((lived, o), c) in episodes[w].iter_mut().zip(outcomes).zip(choices) {
@@ -270,7 +270,7 @@ pub(crate) fn live_lives<B: BatchController>(
             }
         }
     }
-    let measures = &experiment.behaviour.measures;
+    let measures = &plan.behaviour.measures;
     Ok(lives
         .iter()
         .zip(&episodes)
@@ -287,11 +287,11 @@ pub(crate) fn live_lives<B: BatchController>(
 /// creature); each world stops after the first tick in which none of its creatures recorded
 /// a score, as [`crate::evo::trial::run_trial`]'s does.
 pub(crate) fn live_trials<B: BatchController>(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     worlds: Vec<World>,
     controllers: &mut [B],
 ) -> Vec<Vec<TrialOutcome>> {
-    live_trials_scored(experiment, worlds, controllers).0
+    live_trials_scored(plan, worlds, controllers).0
 }
 
 /// Per world, each creature's bites of the switch kinds.
@@ -299,7 +299,7 @@ type WorldChoices = Vec<Vec<Option<EpisodeChoices>>>;
 
 /// [`live_trials`], also returning each creature's bites of the switch kinds.
 fn live_trials_scored<B: BatchController>(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     mut worlds: Vec<World>,
     controllers: &mut [B],
 ) -> (Vec<Vec<TrialOutcome>>, WorldChoices) {
@@ -312,13 +312,13 @@ fn live_trials_scored<B: BatchController>(
     let mut plans: Vec<LifePlan> = Vec::with_capacity(n);
     let mut scores: Vec<LifeScore> = Vec::with_capacity(n * k);
     for world in &mut worlds {
-        let (plan, world_scores) = start_scores(experiment, world);
-        plans.push(plan);
+        let (life_plan, world_scores) = start_scores(plan, world);
+        plans.push(life_plan);
         scores.extend(world_scores);
     }
     let mut invalid = vec![false; n * k];
     let mut running = vec![true; n];
-    for _ in 0..experiment.evaluation.ticks {
+    for _ in 0..plan.ticks {
         if !running.contains(&true) {
             break;
         }
@@ -355,6 +355,7 @@ mod tests {
     use super::*;
     use crate::evo::life::{trial_world, CheckedController};
     use crate::evo::trial::{live, NoObserver};
+    use crate::experiment::Experiment;
     use crate::sim::controller::Controller;
     use std::path::Path;
 
@@ -410,15 +411,16 @@ mod tests {
     #[test]
     fn non_finite_commands_give_the_per_trial_outcomes() {
         let experiment = tiny(150);
+        let plan = TrialPlan::new(&experiment);
         let mut some_invalid = 0;
         let mut all_invalid = 0;
         for (creatures, every) in [(1usize, 97u64), (3, 61), (4, 1009), (2, 3)] {
             let worlds: Vec<World> = (0..CHUNK_TRIALS + 3)
-                .map(|t| trial_world(&experiment, creatures, Generation(2), 1, TrialIndex(t)))
+                .map(|t| trial_world(&plan, creatures, Generation(2), 1, TrialIndex(t)))
                 .collect::<Result<_, _>>()
                 .unwrap();
             let mut batch = vec![Flaky { every }; creatures];
-            let lockstep = live_trials(&experiment, worlds.clone(), &mut batch);
+            let lockstep = live_trials(&plan, worlds.clone(), &mut batch);
             for (world, together) in worlds.into_iter().zip(&lockstep) {
                 let mut checked: Vec<CheckedController<Flaky>> = (0..creatures)
                     .map(|_| CheckedController {
@@ -426,7 +428,7 @@ mod tests {
                         non_finite: false,
                     })
                     .collect();
-                let alone = live(&experiment, world, &mut checked, NoObserver);
+                let alone = live(&plan, world, &mut checked, NoObserver);
                 assert_eq!(alone.len(), together.len());
                 for (a, b) in alone.iter().zip(together) {
                     assert_eq!(a.score.to_bits(), b.score.to_bits());

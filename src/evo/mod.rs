@@ -23,6 +23,7 @@ pub mod state;
 pub mod stats;
 pub mod trace;
 pub mod trial;
+pub mod trial_plan;
 pub mod validation;
 pub mod vary;
 pub mod worlds;
@@ -31,4 +32,5 @@ pub use init::initial_population;
 /// PGPE, kept at its old path (`evo::pgpe`) for the code and tests that name it.
 pub use search::pgpe;
 pub use stats::FitnessStats;
+pub use trial_plan::TrialPlan;
 pub use vary::next_generation;

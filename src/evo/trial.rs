@@ -22,7 +22,7 @@ use crate::evo::life::{
     checked_controllers, outcomes, record_tick, start_scores, trial_world, CheckedController,
     EvaluationError, TrialOutcome,
 };
-use crate::experiment::Experiment;
+use crate::evo::trial_plan::TrialPlan;
 use crate::seed::{Generation, TrialIndex};
 use crate::sim::controller::Controller;
 use crate::sim::world::World;
@@ -172,7 +172,7 @@ impl<O: TickObserver + ?Sized> TickObserver for &mut O {
 /// `observer`. A pure function of its arguments: the world comes from the trial's own seed
 /// stream ([`crate::evo::life::trial_stream`]), brains are built anew for this trial.
 pub fn run_trial<O: TickObserver>(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     topology: &Topology,
     genomes: &[Genome],
     generation: Generation,
@@ -183,21 +183,21 @@ pub fn run_trial<O: TickObserver>(
     // The brains first, then the world, so that a bad genome is reported before a world
     // that cannot be built, as everywhere.
     let mut controllers =
-        checked_controllers(experiment, topology, genomes, group, (generation, trial))?;
+        checked_controllers(plan, topology, genomes, group, (generation, trial))?;
     let id = TrialId {
         generation,
         group,
         trial,
     };
-    if experiment.evaluation.episodes_per_life > 1 {
-        let origin = LifeOrigin::trial(experiment, generation, group, trial);
-        return Ok(live_life(experiment, None, origin, id, &mut controllers, observer)?.0);
+    if plan.episodes_per_life > 1 {
+        let origin = LifeOrigin::trial(plan, generation, group, trial);
+        return Ok(live_life(plan, None, origin, id, &mut controllers, observer)?.0);
     }
-    let mut world = trial_world(experiment, genomes.len(), generation, group, trial)?;
+    let mut world = trial_world(plan, genomes.len(), generation, group, trial)?;
     // Before `start_scores`, which also switches the log on for a plan that reads events.
     world.set_event_log(observer.listens());
     observer.start(id, &world);
-    Ok(live(experiment, world, &mut controllers, observer))
+    Ok(live(plan, world, &mut controllers, observer))
 }
 
 /// Lives one trial in a `world` built beforehand for `genomes.len()` creatures (e.g. a
@@ -206,7 +206,7 @@ pub fn run_trial<O: TickObserver>(
 /// scores. `id` only names the trial to the observer (and numbers individuals in errors);
 /// `origin` is where `world` came from, whence the later episodes of a life of several.
 pub fn run_trial_in_world<O: TickObserver>(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     topology: &Topology,
     genomes: &[Genome],
     id: TrialId,
@@ -215,14 +215,14 @@ pub fn run_trial_in_world<O: TickObserver>(
     observer: O,
 ) -> Result<Vec<TrialOutcome>, EvaluationError> {
     let mut controllers = checked_controllers(
-        experiment,
+        plan,
         topology,
         genomes,
         id.group,
         (origin.generation, origin.trial),
     )?;
     Ok(live_life(
-        experiment,
+        plan,
         Some(world),
         origin,
         id,
@@ -236,7 +236,7 @@ pub fn run_trial_in_world<O: TickObserver>(
 /// built beforehand, showing each episode to `observer`: each creature's life outcome and
 /// its episodes (what `compare --json` reports per episode).
 pub fn run_life<O: TickObserver>(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     topology: &Topology,
     genomes: &[Genome],
     id: TrialId,
@@ -245,13 +245,13 @@ pub fn run_life<O: TickObserver>(
     observer: O,
 ) -> Result<(Vec<TrialOutcome>, LifeEpisodes), EvaluationError> {
     let mut controllers = checked_controllers(
-        experiment,
+        plan,
         topology,
         genomes,
         id.group,
         (origin.generation, origin.trial),
     )?;
-    live_life(experiment, first, origin, id, &mut controllers, observer)
+    live_life(plan, first, origin, id, &mut controllers, observer)
 }
 
 /// Every creature's episodes of one life, in order: each episode's outcome and its bites of
@@ -265,14 +265,14 @@ pub type LifeEpisodes = Vec<Vec<(TrialOutcome, Option<EpisodeChoices>)>>;
 /// outcomes). Returns each creature's life outcome and its episodes. A life of one episode is
 /// the trial [`live`] lives, bit for bit.
 pub(crate) fn live_life<C: Controller + BrainOf, O: TickObserver>(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     first: Option<World>,
     origin: LifeOrigin,
     id: TrialId,
     controllers: &mut [CheckedController<C>],
     mut observer: O,
 ) -> Result<(Vec<TrialOutcome>, LifeEpisodes), EvaluationError> {
-    let life = Life::new(experiment, origin);
+    let life = Life::new(plan, origin);
     let n = controllers.len();
     if life.episodes() <= 1 {
         let mut world = match first {
@@ -281,7 +281,7 @@ pub(crate) fn live_life<C: Controller + BrainOf, O: TickObserver>(
         };
         world.set_event_log(observer.listens());
         observer.start(id, &world);
-        let (outcomes, choices) = live_episode(experiment, world, controllers, observer);
+        let (outcomes, choices) = live_episode(plan, world, controllers, observer);
         let episodes = outcomes
             .iter()
             .copied()
@@ -303,7 +303,7 @@ pub(crate) fn live_life<C: Controller + BrainOf, O: TickObserver>(
             switched: e > 0 && schedule.phase_start[e as usize],
         });
         observer.start(id, &world);
-        let (outcomes, choices) = live_episode(experiment, world, controllers, &mut observer);
+        let (outcomes, choices) = live_episode(plan, world, controllers, &mut observer);
         // A non-finite output ends the life (its creature stood still since).
         let over = outcomes.iter().all(|o| o.non_finite);
         for ((lived, o), c) in episodes.iter_mut().zip(outcomes).zip(choices) {
@@ -313,7 +313,7 @@ pub(crate) fn live_life<C: Controller + BrainOf, O: TickObserver>(
             break;
         }
     }
-    let measures = &experiment.behaviour.measures;
+    let measures = &plan.behaviour.measures;
     let outcomes = episodes.iter().map(|e| life.outcome(measures, e)).collect();
     Ok((outcomes, episodes))
 }
@@ -322,28 +322,28 @@ pub(crate) fn live_life<C: Controller + BrainOf, O: TickObserver>(
 /// each tick to `observer`, and stops after the first tick in which no creature recorded a
 /// score (nothing it could still record).
 pub(crate) fn live<C: Controller + BrainOf, O: TickObserver>(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     world: World,
     controllers: &mut [CheckedController<C>],
     observer: O,
 ) -> Vec<TrialOutcome> {
-    live_episode(experiment, world, controllers, observer).0
+    live_episode(plan, world, controllers, observer).0
 }
 
 /// [`live`], also returning each creature's bites of the switch kinds.
 fn live_episode<C: Controller + BrainOf, O: TickObserver>(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     mut world: World,
     controllers: &mut [CheckedController<C>],
     mut observer: O,
 ) -> (Vec<TrialOutcome>, Vec<Option<EpisodeChoices>>) {
-    let (plan, mut scores) = start_scores(experiment, &mut world);
+    let (life_plan, mut scores) = start_scores(plan, &mut world);
     let mut invalid = vec![false; controllers.len()];
     let brains = observer.watches_brains();
     if brains {
         show_brains(&mut observer, controllers, 0);
     }
-    for _ in 0..experiment.evaluation.ticks {
+    for _ in 0..plan.ticks {
         world.step(controllers);
         for (flag, controller) in invalid.iter_mut().zip(controllers.iter()) {
             *flag = controller.non_finite;
@@ -352,11 +352,11 @@ fn live_episode<C: Controller + BrainOf, O: TickObserver>(
         if brains {
             show_brains(&mut observer, controllers, world.tick());
         }
-        if !record_tick(&world, &invalid, &mut scores, &plan) {
+        if !record_tick(&world, &invalid, &mut scores, &life_plan) {
             break;
         }
     }
-    let outcomes = outcomes(&world, &scores, &invalid, &plan);
+    let outcomes = outcomes(&world, &scores, &invalid, &life_plan);
     observer.finish(&world, &outcomes);
     (outcomes, scores.iter().map(|s| s.choices()).collect())
 }

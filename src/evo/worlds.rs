@@ -10,6 +10,7 @@ use crate::brain::genome::Genome;
 use crate::evo::episodes::LifeOrigin;
 use crate::evo::init::initial_population;
 use crate::evo::life::{trial_stream, valid_specs, world_error, EvaluationError};
+use crate::evo::trial_plan::TrialPlan;
 use crate::experiment::Experiment;
 use crate::seed::{stream, Generation, IndividualId, Purpose, Rng, TrialIndex};
 use crate::sim::world::World;
@@ -217,12 +218,12 @@ impl WorldSet {
             }),
             WorldSet::Training(_) | WorldSet::HeldOut | WorldSet::Design => {
                 let generation = self.generation();
-                let trials = experiment.evaluation.trials;
+                let plan = TrialPlan::new(experiment);
                 Ok(BuiltWorlds {
-                    worlds: worlds_from(experiment, trials, generation, |t| {
-                        trial_stream(experiment, generation, 0, t)
+                    worlds: worlds_from(&plan, plan.trials, generation, |t| {
+                        trial_stream(&plan, generation, 0, t)
                     })?,
-                    origin: LifeOrigin::trial(experiment, generation, 0, TrialIndex(0)),
+                    origin: LifeOrigin::trial(&plan, generation, 0, TrialIndex(0)),
                 })
             }
         }
@@ -273,7 +274,7 @@ pub struct BuiltWorlds {
 /// the [`Purpose::ValidationWorld`] stream of (seed, generation 0, individual 0, trial t).
 pub fn validation_worlds(experiment: &Experiment) -> Result<Vec<World>, EvaluationError> {
     worlds_from(
-        experiment,
+        &TrialPlan::new(experiment),
         experiment.validation.trials,
         Generation(0),
         |trial| {
@@ -291,7 +292,7 @@ pub fn validation_worlds(experiment: &Experiment) -> Result<Vec<World>, Evaluati
 /// Builds `trials` worlds for one creature each from `rng_of(t)`, in trial order,
 /// validating the specifications once.
 fn worlds_from(
-    experiment: &Experiment,
+    plan: &TrialPlan,
     trials: u64,
     generation: Generation,
     rng_of: impl Fn(TrialIndex) -> Rng,
@@ -299,7 +300,7 @@ fn worlds_from(
     if trials == 0 {
         return Ok(Vec::new());
     }
-    let specs = valid_specs(experiment, generation, TrialIndex(0))?;
+    let specs = valid_specs(plan, generation, TrialIndex(0))?;
     (0..trials)
         .map(|t| {
             World::build(specs, 1, rng_of(TrialIndex(t)))

@@ -15,6 +15,7 @@ use crate::evo::evaluate::shared_worlds;
 use crate::evo::life::EvaluationError;
 use crate::evo::lockstep;
 use crate::evo::search;
+use crate::evo::TrialPlan;
 use crate::experiment::Experiment;
 use crate::seed::Generation;
 use serde::Serialize;
@@ -267,7 +268,7 @@ fn measure(
     let timed = timed.unwrap_or_else(|| experiment.clone());
     let (trials, ticks) = (timed.evaluation.trials, timed.evaluation.ticks);
     let world_seconds = if timed.evaluation.common_random_numbers {
-        time(|| shared_worlds(&timed, k, Generation(0)).map(drop))?
+        time(|| shared_worlds(&TrialPlan::new(&timed), k, Generation(0)).map(drop))?
     } else {
         0.0
     };

@@ -10,6 +10,7 @@ use super::names::{CHAMPIONS_FILE, CHECKPOINT_DIR, EXPERIMENT_FILE, FITNESS_FILE
 use super::progress::{Progress, RunOptions, RunSummary};
 use crate::evo::life::EvaluationError;
 use crate::evo::search;
+use crate::evo::TrialPlan;
 use crate::experiment::Experiment;
 use crate::record::atomic::write_atomic;
 use crate::record::champions::ChampionsLog;
@@ -20,10 +21,11 @@ use std::path::Path;
 /// be built (a placement rule with no room) is found before anything is written: `run`
 /// refuses it touching no folder, and `inspect` reports it.
 pub fn check_worlds(experiment: &Experiment) -> Result<(), EvaluationError> {
-    let creatures = experiment.evaluation.group_size as usize;
-    for t in 0..experiment.evaluation.trials {
+    let plan = TrialPlan::new(experiment);
+    let creatures = plan.group_size as usize;
+    for t in 0..plan.trials {
         crate::evo::life::trial_world(
-            experiment,
+            &plan,
             creatures,
             crate::seed::Generation(0),
             0,

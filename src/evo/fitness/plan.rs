@@ -5,7 +5,8 @@ use crate::evo::choices::ChoicePlan;
 use crate::evo::fitness::gain::Goal;
 use crate::experiment::tables::area_index;
 use crate::experiment::terms::{self, Quantity, TERMS, TERM_COUNT};
-use crate::experiment::{Balance, Experiment, FitnessMode, FitnessSpec, GoalAt, Measure};
+use crate::evo::trial_plan::TrialPlan;
+use crate::experiment::{Balance, FitnessMode, FitnessSpec, GoalAt, Measure};
 use crate::geometry::Vec2;
 use crate::sim::area::Area;
 use crate::sim::world::World;
@@ -81,14 +82,14 @@ impl LifePlan {
         }
     }
 
-    /// The plan of `experiment`'s `[fitness]` and `[behaviour]` tables in `world` (a trial
+    /// The plan of the trial's `[fitness]` and `[behaviour]` tables in `world` (a trial
     /// world of the experiment: its areas are the experiment's, in file order).
-    pub fn new(experiment: &Experiment, world: &World) -> LifePlan {
-        let spec = &experiment.fitness;
-        let behaviour = &experiment.behaviour;
+    pub fn new(trial_plan: &TrialPlan, world: &World) -> LifePlan {
+        let spec = trial_plan.fitness;
+        let behaviour = trial_plan.behaviour;
         let area = |name: &Option<String>| -> Option<Area> {
             let name = name.as_deref()?;
-            let k = area_index(&experiment.world, "", name).ok()?;
+            let k = area_index(trial_plan.world, "", name).ok()?;
             world.areas().get(k).copied()
         };
         let mut plan = LifePlan::plain(spec);
@@ -108,7 +109,7 @@ impl LifePlan {
         plan.behaviour_area = area(&behaviour.area);
         plan.threat_radius = behaviour.threat_radius;
         if plan.measures.iter().any(|m| m.needs_switch()) {
-            plan.choices = ChoicePlan::new(experiment, world);
+            plan.choices = ChoicePlan::new(trial_plan, world);
         }
         plan.counts_threats = plan.weight(Quantity::ShelteredThreatTicks) != 0.0
             || plan.measures.contains(&Measure::ShelterWhileThreat);
