@@ -23,7 +23,8 @@
 //! - `evo`: the searches behind one ask/tell trait (`evo::search`: GA, PGPE, CMA-ES,
 //!   novelty, MAP-Elites), and parallel, deterministic evaluation through one door
 //!   (`evo::door`: `Evaluate { genomes, worlds }`, worlds of training generation g, a named
-//!   set alone or built worlds, here or on MPI ranks): one trial path (`evo::trial`), the
+//!   set alone or built worlds, here or on MPI ranks): what a trial reads of the experiment,
+//!   resolved once per request (`evo::trial_plan`), one trial path (`evo::trial`), the
 //!   parts evaluation and lockstep share (`evo::life`), the named world sets, held-out and
 //!   design included, and the random baselines (`evo::worlds`), the fitness plan and scoring
 //!   (`evo::fitness`, which reads the world's events), lives of several episodes

@@ -13,6 +13,7 @@ use berry_evolve::evo::episode::Episode;
 use berry_evolve::evo::evaluate::Evaluation;
 use berry_evolve::evo::life::EvaluationError;
 use berry_evolve::evo::worlds::{WorldSet, HELD_OUT_GENERATION};
+use berry_evolve::evo::TrialPlan;
 use berry_evolve::experiment::{Experiment, ExperimentError};
 use berry_evolve::record::genome_file::{GenomeFile, GenomeFileError, Origin};
 use berry_evolve::seed::{Generation, TrialIndex};
@@ -382,8 +383,9 @@ impl Worlds {
                 self.episodes.len()
             )));
         }
-        let episode = Episode::new(&self.experiment, self.generation, TrialIndex(trial))
-            .map_err(value_error)?;
+        let plan = TrialPlan::new(&self.experiment);
+        let episode =
+            Episode::new(&plan, self.generation, TrialIndex(trial)).map_err(value_error)?;
         let out = obs.as_slice_mut().map_err(value_error)?;
         if out.len() != episode.observation().len() {
             return Err(value_error(format!(
@@ -441,7 +443,8 @@ impl Worlds {
         {
             return Err(value_error("output buffers of the wrong size"));
         }
-        let (experiment, generation, a) = (&*self.experiment, self.generation, self.actions);
+        let plan = TrialPlan::new(&self.experiment);
+        let (plan, generation, a) = (&plan, self.generation, self.actions);
         let episodes = &mut self.episodes;
         let next_trial = &mut self.next_trial;
         py.allow_threads(|| {
@@ -458,7 +461,7 @@ impl Worlds {
                     |((((((slot, next), out), reward), term), trunc), action)| -> Result<(), EvaluationError> {
                         let episode = slot.as_mut().expect("reset before step");
                         if autoreset && episode.is_over() {
-                            *episode = Episode::new(experiment, generation, TrialIndex(*next))?;
+                            *episode = Episode::new(plan, generation, TrialIndex(*next))?;
                             *next = next.wrapping_add(1) & (u64::MAX >> 1);
                             *reward = 0.0;
                             *term = false;

@@ -43,11 +43,7 @@ impl LifeOrigin {
         group: u64,
         trial: TrialIndex,
     ) -> LifeOrigin {
-        let who = if plan.common_random_numbers {
-            0
-        } else {
-            group
-        };
+        let who = if plan.common_random_numbers { 0 } else { group };
         LifeOrigin {
             purpose: Purpose::TrialWorld,
             generation,

@@ -83,15 +83,7 @@ pub(crate) fn run_trial_in(
             trial: origin.trial,
         };
         let observer = trial::NoObserver;
-        return Ok(trial::live_life(
-            plan,
-            Some(world),
-            origin,
-            id,
-            &mut controllers,
-            observer,
-        )?
-        .0);
+        return Ok(trial::live_life(plan, Some(world), origin, id, &mut controllers, observer)?.0);
     }
     Ok(trial::live(
         plan,
@@ -300,12 +292,7 @@ impl<'a> PopulationJobs<'a> {
                 *group as u64,
                 trials.clone(),
                 shared,
-                LifeOrigin::trial(
-                    &self.plan,
-                    self.generation,
-                    *group as u64,
-                    TrialIndex(0),
-                ),
+                LifeOrigin::trial(&self.plan, self.generation, *group as u64, TrialIndex(0)),
             ),
             Job::Trial { group, trial } => {
                 let genomes = &self.population[group * k..(group + 1) * k];

@@ -3,7 +3,8 @@
 //! outcome of a life, and why a trial could not run. The one-world path
 //! ([`crate::evo::trial`]), the lockstep path ([`crate::evo::lockstep`]) and evaluation's
 //! shared worlds ([`crate::evo::evaluate`]) are built from these, so they agree to the bit;
-//! none of them imports another for them.
+//! none of them imports another for them. Each reads the experiment through the trial's
+//! [`TrialPlan`] only.
 
 use crate::brain::genome::Genome;
 use crate::brain::spec::Topology;

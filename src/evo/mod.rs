@@ -2,7 +2,10 @@
 //! algorithm or PGPE behind one ask/tell trait) and the evaluation it asks for. This part holds
 //! the random generation 0, selection, variation (crossover and mutation), trials and their
 //! evaluation, and fitness statistics; the `[evolution]` table it reads is
-//! [`crate::experiment::evolution`]. Every random draw comes from a stream passed in,
+//! [`crate::experiment::evolution`]. The trial code (worlds, lives, scores: [`trial`],
+//! [`lockstep`], [`life`], [`episodes`], [`episode`], [`fitness`]) reads the experiment only
+//! through a [`TrialPlan`] resolved once per request ([`trial_plan`]); the searches and the
+//! named world sets read the whole experiment. Every random draw comes from a stream passed in,
 //! in a documented order, so a run reproduces bit for bit from its seed.
 
 pub mod choices;

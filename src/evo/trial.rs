@@ -7,6 +7,10 @@
 //! from the same parts ([`crate::evo::life`]: the world, the checked controllers, the score
 //! bookkeeping).
 //!
+//! A trial reads the experiment only through its [`TrialPlan`] (the world, the creature, the
+//! ticks, the streams, the scoring), resolved once by whoever starts the trials, so nothing on
+//! this path can depend on the search's, the validation's or the output's settings.
+//!
 //! A caller watches the trial through a [`TickObserver`]: [`TickObserver::start`] sees the
 //! world as built (tick 0), [`TickObserver::tick`] the world after every tick (the last one
 //! included: the tick in which the trial ended), [`TickObserver::finish`] the outcomes.
@@ -182,8 +186,7 @@ pub fn run_trial<O: TickObserver>(
 ) -> Result<Vec<TrialOutcome>, EvaluationError> {
     // The brains first, then the world, so that a bad genome is reported before a world
     // that cannot be built, as everywhere.
-    let mut controllers =
-        checked_controllers(plan, topology, genomes, group, (generation, trial))?;
+    let mut controllers = checked_controllers(plan, topology, genomes, group, (generation, trial))?;
     let id = TrialId {
         generation,
         group,
@@ -221,15 +224,7 @@ pub fn run_trial_in_world<O: TickObserver>(
         id.group,
         (origin.generation, origin.trial),
     )?;
-    Ok(live_life(
-        plan,
-        Some(world),
-        origin,
-        id,
-        &mut controllers,
-        observer,
-    )?
-    .0)
+    Ok(live_life(plan, Some(world), origin, id, &mut controllers, observer)?.0)
 }
 
 /// Lives the life at `origin` for `genomes` (one creature each), `first` its first world when

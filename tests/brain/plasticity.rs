@@ -9,6 +9,7 @@ use berry_evolve::brain::activation::tanh;
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::brain::{Brain, LifeKey, SignalInputs, Topology};
 use berry_evolve::evo::trial::{run_trial, NoObserver};
+use berry_evolve::evo::TrialPlan;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::{Generation, IndividualId, Seed, TrialIndex};
 use std::path::Path;
@@ -306,7 +307,7 @@ fn frozen_plasticity_lives_a_trial_as_the_fixed_mlp_bit_for_bit() {
         .map(|k| ((k * 37 % 23) as f64 - 11.0) / 9.0)
         .collect();
     let expected = run_trial(
-        &fixed,
+        &TrialPlan::new(&fixed),
         &topology,
         &[Genome::new(parameters.clone())],
         Generation(0),
@@ -333,7 +334,7 @@ fn frozen_plasticity_lives_a_trial_as_the_fixed_mlp_bit_for_bit() {
             }
         }));
         let outcomes = run_trial(
-            &plastic,
+            &TrialPlan::new(&plastic),
             &topology,
             &[Genome::new(genome.clone())],
             Generation(0),
@@ -550,7 +551,7 @@ fn plastic_evaluation_is_the_single_trial_path_on_any_thread_count() {
                 let lives: Vec<_> = (0..experiment.evaluation.trials)
                     .map(|t| {
                         run_trial(
-                            &experiment,
+                            &TrialPlan::new(&experiment),
                             &topology,
                             std::slice::from_ref(genome),
                             Generation(2),
@@ -561,7 +562,7 @@ fn plastic_evaluation_is_the_single_trial_path_on_any_thread_count() {
                         .unwrap()[0]
                     })
                     .collect();
-                aggregate(&experiment, &lives)
+                aggregate(&TrialPlan::new(&experiment), &lives)
             })
             .collect();
         for threads in [1, 2] {

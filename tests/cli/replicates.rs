@@ -5,6 +5,7 @@
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::evaluate::aggregate;
 use berry_evolve::evo::trial::{run_trial, NoObserver};
+use berry_evolve::evo::TrialPlan;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::seed::{Generation, TrialIndex};
@@ -131,7 +132,7 @@ fn each_seed_of_a_batch_is_the_single_seed_run() {
         let outcomes: Vec<_> = (0..3)
             .map(|t| {
                 run_trial(
-                    &experiment,
+                    &TrialPlan::new(&experiment),
                     &experiment.topology(),
                     std::slice::from_ref(&genome),
                     Generation(1 << 40),
@@ -142,7 +143,9 @@ fn each_seed_of_a_batch_is_the_single_seed_run() {
                 .unwrap()[0]
             })
             .collect();
-        let expected = aggregate(&experiment, &outcomes).fitness.unwrap();
+        let expected = aggregate(&TrialPlan::new(&experiment), &outcomes)
+            .fitness
+            .unwrap();
         assert_eq!(row[3].parse::<f64>().unwrap(), expected, "seed {seed}");
     }
     assert_eq!(rows[3][0], "random_median");

@@ -12,6 +12,7 @@ use berry_evolve::evo::evaluate::{aggregate, Evaluation};
 use berry_evolve::evo::life::{EvaluationError, TrialOutcome};
 use berry_evolve::evo::trial::{self, NoObserver};
 use berry_evolve::evo::worlds::{random_genomes, WorldSet, HELD_OUT_GENERATION};
+use berry_evolve::evo::TrialPlan;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::{Generation, TrialIndex};
 use std::path::Path;
@@ -27,7 +28,13 @@ pub fn run_trial(
     trial: TrialIndex,
 ) -> Result<Vec<TrialOutcome>, EvaluationError> {
     trial::run_trial(
-        experiment, topology, genomes, generation, group, trial, NoObserver,
+        &TrialPlan::new(experiment),
+        topology,
+        genomes,
+        generation,
+        group,
+        trial,
+        NoObserver,
     )
 }
 
@@ -54,9 +61,10 @@ pub fn evaluate_group(
             list.push(outcome);
         }
     }
+    let plan = TrialPlan::new(experiment);
     Ok(per_individual
         .iter()
-        .map(|trials| aggregate(experiment, trials))
+        .map(|trials| aggregate(&plan, trials))
         .collect())
 }
 
@@ -127,7 +135,11 @@ fn a_set_met_alone_is_group_zero_of_its_generation_trial_by_trial() {
             }
             let evaluations = request.run().unwrap();
             for (evaluation, lived) in evaluations.iter().zip(&lives) {
-                assert_eq!(*evaluation, aggregate(&e, lived), "{name}: {set:?}");
+                assert_eq!(
+                    *evaluation,
+                    aggregate(&TrialPlan::new(&e), lived),
+                    "{name}: {set:?}"
+                );
             }
         }
     }
@@ -164,7 +176,8 @@ fn training_worlds_are_the_runs_generation() {
     }
     assert_eq!(one, serial);
     let lives = request.lives().unwrap();
-    let aggregated: Vec<Evaluation> = lives.iter().map(|l| aggregate(&e, l)).collect();
+    let plan = TrialPlan::new(&e);
+    let aggregated: Vec<Evaluation> = lives.iter().map(|l| aggregate(&plan, l)).collect();
     assert_eq!(aggregated, one);
 }
 

@@ -3,6 +3,7 @@
 //! meal, one parked, spinning or driving, and one choosing a side of its start line.
 
 use berry_evolve::evo::fitness::{LifePlan, LifeScore, MEASURE_COUNT};
+use berry_evolve::evo::TrialPlan;
 use berry_evolve::experiment::{Experiment, Measure};
 use berry_evolve::seed::{stream, Generation, IndividualId, Purpose, Seed, TrialIndex};
 use berry_evolve::sim::controller::{Controller, MotorCommand};
@@ -95,7 +96,7 @@ fn live(e: &Experiment, script: Vec<(f64, f64)>) -> Life {
         TrialIndex(0),
     );
     let mut world = World::new(&e.world, &e.creature, 1, rng).unwrap();
-    let plan = LifePlan::new(e, &world);
+    let plan = LifePlan::new(&TrialPlan::new(e), &world);
     assert!(plan.needs_world_every_tick() && plan.needs_bites());
     plan.prepare(&mut world);
     let mut score = LifeScore::start(&plan, &world, 0);

@@ -9,6 +9,7 @@ use berry_evolve::brain::{Brain, BrainController};
 use berry_evolve::evo::episode::Episode;
 use berry_evolve::evo::search::ga::first_population;
 use berry_evolve::evo::trial::{run_trial, NoObserver};
+use berry_evolve::evo::TrialPlan;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::{Generation, TrialIndex};
 use berry_evolve::sim::controller::{Controller, MotorCommand};
@@ -44,7 +45,7 @@ fn an_episode_stepped_by_a_brain_is_the_scored_trial() {
         let genome: Genome = first_population(&experiment, &topology).swap_remove(1);
         for (generation, trial) in [(Generation(2), 0), (Generation(1 << 40), 3)] {
             let scored = run_trial(
-                &experiment,
+                &TrialPlan::new(&experiment),
                 &topology,
                 std::slice::from_ref(&genome),
                 generation,
@@ -58,7 +59,8 @@ fn an_episode_stepped_by_a_brain_is_the_scored_trial() {
                 experiment.creature.max_rpt,
                 experiment.creature.eats_by_action(),
             );
-            let mut episode = Episode::new(&experiment, generation, TrialIndex(trial)).unwrap();
+            let mut episode =
+                Episode::new(&TrialPlan::new(&experiment), generation, TrialIndex(trial)).unwrap();
             let mut total = 0.0;
             let mut ticks = 0;
             while !episode.is_over() {
@@ -99,7 +101,8 @@ fn an_episode_stepped_by_a_brain_is_the_scored_trial() {
 fn a_non_finite_command_ends_the_episode() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("experiments/foraging.toml");
     let experiment = Experiment::load(&path).unwrap();
-    let mut episode = Episode::new(&experiment, Generation(0), TrialIndex(0)).unwrap();
+    let mut episode =
+        Episode::new(&TrialPlan::new(&experiment), Generation(0), TrialIndex(0)).unwrap();
     let step = episode.step(MotorCommand {
         left: f64::NAN,
         right: 0.0,

@@ -13,6 +13,7 @@ use berry_evolve::evo::fitness::{LifePlan, LifeScore};
 use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::lockstep;
 use berry_evolve::evo::trial::{TickObserver, TrialId};
+use berry_evolve::evo::TrialPlan;
 use berry_evolve::experiment::{Experiment, Measure};
 use berry_evolve::seed::{stream, uniform, Generation, IndividualId, Purpose, TrialIndex};
 use berry_evolve::sim::world::World;
@@ -156,7 +157,7 @@ fn one_episode_per_life_is_the_trial_of_before() {
 /// Lives one episode in `world` by hand with `controller` (the loop of the trial path: step,
 /// record while alive), returning its score.
 fn episode_by_hand(e: &Experiment, mut world: World, controller: &mut BrainController) -> f64 {
-    let plan = LifePlan::new(e, &world);
+    let plan = LifePlan::new(&TrialPlan::new(e), &world);
     plan.prepare(&mut world);
     let mut score = LifeScore::start(&plan, &world, 0);
     for _ in 0..e.evaluation.ticks {
@@ -200,8 +201,9 @@ fn a_recurrent_brain_carries_its_state_across_episodes_not_across_lives() {
                 TrialIndex(t),
             )
             .unwrap()[0];
-            let origin = LifeOrigin::trial(&e, Generation(2), 0, TrialIndex(t));
-            let worlds = Life::new(&e, origin);
+            let plan = TrialPlan::new(&e);
+            let origin = LifeOrigin::trial(&plan, Generation(2), 0, TrialIndex(t));
+            let worlds = Life::new(&plan, origin);
             let by_hand = |reset: bool| {
                 let brain = Brain::new(&topology, &g.parameters).unwrap();
                 let mut c =
@@ -230,12 +232,13 @@ fn switch_draws_are_per_life_deterministic_and_inside_the_range() {
         "[evaluation]\nepisodes_per_life = 9\n\n[evaluation.switch]\n\
          kinds = [\"left_goal\", \"right_goal\"]\nstart = \"random\"\nat = [[3, 5], [7, 7]]\n",
     ));
+    let plan = TrialPlan::new(&e);
     let mut firsts = std::collections::BTreeSet::new();
     let mut exchanged_at_start = 0;
     for t in 0..200 {
-        let origin = LifeOrigin::trial(&e, Generation(4), 0, TrialIndex(t));
-        let s = Schedule::draw(&e, origin);
-        assert_eq!(s, Schedule::draw(&e, origin), "deterministic");
+        let origin = LifeOrigin::trial(&plan, Generation(4), 0, TrialIndex(t));
+        let s = Schedule::draw(&plan, origin);
+        assert_eq!(s, Schedule::draw(&plan, origin), "deterministic");
         let switches = s.switches();
         assert_eq!(switches.len(), 2);
         assert!((3..=5).contains(&switches[0]), "{switches:?}");
@@ -254,9 +257,12 @@ fn switch_draws_are_per_life_deterministic_and_inside_the_range() {
         "{exchanged_at_start}"
     );
     // Validation worlds draw their own.
-    let a = Schedule::draw(&e, LifeOrigin::trial(&e, Generation(0), 0, TrialIndex(0)));
+    let a = Schedule::draw(
+        &plan,
+        LifeOrigin::trial(&plan, Generation(0), 0, TrialIndex(0)),
+    );
     let lives: Vec<Schedule> = (0..20)
-        .map(|t| Schedule::draw(&e, LifeOrigin::validation(TrialIndex(t))))
+        .map(|t| Schedule::draw(&plan, LifeOrigin::validation(TrialIndex(t))))
         .collect();
     assert!(lives.iter().any(|s| *s != a));
 }
@@ -270,7 +276,11 @@ fn a_switch_exchanges_the_payoffs_not_the_look() {
         "[evaluation]\nepisodes_per_life = 3\n\n[evaluation.switch]\n\
          kinds = [\"left_goal\", \"right_goal\"]\nat = [[2, 2]]\n",
     ));
-    let life = Life::new(&e, LifeOrigin::trial(&e, Generation(0), 0, TrialIndex(0)));
+    let plan = TrialPlan::new(&e);
+    let life = Life::new(
+        &plan,
+        LifeOrigin::trial(&plan, Generation(0), 0, TrialIndex(0)),
+    );
     assert_eq!(life.schedule().exchanged, vec![false, true, true]);
     let [w0, w1, w2] = [0, 1, 2].map(|k| life.world(1, k).unwrap());
     let goal = |w: &World, name: &str| {
@@ -298,7 +308,12 @@ fn a_switch_exchanges_the_payoffs_not_the_look() {
     let first = berry_evolve::sim::world::World::build(
         berry_evolve::sim::world::ValidSpecs::new(&one.world, &one.creature).unwrap(),
         1,
-        berry_evolve::evo::life::trial_stream(&one, Generation(0), 0, TrialIndex(0)),
+        berry_evolve::evo::life::trial_stream(
+            &TrialPlan::new(&one),
+            Generation(0),
+            0,
+            TrialIndex(0),
+        ),
     )
     .unwrap();
     assert_eq!(crumbs(&w0), crumbs(&first));
@@ -318,7 +333,7 @@ fn lockstep_equals_single_trials_with_episodes_and_switches() {
         let genomes = std::slice::from_ref(genome);
         for chunk in lockstep::chunks(e.evaluation.trials) {
             let together = lockstep::run_trials(
-                &e,
+                &TrialPlan::new(&e),
                 &topology,
                 genomes,
                 Generation(3),
@@ -395,7 +410,11 @@ fn the_switch_measures_on_a_hand_made_life() {
         "[evaluation]\nepisodes_per_life = 4\n\n[evaluation.switch]\n\
          kinds = [\"left_goal\", \"right_goal\"]\nat = [[2, 2]]\n",
     ));
-    let l = Life::new(&e, LifeOrigin::trial(&e, Generation(0), 0, TrialIndex(0)));
+    let plan = TrialPlan::new(&e);
+    let l = Life::new(
+        &plan,
+        LifeOrigin::trial(&plan, Generation(0), 0, TrialIndex(0)),
+    );
     let c = |first: Option<bool>, bites: u64, good: u64| {
         let o = run_trial(
             &e,
@@ -567,7 +586,7 @@ fn an_observer_sees_each_episode_as_a_trial() {
     let mut shown = Shown::default();
     let g = [genome(&e, 1)];
     let life = berry_evolve::evo::trial::run_trial(
-        &e,
+        &TrialPlan::new(&e),
         &topology,
         &g,
         Generation(1),

@@ -8,6 +8,7 @@ use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::evaluate::Evaluation;
 use berry_evolve::evo::fitness::{LifePlan, LifeScore, MEASURE_COUNT};
 use berry_evolve::evo::lockstep;
+use berry_evolve::evo::TrialPlan;
 use berry_evolve::experiment::{Experiment, Measure};
 use berry_evolve::geometry::Vec2;
 use berry_evolve::seed::{stream, Generation, IndividualId, Purpose, Seed, TrialIndex};
@@ -111,7 +112,7 @@ fn at(x: f64, y: f64) -> Step {
 /// dies) and returns its score and measures.
 fn live(e: &Experiment, path: &[Step]) -> (f64, [f64; MEASURE_COUNT], World) {
     let mut world = demo_world(e);
-    let plan = LifePlan::new(e, &world);
+    let plan = LifePlan::new(&TrialPlan::new(e), &world);
     plan.prepare(&mut world);
     let mut score = LifeScore::start(&plan, &world, 0);
     for step in path {
@@ -613,7 +614,7 @@ forward_bonus = 1.0
     );
     for (signal, forward) in [(0.1, true), (-0.1, false)] {
         let mut world = demo_world(&e);
-        let plan = LifePlan::new(&e, &world);
+        let plan = LifePlan::new(&TrialPlan::new(&e), &world);
         let mut score = LifeScore::start(&plan, &world, 0);
         let start = world.creatures()[0].pose.position;
         // Heading up the screen (270°) from near the bottom: 10 ticks straight, no wall hit.

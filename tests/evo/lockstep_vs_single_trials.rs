@@ -10,6 +10,7 @@ use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::evaluate::Evaluation;
 use berry_evolve::evo::lockstep::{self, CHUNK_TRIALS};
 use berry_evolve::evo::search::ga::first_population;
+use berry_evolve::evo::TrialPlan;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::{Generation, TrialIndex};
 use std::path::Path;
@@ -63,9 +64,15 @@ fn check(experiment: &Experiment, population: &[Genome], generation: u64) {
     for (g, genomes) in population.chunks(k).enumerate() {
         let g = g as u64;
         for chunk in lockstep::chunks(experiment.evaluation.trials) {
-            let together =
-                lockstep::run_trials(experiment, &topology, genomes, generation, g, chunk.clone())
-                    .unwrap();
+            let together = lockstep::run_trials(
+                &TrialPlan::new(experiment),
+                &topology,
+                genomes,
+                generation,
+                g,
+                chunk.clone(),
+            )
+            .unwrap();
             assert_eq!(together.len() as u64, chunk.end - chunk.start);
             for (t, outcomes) in chunk.zip(&together) {
                 let alone = run_trial(experiment, &topology, genomes, generation, g, TrialIndex(t))
@@ -159,7 +166,7 @@ fn deaths_and_early_stops_match_the_per_trial_path() {
     let population = first_population(&experiment, &topology);
     check(&experiment, &population, 0);
     let outcomes = lockstep::run_trials(
-        &experiment,
+        &TrialPlan::new(&experiment),
         &topology,
         &population[..3],
         Generation(0),

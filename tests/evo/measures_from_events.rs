@@ -9,6 +9,7 @@ use crate::door::{evaluate_group, evaluate_population};
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::fitness::{LifePlan, LifeScore, MEASURE_COUNT};
 use berry_evolve::evo::lockstep;
+use berry_evolve::evo::TrialPlan;
 use berry_evolve::experiment::{Experiment, Measure};
 use berry_evolve::geometry::Vec2;
 use berry_evolve::seed::{stream, Generation, IndividualId, Purpose, Seed, TrialIndex};
@@ -115,7 +116,7 @@ fn live(
     other: Option<(f64, f64)>,
 ) -> ([f64; MEASURE_COUNT], Vec<Vec<WorldEvent>>) {
     let mut world = demo_world(e, 1 + usize::from(other.is_some()));
-    let plan = LifePlan::new(e, &world);
+    let plan = LifePlan::new(&TrialPlan::new(e), &world);
     plan.prepare(&mut world);
     let mut score = LifeScore::start(&plan, &world, 0);
     let mut told = Vec::new();
@@ -153,7 +154,7 @@ fn only_a_plan_with_a_measure_read_from_events_switches_the_log_on() {
     ] {
         let e = experiment("", measures);
         let mut world = demo_world(&e, 1);
-        let plan = LifePlan::new(&e, &world);
+        let plan = LifePlan::new(&TrialPlan::new(&e), &world);
         assert_eq!(plan.needs_events(), on, "{measures}");
         plan.prepare(&mut world);
         assert_eq!(world.event_log_on(), on, "{measures}");

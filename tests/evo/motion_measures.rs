@@ -6,6 +6,7 @@
 use crate::door::{evaluate_group, evaluate_population};
 use berry_evolve::evo::evaluate::Evaluation;
 use berry_evolve::evo::fitness::{LifePlan, LifeScore, MEASURE_COUNT};
+use berry_evolve::evo::TrialPlan;
 use berry_evolve::experiment::{Experiment, Measure};
 use berry_evolve::seed::{stream, Generation, IndividualId, Purpose, Seed, TrialIndex};
 use berry_evolve::sim::controller::{Controller, MotorCommand};
@@ -69,7 +70,7 @@ fn live(e: &Experiment, script: Vec<(f64, f64)>) -> ([f64; 2], [f64; MEASURE_COU
         TrialIndex(0),
     );
     let mut world = World::new(&e.world, &e.creature, 1, rng).unwrap();
-    let plan = LifePlan::new(e, &world);
+    let plan = LifePlan::new(&TrialPlan::new(e), &world);
     assert!(
         plan.needs_world_every_tick(),
         "the motion measures follow every tick"

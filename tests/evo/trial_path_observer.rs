@@ -10,6 +10,7 @@ use berry_evolve::evo::evaluate::aggregate;
 use berry_evolve::evo::life::TrialOutcome;
 use berry_evolve::evo::search::ga::first_population;
 use berry_evolve::evo::trial::{run_trial, TickObserver, TrialId};
+use berry_evolve::evo::TrialPlan;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::{Generation, TrialIndex};
 use berry_evolve::sim::world::World;
@@ -94,7 +95,7 @@ fn a_replayed_trial_is_the_scored_trial_in_every_shipped_experiment() {
             for t in 0..experiment.evaluation.trials {
                 let mut seen = Seen::default();
                 let outcomes = run_trial(
-                    &experiment,
+                    &TrialPlan::new(&experiment),
                     &topology,
                     genomes,
                     generation,
@@ -131,7 +132,7 @@ fn a_replayed_trial_is_the_scored_trial_in_every_shipped_experiment() {
                 }
             }
             for (i, trials) in per_individual.iter().enumerate() {
-                let replayed = aggregate(&experiment, trials);
+                let replayed = aggregate(&TrialPlan::new(&experiment), trials);
                 let id = g * k + i;
                 let bits = |e: &berry_evolve::evo::evaluate::Evaluation| {
                     (e.fitness.map(f64::to_bits), e.metabolism.map(f64::to_bits))

@@ -10,6 +10,7 @@ use berry_evolve::evo::search::ga::first_population;
 use berry_evolve::evo::state::{EvaluatedGeneration, Individual};
 use berry_evolve::evo::validation::{is_due, top_candidates, top_individuals, validate};
 use berry_evolve::evo::worlds::{validation_worlds, WorldSet};
+use berry_evolve::evo::TrialPlan;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::genome_file::GenomeFile;
 use berry_evolve::run::{self, CheckpointPayload, RunOptions, Silent};
@@ -110,7 +111,7 @@ fn validation_worlds_are_fixed_and_their_own_set() {
     for v in &a {
         for g in (0..50).chain([held_out]) {
             for t in 0..6 {
-                let rng = trial_stream(&e, Generation(g), 0, TrialIndex(t));
+                let rng = trial_stream(&TrialPlan::new(&e), Generation(g), 0, TrialIndex(t));
                 let w = World::new(&e.world, &e.creature, 1, rng).unwrap();
                 assert_ne!(start(v), start(&w), "generation {g} trial {t}");
             }

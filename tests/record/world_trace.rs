@@ -9,6 +9,7 @@ use crate::sim_common::{put, rng, Still};
 use berry_evolve::evo::search::ga::first_population;
 use berry_evolve::evo::trace::{EventKind, TraceRecorder};
 use berry_evolve::evo::trial::{run_trial, TickObserver, TrialId};
+use berry_evolve::evo::TrialPlan;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::record::trace::files::{csv_paths, write_csv_files, write_jsonl};
 use berry_evolve::seed::{Generation, TrialIndex};
@@ -249,7 +250,7 @@ fn the_written_trace_is_the_scored_life_in_every_shipped_experiment() {
         for t in 0..experiment.evaluation.trials {
             outcomes.push(
                 run_trial(
-                    &experiment,
+                    &TrialPlan::new(&experiment),
                     &topology,
                     &genomes,
                     Generation(1),

@@ -3,9 +3,9 @@
 
 use crate::evo::choices::ChoicePlan;
 use crate::evo::fitness::gain::Goal;
+use crate::evo::trial_plan::TrialPlan;
 use crate::experiment::tables::area_index;
 use crate::experiment::terms::{self, Quantity, TERMS, TERM_COUNT};
-use crate::evo::trial_plan::TrialPlan;
 use crate::experiment::{Balance, FitnessMode, FitnessSpec, GoalAt, Measure};
 use crate::geometry::Vec2;
 use crate::sim::area::Area;
