@@ -41,7 +41,7 @@ done
 # family, behaviour measure, hand-designed controller (- for none), experiment files (the
 # first is the fixed-weight control).
 FAMILIES=(
-  "t-maze-switch adapted_choice genomes/t-maze-switch-baseline.json experiments/t-maze-switch.toml experiments/learning/t-maze-switch-elman.toml experiments/learning/t-maze-switch-plastic.toml experiments/learning/t-maze-switch-plastic-novelty.toml experiments/learning/t-maze-switch-plastic-small.toml"
+  "t-maze-switch adapted_choice genomes/t-maze-switch-baseline.json experiments/t-maze-switch.toml experiments/learning/t-maze-switch-elman.toml experiments/learning/t-maze-switch-plastic.toml experiments/learning/t-maze-switch-plastic-novelty.toml experiments/learning/t-maze-switch-plastic-small.toml experiments/learning/t-maze-switch-choice.toml experiments/learning/t-maze-switch-plastic-choice.toml experiments/learning/t-maze-switch-plastic-small-choice.toml"
   "which-food good_bite_share - experiments/which-food.toml experiments/learning/which-food-elman.toml experiments/learning/which-food-plastic.toml"
 )
 

@@ -365,8 +365,8 @@ impl ExperimentConfig {
                 self.evaluation.episodes_per_life,
             )?;
         }
-        if let Some(m) = self.behaviour.measures.iter().find(|m| m.needs_switch()) {
-            if self.evaluation.switch.is_none() {
+        if self.evaluation.switch.is_none() {
+            if let Some(m) = self.behaviour.measures.iter().find(|m| m.needs_switch()) {
                 return Err(InvalidValue::new(
                     "behaviour.measures",
                     format!(
@@ -374,6 +374,13 @@ impl ExperimentConfig {
                          exchanged): add the table or remove the measure",
                         m.name()
                     ),
+                ));
+            }
+            if let Some(term) = self.fitness.term_following(terms::Follows::Choices) {
+                return Err(InvalidValue::new(
+                    format!("fitness.{}", term.key),
+                    "counts choices between the [evaluation.switch] kinds, but there is no \
+                     switch: add the table or set the weight to 0",
                 ));
             }
         }

@@ -326,6 +326,7 @@ fn is_default<T: Default + PartialEq>(x: &T) -> bool {
 ///       + distinct_food_bonus × distinct_food
 ///       + forward_bonus × forward_distance
 ///       + shelter_bonus × sheltered_threat_ticks
+///       + choice_bonus × correct_first_choice
 ///       − shock_penalty × shocked_ticks
 ///       − death_penalty × (1 if dead at the end, else 0)
 /// ```
@@ -409,6 +410,12 @@ pub struct FitnessSpec {
     /// nears (report §4.6, §4.7).
     #[serde(skip_serializing_if = "is_zero")]
     pub shelter_bonus: f64,
+    /// Added once per episode whose first bite of the two `[evaluation.switch]` kinds was of
+    /// the kind that pays in that episode: `choice_bonus × correct_first_choice` (a life of K
+    /// episodes earns it up to K times) (default: 0; needs `[evaluation.switch]`). Pays for
+    /// choosing right, however late, where the metabolic gain also pays for eating early.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub choice_bonus: f64,
 }
 
 impl Default for FitnessSpec {
@@ -431,6 +438,7 @@ impl Default for FitnessSpec {
             distinct_food_bonus: 0.0,
             forward_bonus: 0.0,
             shelter_bonus: 0.0,
+            choice_bonus: 0.0,
         }
     }
 }

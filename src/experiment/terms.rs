@@ -29,6 +29,41 @@ pub enum Quantity {
     ShelteredThreatTicks,
     /// 1 when it is dead at the end of the trial, else 0.
     Died,
+    /// 1 when the episode's first bite of the two `[evaluation.switch]` kinds was of the
+    /// kind that pays in it, else 0 (a life of K episodes sums K of them).
+    CorrectFirstChoice,
+}
+
+/// What a life must follow, beyond its end, for a quantity to be counted: the plan
+/// (`evo::fitness::LifePlan`) switches on the matching tracker when a term counting it is on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Follows {
+    /// Nothing: the end of the life (or the ticks, always counted) is enough.
+    End,
+    /// The pose every tick.
+    Pose,
+    /// The food objects it bites.
+    Bites,
+    /// Threats near and safe areas every tick.
+    Threats,
+    /// Its bites of the `[evaluation.switch]` kinds, in order (needs the switch).
+    Choices,
+}
+
+impl Quantity {
+    /// What a life must follow to count it.
+    pub const fn follows(self) -> Follows {
+        match self {
+            Quantity::TicksAlive | Quantity::Died => Follows::End,
+            // The area and the goal come with their own tables (`area`, `goal`), which the
+            // plan resolves against the world.
+            Quantity::TicksInArea | Quantity::GoalNearness => Follows::End,
+            Quantity::DistinctFood => Follows::Bites,
+            Quantity::ForwardDistance => Follows::Pose,
+            Quantity::ShelteredThreatTicks => Follows::Threats,
+            Quantity::CorrectFirstChoice => Follows::Choices,
+        }
+    }
 }
 
 /// Whether a term adds to the score or takes from it.
@@ -70,7 +105,7 @@ pub struct Term {
 const EVAL: &str = "§5.3 (fitness left open; SPEC-NOTES)";
 
 /// Every term, in the order the score adds them up (the order is part of the bits).
-pub const TERMS: [Term; 7] = [
+pub const TERMS: [Term; 8] = [
     Term {
         key: "alive_bonus",
         schema_key: "FitnessSpec.alive_bonus",
@@ -155,6 +190,18 @@ pub const TERMS: [Term; 7] = [
         weight: |f| f.death_penalty,
         words: |_| "if killed".into(),
     },
+    Term {
+        key: "choice_bonus",
+        schema_key: "FitnessSpec.choice_bonus",
+        unit: "per episode",
+        section: "§5 (learning; issue 31)",
+        note: "needs [evaluation.switch]",
+        sign: Sign::Add,
+        counts: Quantity::CorrectFirstChoice,
+        pays_for_motion: false,
+        weight: |f| f.choice_bonus,
+        words: |_| "× episode whose first choice paid".into(),
+    },
 ];
 
 /// How many terms there are.
@@ -195,6 +242,13 @@ impl FitnessSpec {
             .any(|t| t.pays_for_motion && (t.weight)(self) != 0.0)
     }
 
+    /// The first term that is on and follows `follows`, if any.
+    pub fn term_following(&self, follows: Follows) -> Option<&'static Term> {
+        TERMS
+            .iter()
+            .find(|t| t.counts.follows() == follows && (t.weight)(self) != 0.0)
+    }
+
     /// Is every term off (weight 0)?
     pub fn terms_off(&self) -> bool {
         TERMS.iter().all(|t| (t.weight)(self) == 0.0)
@@ -218,6 +272,6 @@ mod tests {
             death_penalty: 7.0,
             ..FitnessSpec::default()
         };
-        assert_eq!(weights(&spec), [1.0, 0.0, 0.0, 0.0, 5.0, 0.0, 7.0]);
+        assert_eq!(weights(&spec), [1.0, 0.0, 0.0, 0.0, 5.0, 0.0, 7.0, 0.0]);
     }
 }

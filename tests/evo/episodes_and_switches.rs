@@ -118,6 +118,7 @@ hidden = [4]
 [fitness]
 weights = [1.0, 1.0, 0.0, 0.0]
 forward_bonus = 0.01
+choice_bonus = 3.0
 
 [behaviour]
 measures = ["adapted_choice", "good_bite_share", "eaten", "distinct_food"]
@@ -441,6 +442,41 @@ fn the_switch_measures_on_a_hand_made_life() {
     assert_eq!(l.correct_choices(&episodes), vec![true, false, false, true]);
 }
 
+/// `[fitness] choice_bonus` adds its weight once per episode whose first choice paid: a
+/// brain without senses drives straight right into the left goal every episode, which pays
+/// in episodes 1 and 2 and not after the switch before episode 3, so the bonus adds 2 × 7
+/// to the life's score and nothing else changes.
+#[test]
+fn choice_bonus_pays_each_correct_first_choice() {
+    let text = |bonus: &str| {
+        world(&format!(
+            "[creature.inputs]\nsmell = false\nwhiskers = false\nfood = false\nshock = false\n\n\
+             [brain]\nkind = \"mlp\"\nhidden = []\n\n[fitness]\n{bonus}\n\
+             [behaviour]\nmeasures = [\"adapted_choice\"]\n\n\
+             [evaluation]\nticks = 60\nepisodes_per_life = 5\n\n[evaluation.switch]\n\
+             kinds = [\"left_goal\", \"right_goal\"]\nat = [[3, 3]]\n"
+        ))
+    };
+    let (plain, paid) = (load(&text("")), load(&text("choice_bonus = 7.0")));
+    let topology = plain.topology();
+    let g = [Genome::new(vec![0.5; topology.parameter_count()])];
+    let life =
+        |e: &Experiment| run_trial(e, &topology, &g, Generation(0), 0, TrialIndex(0)).unwrap()[0];
+    let (a, b) = (life(&plain), life(&paid));
+    assert_eq!(a.measures[Measure::AdaptedChoice.index()], 1.0 / 3.0);
+    assert!(
+        (b.score - a.score - 14.0).abs() < 1e-9,
+        "{} vs {}",
+        b.score,
+        a.score
+    );
+    assert_eq!(a.measures.map(f64::to_bits), b.measures.map(f64::to_bits));
+    assert_eq!(
+        a.metabolism.map(f64::to_bits),
+        b.metabolism.map(f64::to_bits)
+    );
+}
+
 /// Bad `[evaluation.switch]` tables and their neighbours are refused naming the key.
 #[test]
 fn bad_switch_tables_are_refused_naming_the_key() {
@@ -510,6 +546,11 @@ fn bad_switch_tables_are_refused_naming_the_key() {
         (
             world("[behaviour]\nmeasures = [\"adapted_choice\"]\n"),
             "behaviour.measures",
+            "[evaluation.switch]",
+        ),
+        (
+            world("[fitness]\nchoice_bonus = 5.0\n"),
+            "fitness.choice_bonus",
             "[evaluation.switch]",
         ),
     ] {

@@ -79,6 +79,9 @@ impl LifeScore {
                 Quantity::ForwardDistance => self.forward_distance,
                 Quantity::ShelteredThreatTicks => self.sheltered_threat_ticks as f64,
                 Quantity::Died => f64::from(u8::from(!c.alive)),
+                Quantity::CorrectFirstChoice => {
+                    f64::from(u8::from(self.choices().and_then(|c| c.first) == Some(true)))
+                }
             };
             score = match term.sign {
                 Sign::Add => score + weight * quantity,

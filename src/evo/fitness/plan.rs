@@ -5,7 +5,7 @@ use crate::evo::choices::ChoicePlan;
 use crate::evo::fitness::gain::Goal;
 use crate::evo::trial_plan::TrialPlan;
 use crate::experiment::tables::area_index;
-use crate::experiment::terms::{self, Quantity, TERMS, TERM_COUNT};
+use crate::experiment::terms::{self, Follows, TERM_COUNT};
 use crate::experiment::{Balance, FitnessMode, FitnessSpec, GoalAt, Measure};
 use crate::geometry::Vec2;
 use crate::sim::area::Area;
@@ -22,7 +22,7 @@ pub struct LifePlan {
     pub(super) imbalance_penalty: f64,
     /// `Balance::Sum` without a penalty: the gain is [`super::weighted`].
     pub(super) plain_gain: bool,
-    /// Each term's weight, in [`TERMS`] order.
+    /// Each term's weight, in [`terms::TERMS`] order.
     pub(super) terms: [f64; TERM_COUNT],
     /// The area `area_bonus` pays for, with the bonus.
     pub(super) area_bonus: Option<(Area, f64)>,
@@ -76,7 +76,7 @@ impl LifePlan {
             tracks_pose: false,
             per_tick: false,
             watches_places: false,
-            bites: spec.distinct_food_bonus != 0.0,
+            bites: spec.term_following(Follows::Bites).is_some(),
             events: false,
             choices: None,
         }
@@ -108,11 +108,12 @@ impl LifePlan {
         plan.measures = behaviour.measures.clone();
         plan.behaviour_area = area(&behaviour.area);
         plan.threat_radius = behaviour.threat_radius;
-        if plan.measures.iter().any(|m| m.needs_switch()) {
+        let follows = |f: Follows| spec.term_following(f).is_some();
+        if follows(Follows::Choices) || plan.measures.iter().any(|m| m.needs_switch()) {
             plan.choices = ChoicePlan::new(trial_plan, world);
         }
-        plan.counts_threats = plan.weight(Quantity::ShelteredThreatTicks) != 0.0
-            || plan.measures.contains(&Measure::ShelterWhileThreat);
+        plan.counts_threats =
+            follows(Follows::Threats) || plan.measures.contains(&Measure::ShelterWhileThreat);
         plan.events = plan
             .measures
             .iter()
@@ -133,9 +134,9 @@ impl LifePlan {
                 )
             });
         plan.follows_motion = plan.measures.iter().any(|m| m.follows_motion());
-        plan.tracks_pose = plan.weight(Quantity::ForwardDistance) != 0.0 || plan.follows_motion;
+        plan.tracks_pose = follows(Follows::Pose) || plan.follows_motion;
         plan.per_tick = plan.watches_places || plan.tracks_pose;
-        plan.bites = plan.weight(Quantity::DistinctFood) != 0.0
+        plan.bites = follows(Follows::Bites)
             || plan.choices.is_some()
             || plan.measures.iter().any(|m| {
                 matches!(
@@ -144,15 +145,6 @@ impl LifePlan {
                 )
             });
         plan
-    }
-
-    /// The weight of the term that counts `quantity` (0 when none does).
-    pub(super) fn weight(&self, quantity: Quantity) -> f64 {
-        TERMS
-            .iter()
-            .zip(self.terms)
-            .find(|(t, _)| t.counts == quantity)
-            .map_or(0.0, |(_, w)| w)
     }
 
     /// Must the trial world note which food objects each creature eats from
