@@ -95,7 +95,7 @@ impl Episode {
     }
 
     /// What the creature senses now, for the command of the next [`Episode::step`], laid out
-    /// as [`crate::experiment::Experiment::layout`] names it (the last one once over).
+    /// as [`crate::experiment::ExperimentConfig::layout`] names it (the last one once over).
     pub fn observation(&self) -> &[f64] {
         &self.observation
     }
