@@ -63,3 +63,38 @@ impl<'a> TrialPlan<'a> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    /// Each field is the experiment's own value (trials and ticks, both counts, not swapped),
+    /// overrides included, and the tables are the experiment's, not copies.
+    #[test]
+    fn a_plan_reads_the_experiments_own_values() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let experiment = Experiment::load(&root.join("tests/fixtures/tiny.toml"))
+            .unwrap()
+            .with_overrides()
+            .seed(11)
+            .trials(5)
+            .ticks(7)
+            .common_random_numbers(false)
+            .build()
+            .unwrap();
+        let plan = TrialPlan::new(&experiment);
+        assert_eq!(plan.seed, Seed(11));
+        assert_eq!((plan.trials, plan.ticks), (5, 7));
+        assert!(!plan.common_random_numbers);
+        let e = &experiment.evaluation;
+        assert_eq!(plan.group_size, e.group_size);
+        assert_eq!(plan.episodes_per_life, e.episodes_per_life);
+        assert_eq!(plan.aggregate, e.aggregate);
+        assert_eq!(plan.switch, e.switch.as_ref());
+        assert!(std::ptr::eq(plan.world, &experiment.world));
+        assert!(std::ptr::eq(plan.creature, &experiment.creature));
+        assert!(std::ptr::eq(plan.fitness, &experiment.fitness));
+        assert!(std::ptr::eq(plan.behaviour, &experiment.behaviour));
+    }
+}
