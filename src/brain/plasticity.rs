@@ -61,7 +61,8 @@
 //! what it learned.
 //!
 //! A plastic brain keeps state, so it is not [stateless](crate::brain::Brain::is_stateless):
-//! evaluation runs it on the single-trial path, never in lockstep batches.
+//! evaluation runs it in lockstep with one copy per trial world
+//! (`crate::evo::lockstep::WorldBrains`), never one brain for several worlds.
 
 use super::activation::tanh;
 use crate::seed::{stream, uniform, Generation, IndividualId, Purpose, Rng, Seed, TrialIndex};

@@ -168,8 +168,8 @@ pub struct BrainSpec {
     /// tick's modulatory signal, see `modulators`), then is clamped to `weight_bounds`; the
     /// coefficients are evolved genes (see `granularity`), biases stay fixed, and the weights
     /// start each life afresh (`initial_weights`). Recurrent and ctrnn brains are not
-    /// supported yet, nor `precision = "f32"`. Plastic brains run the single-trial path, not
-    /// lockstep batches (docs/learning.md, "Plastic brains").
+    /// supported yet, nor `precision = "f32"`. Plastic brains run in lockstep with one brain
+    /// per trial world (docs/learning.md, "Plastic brains").
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub plasticity: Option<Plasticity>,
     /// mlp with plasticity: how many sets of rule coefficients (η, A, B, C, D) evolve:

@@ -4,7 +4,7 @@
 use crate::cli::console::{errln, outln};
 
 use berry_evolve::brain::{Brain, BrainController};
-use berry_evolve::evo::lockstep::{self, Lockstep};
+use berry_evolve::evo::lockstep::{self, Lanes, Lockstep, WorldBrains};
 use berry_evolve::evo::search;
 use berry_evolve::evo::state::evaluate;
 use berry_evolve::evo::worlds::random_genomes;
@@ -206,10 +206,10 @@ fn pool(threads: usize) -> anyhow::Result<rayon::ThreadPool> {
 
 /// Creature-ticks per second for `worlds` one-creature worlds of `spec` on `threads`
 /// threads, all driven by one genome and run as evolution runs trials: in lockstep chunks
-/// of [`lockstep::CHUNK_TRIALS`] worlds, one rayon job and one brain per chunk (a brain that
-/// keeps state, such as a plastic MLP, gets one brain per world, each world stepped alone,
-/// as evolution's single-trial path does). Worlds and
-/// brains are built before the clock starts: placement is not what is measured.
+/// of [`lockstep::CHUNK_TRIALS`] worlds, one rayon job and one brain per chunk (a plastic
+/// MLP gets one brain per world in the lockstep, [`lockstep::WorldBrains`]; a recurrent
+/// brain one per world, each world stepped alone, as evolution's single-trial path does).
+/// Worlds and brains are built before the clock starts: placement is not what is measured.
 fn sim_rate(
     experiment: &Experiment,
     spec: &WorldSpec,
@@ -219,12 +219,15 @@ fn sim_rate(
 ) -> anyhow::Result<f64> {
     let topology = experiment.topology();
     let genome = random_genomes(experiment, Generation(0), 1).swap_remove(0);
-    // A brain that keeps state (a plastic MLP) cannot serve several worlds: each world gets
-    // its own and steps alone, as evolution runs such brains (one trial at a time).
-    let stateless = lockstep::stateless(&topology);
+    // A brain that keeps state cannot serve several worlds: each world gets its own.
+    let lanes = lockstep::lanes(&topology);
+    let stateless = lanes == Some(Lanes::Shared);
     let pool = pool(threads)?;
     let mut jobs = Vec::new();
-    for chunk in lockstep::chunks(worlds) {
+    for chunk in lanes.map_or_else(
+        || lockstep::chunks(worlds),
+        |l| lockstep::chunks_for(l, worlds),
+    ) {
         let brains = if stateless {
             1
         } else {
@@ -259,13 +262,20 @@ fn sim_rate(
             .with_max_len(berry_evolve::evo::evaluate::JOBS_APART)
             .flat_map_iter(|(worlds, controllers)| {
                 let n = worlds.len();
-                if stateless {
+                if let Some(lanes) = lanes {
                     let width = worlds[0].layout().len();
                     let mut lockstep = Lockstep::new(n, 1, width);
                     let running = vec![true; n];
                     let mut invalid = vec![false; n];
-                    for _ in 0..ticks {
-                        lockstep.tick(worlds, &running, controllers, &mut invalid);
+                    if lanes == Lanes::Shared {
+                        for _ in 0..ticks {
+                            lockstep.tick(worlds, &running, controllers, &mut invalid);
+                        }
+                    } else {
+                        let mut brains = [WorldBrains::new(std::mem::take(controllers))];
+                        for _ in 0..ticks {
+                            lockstep.tick(worlds, &running, &mut brains, &mut invalid);
+                        }
                     }
                 } else {
                     for (world, controller) in worlds.iter_mut().zip(controllers.iter_mut()) {

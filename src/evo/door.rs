@@ -278,15 +278,15 @@ impl<'a> Evaluate<'a> {
     }
 
     /// Each genome alone in every one of `built`'s worlds, with the same trial path as
-    /// evolution (lockstep for stateless brains), every (genome, job) pair in parallel and
+    /// evolution (lockstep for MLPs, stateless or plastic), every (genome, job) pair in parallel and
     /// collected in order.
     fn alone_lives(&self, built: &BuiltWorlds) -> Result<Vec<Vec<TrialOutcome>>, EvaluationError> {
         let (plan, topology, genomes) = (&self.plan, self.topology, self.genomes);
         let worlds = &built.worlds[..];
         let origin = built.origin;
         let trials = worlds.len() as u64;
-        if lockstep::stateless(topology) {
-            let chunks = lockstep::chunks(trials);
+        if let Some(lanes) = lockstep::lanes(topology) {
+            let chunks = lockstep::chunks_for(lanes, trials);
             let jobs: Vec<(usize, std::ops::Range<u64>)> = (0..genomes.len())
                 .flat_map(|g| chunks.iter().map(move |c| (g, c.clone())))
                 .collect();

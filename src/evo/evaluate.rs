@@ -7,7 +7,7 @@
 //! other trials. (With common random numbers that stream does not depend on the group, so
 //! [`PopulationJobs`] builds each trial world once and hands every group a clone: the same
 //! world, built once instead of once per group.) The jobs run in parallel with rayon (with
-//! stateless brains, several trials of a group at once in lockstep, see
+//! MLPs, stateless or plastic, several trials of a group at once in lockstep, see
 //! [`crate::evo::lockstep`]), are collected in index order and reduced serially, so the
 //! result is the same bits for any number of threads, and the same as living one trial at a
 //! time with [`crate::evo::trial::run_trial`]. The generation's jobs can run on this
@@ -154,7 +154,7 @@ pub fn aggregate(plan: &TrialPlan, trials: &[TrialOutcome]) -> Evaluation {
 }
 
 /// One evaluation job of a generation: a group's chunk of trials lived in lockstep
-/// (stateless brains), or one (group, trial) pair.
+/// (stateless and plastic MLPs), or one (group, trial) pair.
 #[derive(Debug, Clone, PartialEq)]
 enum Job {
     /// Group `group`'s trials `trials`, in lockstep ([`lockstep::run_trials_in`]).
@@ -190,10 +190,11 @@ pub struct PopulationJobs<'a> {
 }
 
 impl<'a> PopulationJobs<'a> {
-    /// The jobs of evaluating `population` as generation `generation`: with a stateless brain
-    /// (an MLP) one per group and chunk of up to [`lockstep::CHUNK_TRIALS`] trials, otherwise
-    /// one per (group, trial) pair; group-major. Resolves the generation's [`TrialPlan`] and
-    /// builds the shared trial worlds once (see `shared_worlds`).
+    /// The jobs of evaluating `population` as generation `generation`: with an MLP (stateless
+    /// or plastic, [`lockstep::lanes`]) one per group and chunk of up to
+    /// [`lockstep::CHUNK_TRIALS`] trials, otherwise one per (group, trial) pair; group-major.
+    /// Resolves the generation's [`TrialPlan`] and builds the shared trial worlds once (see
+    /// `shared_worlds`).
     pub fn new(
         experiment: &'a Experiment,
         topology: &'a Topology,
@@ -205,8 +206,8 @@ impl<'a> PopulationJobs<'a> {
         let trials = plan.trials;
         let groups = population.len() / k;
         let shared = shared_worlds(&plan, k, generation)?;
-        let jobs = if lockstep::stateless(topology) {
-            let chunks = lockstep::chunks(trials);
+        let jobs = if let Some(lanes) = lockstep::lanes(topology) {
+            let chunks = lockstep::chunks_for(lanes, trials);
             (0..groups)
                 .flat_map(|group| {
                     chunks.iter().map(move |c| Job::Chunk {
@@ -397,12 +398,12 @@ pub type JobDone<'a> = Option<&'a (dyn Fn() + Sync)>;
 
 /// How many jobs a generation of `individuals` individuals splits into (what a
 /// [`JobDone`] is called that many times for): per group, one per lockstep chunk of trials
-/// with a stateless brain, one per trial otherwise (the jobs of [`PopulationJobs`]).
+/// with an MLP, one per trial otherwise (the jobs of [`PopulationJobs`]).
 pub fn evaluation_jobs(experiment: &Experiment, topology: &Topology, individuals: usize) -> u64 {
     let groups = (individuals as u64) / experiment.evaluation.group_size.max(1);
     let trials = experiment.evaluation.trials;
-    let per_group = if lockstep::stateless(topology) {
-        lockstep::chunks(trials).len() as u64
+    let per_group = if let Some(lanes) = lockstep::lanes(topology) {
+        lockstep::chunks_for(lanes, trials).len() as u64
     } else {
         trials
     };

@@ -1,4 +1,4 @@
-//! Lockstep evaluation: one stateless brain per genome drives its creature in several trial
+//! Lockstep evaluation: one brain per genome drives its creature in several trial
 //! worlds at once, tick by tick, so that the brain computes a batch of observations per call
 //! ([`BrainController::act_batch`]) and is built once per job instead of once per trial.
 //!
@@ -10,8 +10,13 @@
 //! `observe`, without a copy). A stateless brain's batch gives every observation
 //! the bits it gives alone, so each world's trial is the same bits as
 //! [`crate::evo::trial::run_trial`]'s, whatever the chunk size or the other worlds.
+//!
+//! A plastic brain's weights change within a life, so one brain cannot serve several worlds:
+//! it runs in lockstep with one copy per world ([`WorldBrains`], [`Lanes::PerWorld`]), each
+//! started for its own life as the single-trial path starts it, and gets the same bits too.
 
 use crate::brain::genome::Genome;
+use crate::brain::plasticity::LifeKey;
 use crate::brain::spec::Topology;
 use crate::brain::{Brain, BrainController};
 use crate::evo::episodes::{EpisodeChoices, Life, LifeOrigin};
@@ -22,8 +27,8 @@ use crate::evo::life::{
 };
 use crate::evo::trial::LifeEpisodes;
 use crate::evo::trial_plan::TrialPlan;
-use crate::seed::{Generation, TrialIndex};
-use crate::sim::controller::MotorCommand;
+use crate::seed::{Generation, IndividualId, TrialIndex};
+use crate::sim::controller::{Controller, MotorCommand};
 use crate::sim::world::World;
 use std::ops::Range;
 
@@ -32,20 +37,60 @@ use std::ops::Range;
 /// the jobs never depend on the number of threads (the results depend on neither).
 pub const CHUNK_TRIALS: u64 = 16;
 
+/// Most trials one lockstep job of plastic brains runs ([`Lanes::PerWorld`]): each world has
+/// its own brain, whose weights and rule coefficients the tick rewrites, so more worlds only
+/// crowd the cache (bench, experiments/bench/foraging-plastic.toml: 16 worlds a job ran about
+/// 25% slower than one world at a time, 4 as fast).
+pub const CHUNK_TRIALS_PER_WORLD: u64 = 4;
+
 /// The trial ranges of one group's jobs: `0..trials` cut into chunks of [`CHUNK_TRIALS`],
 /// in order.
 pub fn chunks(trials: u64) -> Vec<Range<u64>> {
-    (0..trials.div_ceil(CHUNK_TRIALS))
-        .map(|c| c * CHUNK_TRIALS..((c + 1) * CHUNK_TRIALS).min(trials))
+    chunks_of(CHUNK_TRIALS, trials)
+}
+
+/// The trial ranges of one group's jobs for brains that run in lockstep as `lanes` says:
+/// [`chunks`], in chunks of [`CHUNK_TRIALS_PER_WORLD`] for plastic brains.
+pub fn chunks_for(lanes: Lanes, trials: u64) -> Vec<Range<u64>> {
+    match lanes {
+        Lanes::Shared => chunks(trials),
+        Lanes::PerWorld => chunks_of(CHUNK_TRIALS_PER_WORLD, trials),
+    }
+}
+
+fn chunks_of(size: u64, trials: u64) -> Vec<Range<u64>> {
+    (0..trials.div_ceil(size))
+        .map(|c| c * size..((c + 1) * size).min(trials))
         .collect()
 }
 
-/// Can brains of `topology` run in lockstep (do they keep no state from tick to tick)?
-/// Asks [`Brain::is_stateless`] of an all-zero brain, so that which kinds qualify is decided
-/// in one place.
+/// Do brains of `topology` keep no state from tick to tick, so that one serves every world
+/// of a lockstep job ([`Lanes::Shared`])?
 pub fn stateless(topology: &Topology) -> bool {
-    Brain::new(topology, &vec![0.0; topology.parameter_count()])
-        .is_ok_and(|brain| brain.is_stateless())
+    lanes(topology) == Some(Lanes::Shared)
+}
+
+/// How brains of a topology drive the worlds of a lockstep job.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Lanes {
+    /// One brain for every world, fed a batch of observations per tick (a stateless MLP).
+    Shared,
+    /// One copy of the brain per world (a plastic MLP: its weights are its life's).
+    PerWorld,
+}
+
+/// How brains of `topology` run in lockstep (None: a recurrent brain, Elman or CTRNN, which
+/// evolution runs one trial at a time). Asks an all-zero brain, so that which kinds qualify
+/// is decided in one place ([`Brain::is_stateless`], [`Brain::plastic_weights`]).
+pub fn lanes(topology: &Topology) -> Option<Lanes> {
+    let brain = Brain::new(topology, &vec![0.0; topology.parameter_count()]).ok()?;
+    if brain.is_stateless() {
+        Some(Lanes::Shared)
+    } else if brain.plastic_weights().is_some() {
+        Some(Lanes::PerWorld)
+    } else {
+        None
+    }
 }
 
 /// What lockstep needs of a controller: the commands of several observations at once, each
@@ -54,6 +99,20 @@ pub trait BatchController {
     /// Fills `commands[k]` with the command for observation k of `observations`
     /// (`commands.len()` observations back to back).
     fn act_batch(&mut self, observations: &[f64], commands: &mut [MotorCommand]);
+
+    /// [`BatchController::act_batch`] where observation k comes from world `worlds[k]` of
+    /// the tick's worlds: a controller with one brain per world picks it by that index.
+    #[inline]
+    fn act_in(&mut self, worlds: &[usize], observations: &[f64], commands: &mut [MotorCommand]) {
+        let _ = worlds;
+        self.act_batch(observations, commands);
+    }
+
+    /// The next ticks' worlds are the lives `lives` (world w is life `lives[w]`): a
+    /// controller with one brain per life follows its lives when some of them have ended.
+    fn worlds_are(&mut self, lives: &[usize]) {
+        let _ = lives;
+    }
 
     /// True when every command is finite whatever the observations, so that the lockstep
     /// need not check each one (per creature and tick) for a non-finite value. False
@@ -72,6 +131,57 @@ impl BatchController for BrainController {
     #[inline]
     fn commands_always_finite(&self) -> bool {
         BrainController::commands_always_finite(self)
+    }
+}
+
+/// One creature's brains in a lockstep job of plastic brains: one per life (world), each
+/// started for that life as [`crate::evo::trial::run_trial`] starts it.
+#[derive(Debug, Clone)]
+pub struct WorldBrains {
+    brains: Vec<BrainController>,
+    /// World w of the current batch is life `lives[w]` (empty: world w is life w).
+    lives: Vec<usize>,
+}
+
+impl WorldBrains {
+    /// The brains of lives 0, 1, ... in order.
+    pub fn new(brains: Vec<BrainController>) -> WorldBrains {
+        WorldBrains {
+            brains,
+            lives: Vec::new(),
+        }
+    }
+}
+
+impl BatchController for WorldBrains {
+    fn act_batch(&mut self, observations: &[f64], commands: &mut [MotorCommand]) {
+        let width = observations.len() / commands.len().max(1);
+        for (w, (observation, command)) in observations
+            .chunks_exact(width)
+            .zip(commands.iter_mut())
+            .enumerate()
+        {
+            let life = self.lives.get(w).copied().unwrap_or(w);
+            *command = self.brains[life].act(observation);
+        }
+    }
+
+    #[inline]
+    fn act_in(&mut self, worlds: &[usize], observations: &[f64], commands: &mut [MotorCommand]) {
+        let width = observations.len() / commands.len().max(1);
+        for ((&w, observation), command) in worlds
+            .iter()
+            .zip(observations.chunks_exact(width))
+            .zip(commands.iter_mut())
+        {
+            let life = self.lives.get(w).copied().unwrap_or(w);
+            *command = self.brains[life].act(observation);
+        }
+    }
+
+    fn worlds_are(&mut self, lives: &[usize]) {
+        self.lives.clear();
+        self.lives.extend_from_slice(lives);
     }
 }
 
@@ -152,7 +262,7 @@ impl Lockstep {
                 continue;
             }
             let commands = &mut self.commands[..n];
-            controller.act_batch(&self.observations[..n * width], commands);
+            controller.act_in(&self.live, &self.observations[..n * width], commands);
             if controller.commands_always_finite() {
                 // Known finite (a brain's commands): nothing to check per world.
                 for (&w, &command) in self.live.iter().zip(commands.iter()) {
@@ -180,7 +290,8 @@ impl Lockstep {
 /// [`crate::evo::trial::run_trial`] for each trial.
 ///
 /// # Panics
-/// When the brains are not stateless ([`stateless`]) (a programming error: check first).
+/// When the brains cannot run in lockstep ([`lanes`] is None: a recurrent brain) (a
+/// programming error: check first).
 pub fn run_trials(
     plan: &TrialPlan,
     topology: &Topology,
@@ -210,40 +321,104 @@ pub(crate) fn run_trials_in(
     origin: LifeOrigin,
 ) -> Result<Vec<Vec<TrialOutcome>>, EvaluationError> {
     let mut controllers = controllers(plan, topology, genomes, group)?;
-    if plan.episodes_per_life > 1 {
-        let lives: Vec<Life<'_>> = trials
-            .clone()
-            .map(|t| Life::new(plan, origin.with_trial(TrialIndex(t))))
-            .collect();
-        let firsts: Vec<Option<World>> = match shared {
-            Some(worlds) => worlds[trials.start as usize..trials.end as usize]
-                .iter()
-                .map(|w| Some(w.clone()))
-                .collect(),
-            None => vec![None; lives.len()],
-        };
-        return live_lives(plan, &lives, firsts, &mut controllers);
-    }
-    let worlds = match shared {
-        Some(worlds) => worlds[trials.start as usize..trials.end as usize].to_vec(),
-        None => {
-            let specs = valid_specs(plan, generation, TrialIndex(trials.start))?;
-            trials
-                .map(|t| {
-                    let trial = TrialIndex(t);
-                    build_trial_world(specs, plan, genomes.len(), generation, group, trial)
-                })
-                .collect::<Result<Vec<_>, _>>()?
-        }
+    let job = Chunk {
+        plan,
+        creatures: genomes.len(),
+        generation,
+        group,
+        trials,
+        shared,
+        origin,
     };
-    Ok(live_trials(plan, worlds, &mut controllers))
+    if lanes(topology) == Some(Lanes::PerWorld) {
+        let mut brains = job.world_brains(controllers);
+        return job.live(&mut brains);
+    }
+    job.live(&mut controllers)
+}
+
+/// One lockstep job's trials: what [`run_trials_in`] lives once its controllers are built.
+struct Chunk<'a> {
+    plan: &'a TrialPlan<'a>,
+    creatures: usize,
+    generation: Generation,
+    group: u64,
+    trials: Range<u64>,
+    shared: Option<&'a [World]>,
+    origin: LifeOrigin,
+}
+
+impl Chunk<'_> {
+    /// Each creature's controller copied once per trial of the chunk, each copy started for
+    /// the life of its trial as [`crate::evo::trial::run_trial`] starts its brains (the same
+    /// [`LifeKey`], so a plastic brain's random initial weights are the same draws).
+    fn world_brains(&self, controllers: Vec<BrainController>) -> Vec<WorldBrains> {
+        let first = self.group * self.creatures as u64;
+        controllers
+            .into_iter()
+            .enumerate()
+            .map(|(k, controller)| {
+                let brains = self
+                    .trials
+                    .clone()
+                    .map(|t| {
+                        let mut brain = controller.clone();
+                        brain.brain_mut().start_life(LifeKey {
+                            seed: self.plan.seed,
+                            generation: self.origin.generation,
+                            individual: IndividualId(first + k as u64),
+                            trial: TrialIndex(t),
+                        });
+                        brain
+                    })
+                    .collect();
+                WorldBrains::new(brains)
+            })
+            .collect()
+    }
+
+    /// Lives the chunk's trials with `controllers` (one per creature).
+    fn live<B: BatchController>(
+        &self,
+        controllers: &mut [B],
+    ) -> Result<Vec<Vec<TrialOutcome>>, EvaluationError> {
+        let (plan, trials) = (self.plan, self.trials.clone());
+        if plan.episodes_per_life > 1 {
+            let lives: Vec<Life<'_>> = trials
+                .clone()
+                .map(|t| Life::new(plan, self.origin.with_trial(TrialIndex(t))))
+                .collect();
+            let firsts: Vec<Option<World>> = match self.shared {
+                Some(worlds) => worlds[trials.start as usize..trials.end as usize]
+                    .iter()
+                    .map(|w| Some(w.clone()))
+                    .collect(),
+                None => vec![None; lives.len()],
+            };
+            return live_lives(plan, &lives, firsts, controllers);
+        }
+        let worlds = match self.shared {
+            Some(worlds) => worlds[trials.start as usize..trials.end as usize].to_vec(),
+            None => {
+                let specs = valid_specs(plan, self.generation, TrialIndex(trials.start))?;
+                trials
+                    .map(|t| {
+                        let trial = TrialIndex(t);
+                        let (generation, group) = (self.generation, self.group);
+                        build_trial_world(specs, plan, self.creatures, generation, group, trial)
+                    })
+                    .collect::<Result<Vec<_>, _>>()?
+            }
+        };
+        Ok(live_trials(plan, worlds, controllers))
+    }
 }
 
 /// Lives `lives` (of several episodes each) in lockstep, episode by episode: episode e of
 /// every life still going (a non-finite output ends a life) in one [`live_trials`], `firsts`
-/// the lives' first worlds when built beforehand. The brains are stateless, so living the
-/// episodes of other lives in between changes nothing: each life gets the bits of
-/// [`crate::evo::trial::run_trial`]'s.
+/// the lives' first worlds when built beforehand. The brains are stateless or one per life
+/// ([`WorldBrains`]), so living the episodes of other lives in between changes nothing: each
+/// life gets the bits of [`crate::evo::trial::run_trial`]'s.
 pub(crate) fn live_lives<B: BatchController>(
     plan: &TrialPlan,
     lives: &[Life<'_>],
@@ -262,6 +437,9 @@ pub(crate) fn live_lives<B: BatchController>(
             .iter()
             .map(|&w| lives[w].world_or(&mut firsts[w], k, e))
             .collect::<Result<Vec<_>, _>>()?;
+        for controller in controllers.iter_mut() {
+            controller.worlds_are(&now);
+        }
         let (outcomes, choices) = live_trials_scored(plan, worlds, controllers);
         for ((&w, outcomes), choices) in now.iter().zip(outcomes).zip(choices) {
             going[w] = !outcomes.iter().all(|o| o.non_finite);
@@ -492,5 +670,7 @@ mod tests {
         assert_eq!(chunks(5), vec![0..5]);
         assert_eq!(chunks(16), vec![0..16]);
         assert_eq!(chunks(33), vec![0..16, 16..32, 32..33]);
+        assert_eq!(chunks_for(Lanes::Shared, 33), chunks(33));
+        assert_eq!(chunks_for(Lanes::PerWorld, 9), vec![0..4, 4..8, 8..9]);
     }
 }

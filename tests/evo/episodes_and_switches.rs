@@ -326,15 +326,51 @@ fn a_switch_exchanges_the_payoffs_not_the_look() {
 #[test]
 fn lockstep_equals_single_trials_with_episodes_and_switches() {
     let e = load(&world(SWITCHED));
+    assert_eq!(
+        lockstep::lanes(&e.topology()),
+        Some(lockstep::Lanes::Shared)
+    );
+    lockstep_equals_single_trials(&e);
+}
+
+/// A plastic brain runs in lockstep with one copy per life (`lockstep::WorldBrains`): each
+/// life, its weights drawn anew from the life's own stream, changing within it and carried
+/// over its episodes, gets the bits of the single-trial path, with switches (K = 4) and
+/// without (K = 1).
+#[test]
+fn plastic_brains_in_lockstep_equal_single_trials() {
+    let plastic = SWITCHED.replace(
+        "hidden = [4]\n",
+        "hidden = [4]\nplasticity = \"neuromodulated\"\ngranularity = \"synapse\"\n\
+         initial_weights = \"random\"\nmodulators = [\"food_a\", \"food_c\", \"neurons\"]\n",
+    );
+    assert_ne!(plastic, SWITCHED);
+    for text in [
+        plastic.clone(),
+        plastic.replace("episodes_per_life = 4", "episodes_per_life = 1")
+            .replace("at = [[2, 3]]\n", "")
+            .replace("[evaluation.switch]\nkinds = [\"left_goal\", \"right_goal\"]\nstart = \"random\"\n", "")
+            .replace("\"adapted_choice\", \"good_bite_share\", ", "")
+            .replace("choice_bonus = 3.0\n", ""),
+    ] {
+        let e = load(&world(&text));
+        assert_eq!(lockstep::lanes(&e.topology()), Some(lockstep::Lanes::PerWorld));
+        lockstep_equals_single_trials(&e);
+    }
+}
+
+/// Each genome of a population of 6 lives every chunk of trials in lockstep with the bits
+/// of the single-trial path; evaluating the population on 1 and 2 threads equals evaluating
+/// group by group.
+fn lockstep_equals_single_trials(e: &Experiment) {
     let topology = e.topology();
-    assert!(lockstep::stateless(&topology));
-    let population: Vec<Genome> = (0..6).map(|k| genome(&e, k)).collect();
+    let population: Vec<Genome> = (0..6).map(|k| genome(e, k)).collect();
     let mut bites = 0.0;
     for (g, genome) in population.iter().enumerate() {
         let genomes = std::slice::from_ref(genome);
         for chunk in lockstep::chunks(e.evaluation.trials) {
             let together = lockstep::run_trials(
-                &TrialPlan::new(&e),
+                &TrialPlan::new(e),
                 &topology,
                 genomes,
                 Generation(3),
@@ -344,7 +380,7 @@ fn lockstep_equals_single_trials_with_episodes_and_switches() {
             .unwrap();
             for (t, outcomes) in chunk.zip(&together) {
                 let alone = run_trial(
-                    &e,
+                    e,
                     &topology,
                     genomes,
                     Generation(3),
@@ -360,14 +396,7 @@ fn lockstep_equals_single_trials_with_episodes_and_switches() {
     assert!(bites > 0.0, "the case eats something");
     let serial: Vec<_> = (0..6)
         .flat_map(|g| {
-            evaluate_group(
-                &e,
-                &topology,
-                &population[g..g + 1],
-                Generation(3),
-                g as u64,
-            )
-            .unwrap()
+            evaluate_group(e, &topology, &population[g..g + 1], Generation(3), g as u64).unwrap()
         })
         .collect();
     for threads in [1, 2] {
@@ -376,7 +405,7 @@ fn lockstep_equals_single_trials_with_episodes_and_switches() {
             .build()
             .unwrap();
         let together = pool
-            .install(|| evaluate_population(&e, &topology, &population, Generation(3)))
+            .install(|| evaluate_population(e, &topology, &population, Generation(3)))
             .unwrap();
         assert_eq!(together, serial, "{threads} threads");
     }
