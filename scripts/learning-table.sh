@@ -2,8 +2,9 @@
 # The learning table (issue 31): for t-maze-switch and which-food, evolve 5 seeds each of the
 # fixed-weight MLP (the shipped file), an Elman network, the neuromodulated plastic MLP and
 # (t-maze-switch) the plastic MLP under novelty search and a small plastic MLP of the
-# hand-designed learner's shape (experiments/learning/), all at the
-# shipped file's budget; then compare every seed's champions on the same 20 held-out lives
+# hand-designed learner's shape, and (t-maze-switch) the fixed, plastic and small plastic MLPs
+# paid `choice_bonus` per correct first choice (experiments/learning/), all at the shipped
+# file's budget; then compare every seed's champions on the same 20 held-out lives
 # (`compare --trials 20`, the seed's worlds), with the plastic champions also frozen and
 # ungated (`--ablate`) and 32 random genomes, and print a Markdown table: per row the median
 # and range over the seeds of held-out fitness and of the behaviour measure (adapted_choice,
