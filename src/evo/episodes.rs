@@ -250,7 +250,8 @@ impl<'a> Life<'a> {
     /// non-finite output ended the life): the score is the sum of the episode scores, the
     /// metabolism the last episode's, shocked ticks summed, `non_finite` when any episode's
     /// was; each measure the mean over the episodes lived, but `adapted_choice` and
-    /// `good_bite_share`, which are taken over the life's phases.
+    /// `good_bite_share`, which are taken over the life's phases; the ticks in each described
+    /// area the mean over the episodes lived too.
     pub fn outcome(
         &self,
         measures: &[Measure],
@@ -274,6 +275,9 @@ impl<'a> Life<'a> {
             };
         }
         life.measures = values;
+        for (k, t) in life.area_ticks.iter_mut().enumerate() {
+            *t = episodes.iter().map(|(o, _)| o.area_ticks[k]).sum::<f64>() / n;
+        }
         life
     }
 

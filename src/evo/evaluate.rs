@@ -49,6 +49,11 @@ pub struct Evaluation {
     /// its order (empty when it names none, and then left out of checkpoints).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub measures: Vec<f64>,
+    /// Mean over trials of the ticks alive in each area the search's descriptors name
+    /// (`area = "..."`), in descriptor order (empty when they name none, and then left out
+    /// of checkpoints).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub area_ticks: Vec<f64>,
 }
 
 impl Evaluation {
@@ -146,10 +151,14 @@ pub fn aggregate(plan: &TrialPlan, trials: &[TrialOutcome]) -> Evaluation {
         .iter()
         .map(|m| trials.iter().map(|t| t.measures[m.index()]).sum::<f64>() / n)
         .collect();
+    let area_ticks = (0..plan.described_areas.len())
+        .map(|k| trials.iter().map(|t| t.area_ticks[k]).sum::<f64>() / n)
+        .collect();
     Evaluation {
         fitness,
         metabolism,
         measures,
+        area_ticks,
     }
 }
 

@@ -11,6 +11,7 @@ use crate::brain::spec::Topology;
 use crate::brain::{Brain, BrainController, LifeKey};
 use crate::evo::fitness::{LifePlan, LifeScore, MEASURE_COUNT};
 use crate::evo::trial_plan::TrialPlan;
+use crate::experiment::evolution::MAX_DESCRIBED_AREAS;
 use crate::seed::{stream, Generation, IndividualId, Purpose, Rng, TrialIndex};
 use crate::sim::controller::{Controller, MotorCommand};
 use crate::sim::metabolism::Metabolism;
@@ -74,6 +75,9 @@ pub struct TrialOutcome {
     /// The behaviour measures, one per [`crate::experiment::MEASURES`] entry (0 for those
     /// the experiment's `[behaviour]` does not name).
     pub measures: [f64; MEASURE_COUNT],
+    /// The ticks alive in each area the search's descriptors name, in descriptor order (0
+    /// past them; all 0 for a search that names none).
+    pub area_ticks: [f64; MAX_DESCRIBED_AREAS],
 }
 
 /// The random stream that builds trial `trial` of generation `generation` for `group`.
@@ -260,6 +264,7 @@ pub(crate) fn outcomes(
                 shocked_ticks: score.shocked_ticks(),
                 non_finite,
                 measures,
+                area_ticks: score.described_area_ticks(),
             }
         })
         .collect()

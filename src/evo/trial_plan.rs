@@ -9,6 +9,7 @@
 //! [`crate::evo::evaluate::PopulationJobs::new`], replay, the named world sets, Python's
 //! episodes) and passed by reference from there; it changes no bit of any trial.
 
+use crate::experiment::evolution::DescribedAreas;
 use crate::experiment::{Aggregate, BehaviourSpec, Experiment, FitnessSpec, SwitchSpec};
 use crate::seed::Seed;
 use crate::sim::spec::{CreatureSpec, WorldSpec};
@@ -41,6 +42,8 @@ pub struct TrialPlan<'a> {
     pub fitness: &'a FitnessSpec,
     /// The behaviour measures reported next to fitness (`[behaviour]`).
     pub behaviour: &'a BehaviourSpec,
+    /// The areas whose ticks a search's descriptors count (`area = "..."`; usually none).
+    pub described_areas: DescribedAreas,
 }
 
 impl<'a> TrialPlan<'a> {
@@ -60,6 +63,7 @@ impl<'a> TrialPlan<'a> {
             aggregate: evaluation.aggregate,
             fitness: &experiment.fitness,
             behaviour: &experiment.behaviour,
+            described_areas: experiment.evolution.described_areas(&experiment.world),
         }
     }
 }

@@ -37,7 +37,8 @@
 //! Written back (e.g. to a run folder), each sub-table shows its kind and exactly the values
 //! that kind uses, defaults included.
 
-use crate::experiment::tables::Measure;
+use crate::experiment::tables::{area_index, Measure};
+use crate::sim::spec::WorldSpec;
 use crate::validate::{count_within, non_negative, within, InvalidValue, Valid};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -192,38 +193,90 @@ impl EvolutionSpec {
         self.algorithm == Algorithm::MapElites
     }
 
-    /// Novelty's and MAP-Elites' descriptors must be measures `[behaviour] measures`
-    /// computes (each individual's evaluation carries them in that order).
-    pub fn validate_descriptors(&self, measures: &[Measure]) -> Valid {
-        let (key, descriptors): (&str, Vec<Measure>) =
-            if let Some(novelty) = self.novelty_settings() {
-                (
-                    "evolution.novelty.descriptors",
-                    novelty.descriptors.iter().map(|d| d.measure).collect(),
-                )
-            } else if let Some(grid) = self.map_elites_settings() {
+    /// The search's descriptors (novelty's or MAP-Elites'), with the key they sit under;
+    /// `None` for a search without.
+    fn descriptor_list(&self) -> Option<(&'static str, Vec<DescriptorSpec>)> {
+        if let Some(novelty) = self.novelty_settings() {
+            Some(("evolution.novelty.descriptors", novelty.descriptors))
+        } else {
+            self.map_elites_settings().map(|grid| {
                 (
                     "evolution.map_elites.descriptors",
-                    grid.descriptors.iter().map(|d| d.measure).collect(),
+                    grid.descriptors.iter().map(|d| d.descriptor()).collect(),
                 )
-            } else {
-                return Ok(());
-            };
+            })
+        }
+    }
+
+    /// Novelty's and MAP-Elites' descriptors must be measures `[behaviour] measures`
+    /// computes (each individual's evaluation carries them in that order), but those that
+    /// name an `area`: `time_in_area` only, at most [`MAX_DESCRIBED_AREAS`] of them, each a
+    /// named area of `world`.
+    pub fn validate_descriptors(&self, measures: &[Measure], world: &WorldSpec) -> Valid {
+        let Some((key, descriptors)) = self.descriptor_list() else {
+            return Ok(());
+        };
         let computed: Vec<&str> = measures.iter().map(|m| m.name()).collect();
-        for d in &descriptors {
-            if !measures.contains(d) {
+        let mut areas = 0;
+        for (i, d) in descriptors.iter().enumerate() {
+            if let Some(area) = &d.area {
+                let at = format!("{key}[{i}].area");
+                if d.measure != Measure::TimeInArea {
+                    return Err(InvalidValue::new(
+                        &at,
+                        format!(
+                            "only `time_in_area` counts the time in an area it names, not `{}`; \
+                             remove `area` or use measure = \"time_in_area\"",
+                            d.measure.name()
+                        ),
+                    ));
+                }
+                area_index(world, &at, area)?;
+                areas += 1;
+                if areas > MAX_DESCRIBED_AREAS {
+                    return Err(InvalidValue::new(
+                        &at,
+                        format!(
+                            "at most {MAX_DESCRIBED_AREAS} descriptors may name an area (limit: \
+                             each is counted every tick of every trial); describe fewer areas"
+                        ),
+                    ));
+                }
+                continue;
+            }
+            if !measures.contains(&d.measure) {
                 return Err(InvalidValue::new(
                     key,
                     format!(
                         "`{}` is not computed by this experiment: [behaviour] measures = [{}]; \
                          add it to [behaviour] measures or describe behaviour by one of those",
-                        d.name(),
+                        d.measure.name(),
                         computed.join(", ")
                     ),
                 ));
             }
         }
         Ok(())
+    }
+
+    /// The areas the search's descriptors name, resolved in `world` (the experiment's
+    /// `[world]`; a name not found there, which validation refuses, is left out).
+    pub fn described_areas(&self, world: &WorldSpec) -> DescribedAreas {
+        let mut areas = DescribedAreas::default();
+        let Some((_, descriptors)) = self.descriptor_list() else {
+            return areas;
+        };
+        for d in &descriptors {
+            if let Some(name) = &d.area {
+                if let (Ok(k), true) =
+                    (area_index(world, "", name), areas.len < MAX_DESCRIBED_AREAS)
+                {
+                    areas.at[areas.len] = k;
+                    areas.len += 1;
+                }
+            }
+        }
+        areas
     }
 
     /// Individuals evaluated per generation: the population, plus PGPE's centre or
@@ -1101,6 +1154,58 @@ pub struct DescriptorSpec {
     pub min: f64,
     /// `max`: the measure's value mapped to 1 (above: clamped); greater than `min`.
     pub max: f64,
+    /// `area`: with `measure = "time_in_area"` only, the `[[world.areas]]` entry (by `name`)
+    /// whose time this dimension counts: the ticks alive the creature's centre spent inside
+    /// it, mean over the trials, independent of `[behaviour] area`; such a descriptor need
+    /// not be in `[behaviour] measures` (its value is its own). At most 3 descriptors name
+    /// an area (default: none: the measure of `[behaviour]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub area: Option<String>,
+}
+
+impl DescriptorSpec {
+    /// The dimension's name in outputs: the measure's (`time_in_area`), or with an area
+    /// `time_in_area:nest`.
+    pub fn label(&self) -> String {
+        descriptor_label(self.measure, self.area.as_deref())
+    }
+}
+
+/// A descriptor's name in outputs: `measure`, or `measure:area` for an area's own.
+fn descriptor_label(measure: Measure, area: Option<&str>) -> String {
+    match area {
+        Some(a) => format!("{}:{a}", measure.name()),
+        None => measure.name().to_string(),
+    }
+}
+
+/// The most descriptors that name an `area` (each one counts its ticks in every trial).
+pub const MAX_DESCRIBED_AREAS: usize = 3;
+
+/// The areas a search's descriptors name (`area = "..."`), as indices into `[[world.areas]]`
+/// in descriptor order: what every trial counts the ticks in. Empty for every search that
+/// names none, and then no trial counts anything more.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct DescribedAreas {
+    at: [usize; MAX_DESCRIBED_AREAS],
+    len: usize,
+}
+
+impl DescribedAreas {
+    /// The areas' indices into `[[world.areas]]`, in descriptor order.
+    pub fn indices(&self) -> &[usize] {
+        &self.at[..self.len]
+    }
+
+    /// How many areas.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// True without areas.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
 }
 
 impl Default for NoveltySpec {
@@ -1131,7 +1236,7 @@ impl NoveltySpec {
             ));
         }
         for (i, d) in self.descriptors.iter().enumerate() {
-            let name = d.measure.name();
+            let name = d.label();
             if !(d.min.is_finite() && d.max.is_finite()) || d.min >= d.max {
                 return Err(InvalidValue::new(
                     key,
@@ -1141,7 +1246,10 @@ impl NoveltySpec {
                     ),
                 ));
             }
-            if self.descriptors[..i].iter().any(|e| e.measure == d.measure) {
+            if self.descriptors[..i]
+                .iter()
+                .any(|e| e.measure == d.measure && e.area == d.area)
+            {
                 return Err(InvalidValue::new(key, format!("names `{name}` twice")));
             }
         }
@@ -1255,6 +1363,14 @@ pub struct GridDescriptorSpec {
     pub max: f64,
     /// `bins`: how many equal cells [min, max] is split into (at least 1).
     pub bins: usize,
+    /// `area`: with `measure = "time_in_area"` only, the `[[world.areas]]` entry (by `name`)
+    /// whose time this dimension counts: the ticks alive the creature's centre spent inside
+    /// it, mean over the trials, independent of `[behaviour] area`; such a descriptor need
+    /// not be in `[behaviour] measures` (its value is its own). At most 3 descriptors name
+    /// an area; archive.csv names the column `time_in_area:<area>` (default: none: the
+    /// measure of `[behaviour]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub area: Option<String>,
 }
 
 impl GridDescriptorSpec {
@@ -1264,7 +1380,13 @@ impl GridDescriptorSpec {
             measure: self.measure,
             min: self.min,
             max: self.max,
+            area: self.area.clone(),
         }
+    }
+
+    /// The dimension's name in outputs: the measure's, or `time_in_area:<area>`.
+    pub fn label(&self) -> String {
+        descriptor_label(self.measure, self.area.as_deref())
     }
 }
 
@@ -1358,7 +1480,7 @@ impl MapElitesSpec {
             ));
         }
         for (i, d) in self.descriptors.iter().enumerate() {
-            let name = d.measure.name();
+            let name = d.label();
             if !(d.min.is_finite() && d.max.is_finite()) || d.min >= d.max {
                 return Err(InvalidValue::new(
                     key,
@@ -1374,7 +1496,10 @@ impl MapElitesSpec {
                     format!("`{name}` must have bins of at least 1, got bins = 0"),
                 ));
             }
-            if self.descriptors[..i].iter().any(|e| e.measure == d.measure) {
+            if self.descriptors[..i]
+                .iter()
+                .any(|e| e.measure == d.measure && e.area == d.area)
+            {
                 return Err(InvalidValue::new(key, format!("names `{name}` twice")));
             }
         }

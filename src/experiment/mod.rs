@@ -388,7 +388,7 @@ impl ExperimentConfig {
         self.fitness.validate_against_world(&self.world)?;
         self.behaviour.validate(&self.world)?;
         self.evolution
-            .validate_descriptors(&self.behaviour.measures)?;
+            .validate_descriptors(&self.behaviour.measures, &self.world)?;
         self.validation.validate()?;
         self.output.validate()?;
         // PGPE evaluates its centre as one more individual: groups must divide that count.

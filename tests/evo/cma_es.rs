@@ -278,6 +278,7 @@ fn cma_es_cost_per_generation() {
                                 fitness: Some(-v),
                                 metabolism: [0.0; 4],
                                 measures: Vec::new(),
+                                area_ticks: Vec::new(),
                             },
                             lineage: None,
                         }

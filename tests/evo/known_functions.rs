@@ -58,6 +58,7 @@ pub fn evaluations_to_reach<S: Search>(
                     fitness: Some(-v),
                     metabolism: [0.0; 4],
                     measures: Vec::new(),
+                    area_ticks: Vec::new(),
                 },
                 lineage: None,
             })

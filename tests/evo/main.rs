@@ -4,6 +4,7 @@
 #[path = "../cli_common/mod.rs"]
 mod cli_common;
 
+mod area_descriptors;
 mod cma_es;
 mod door;
 mod eating_and_choice_measures;

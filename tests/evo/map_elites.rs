@@ -102,6 +102,7 @@ fn individual(
             fitness,
             metabolism: [0.0; 4],
             measures: vec![food_types, distinct_food],
+            area_ticks: Vec::new(),
         },
         lineage: None,
     }

@@ -106,6 +106,7 @@ fn individual(fitness: Option<f64>, food_types: f64, distinct_food: f64) -> Indi
             fitness,
             metabolism: [0.0; 4],
             measures: vec![food_types, distinct_food],
+            area_ticks: Vec::new(),
         },
         lineage: None,
     }

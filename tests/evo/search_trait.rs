@@ -242,6 +242,7 @@ fn individual(genome: &Genome, fitness: f64) -> Individual {
             fitness: Some(fitness),
             metabolism: [fitness, 0.0, 0.0, 0.0],
             measures: Vec::new(),
+            area_ticks: Vec::new(),
         },
         lineage: None,
     }

@@ -35,6 +35,7 @@ fn fake(genome: &Genome, fitness: f64) -> Individual {
             fitness: Some(fitness),
             metabolism: [0.0; 4],
             measures: Vec::new(),
+            area_ticks: Vec::new(),
         },
         lineage: None,
     }

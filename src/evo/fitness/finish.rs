@@ -5,6 +5,7 @@ use crate::evo::fitness::gain::{balanced_gain, goal_nearness, weighted};
 use crate::evo::fitness::plan::LifePlan;
 use crate::evo::fitness::score::LifeScore;
 use crate::evo::fitness::MEASURE_COUNT;
+use crate::experiment::evolution::MAX_DESCRIBED_AREAS;
 use crate::experiment::terms::{Quantity, Sign, TERMS};
 use crate::experiment::{FitnessMode, GoalAt, Measure};
 use crate::sim::metabolism::Metabolism;
@@ -46,6 +47,11 @@ impl LifeScore {
             measures[m.index()] = self.measure(m, plan, world, c, bitten, distinct);
         }
         (score, measures)
+    }
+
+    /// The ticks alive in each area the plan's descriptors name, in its order (0 past them).
+    pub fn described_area_ticks(&self) -> [f64; MAX_DESCRIBED_AREAS] {
+        self.ticks_in_described.map(|t| t as f64)
     }
 
     /// [`LifeScore::finish`] with the extra terms of `plan` for creature `c`, which took

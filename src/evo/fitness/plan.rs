@@ -34,6 +34,9 @@ pub struct LifePlan {
     pub(super) measures: Vec<Measure>,
     /// `[behaviour] area`.
     pub(super) behaviour_area: Option<Area>,
+    /// The areas a search's descriptors count the ticks in, in descriptor order (usually
+    /// none; `None` for an index the world lacks, so that the slots stay in order).
+    pub(super) described_areas: Vec<Option<Area>>,
     pub(super) threat_radius: f64,
     /// Some measure follows the pose tick by tick (`forward_share`, `path_length`,
     /// `final_x`, `final_y`, `still_share`).
@@ -71,6 +74,7 @@ impl LifePlan {
             counts_threats: false,
             measures: Vec::new(),
             behaviour_area: None,
+            described_areas: Vec::new(),
             threat_radius: 0.0,
             follows_motion: false,
             tracks_pose: false,
@@ -107,6 +111,12 @@ impl LifePlan {
         }
         plan.measures = behaviour.measures.clone();
         plan.behaviour_area = area(&behaviour.area);
+        plan.described_areas = trial_plan
+            .described_areas
+            .indices()
+            .iter()
+            .map(|&k| world.areas().get(k).copied())
+            .collect();
         plan.threat_radius = behaviour.threat_radius;
         let follows = |f: Follows| spec.term_following(f).is_some();
         if follows(Follows::Choices) || plan.measures.iter().any(|m| m.needs_switch()) {
@@ -124,6 +134,7 @@ impl LifePlan {
             || plan.counts_threats
             || plan.choices.is_some()
             || plan.events
+            || !plan.described_areas.is_empty()
             || plan.measures.iter().any(|m| {
                 matches!(
                     m,

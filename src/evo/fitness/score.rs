@@ -5,6 +5,7 @@ use crate::evo::choices::{ChoiceTrack, EpisodeChoices};
 use crate::evo::fitness::gain::{balanced_gain, weighted};
 use crate::evo::fitness::plan::LifePlan;
 use crate::evo::fitness::trackers::{door_opened, AversiveContacts, FlyerPasses, SideChoice};
+use crate::experiment::evolution::MAX_DESCRIBED_AREAS;
 use crate::experiment::tables::{FORWARD_STEP, STILL_STEP};
 use crate::experiment::{Balance, FitnessMode, FitnessSpec, GoalAt, Measure};
 use crate::geometry::{circles_touch, Vec2};
@@ -31,6 +32,8 @@ pub struct LifeScore {
     pub(super) goal_closest: f64,
     pub(super) area_reached: bool,
     pub(super) ticks_in_area: u64,
+    /// Ticks in each of the plan's described areas, in its order.
+    pub(super) ticks_in_described: [u64; MAX_DESCRIBED_AREAS],
     pub(super) door_opened: bool,
     pub(super) threat_ticks: u64,
     pub(super) sheltered_threat_ticks: u64,
@@ -72,6 +75,7 @@ impl LifeScore {
             goal_closest: f64::INFINITY,
             area_reached: false,
             ticks_in_area: 0,
+            ticks_in_described: [0; MAX_DESCRIBED_AREAS],
             door_opened: false,
             threat_ticks: 0,
             sheltered_threat_ticks: 0,
@@ -186,6 +190,16 @@ impl LifeScore {
             let inside = area.contains(p);
             self.area_reached |= inside;
             self.ticks_in_area += u64::from(inside);
+        }
+        // The same count as `time_in_area`'s, one per area a descriptor names.
+        for (ticks, area) in self
+            .ticks_in_described
+            .iter_mut()
+            .zip(&plan.described_areas)
+        {
+            if let Some(area) = area {
+                *ticks += u64::from(area.contains(p));
+            }
         }
         if let (Some(track), Some(choices)) = (&mut self.choices, &plan.choices) {
             track.record(choices, world.bitten(creature));

@@ -6,6 +6,7 @@ use crate::brain::genome::Genome;
 use crate::evo::evaluate::JobLives;
 use crate::evo::fitness::MEASURE_COUNT;
 use crate::evo::life::TrialOutcome;
+use crate::experiment::evolution::MAX_DESCRIBED_AREAS;
 use thiserror::Error;
 
 /// A message that does not hold what its tag says.
@@ -74,6 +75,9 @@ impl Writer {
             for &m in &outcome.measures {
                 self.f64(m);
             }
+            for &t in &outcome.area_ticks {
+                self.f64(t);
+            }
         }
         self
     }
@@ -85,7 +89,7 @@ impl Writer {
 }
 
 /// Words of one [`TrialOutcome`] on the wire.
-pub const OUTCOME_WORDS: usize = 7 + MEASURE_COUNT;
+pub const OUTCOME_WORDS: usize = 7 + MEASURE_COUNT + MAX_DESCRIBED_AREAS;
 
 /// Reads a message.
 pub struct Reader<'a> {
@@ -190,12 +194,17 @@ impl<'a> Reader<'a> {
         for m in &mut measures {
             *m = self.f64()?;
         }
+        let mut area_ticks = [0.0; MAX_DESCRIBED_AREAS];
+        for t in &mut area_ticks {
+            *t = self.f64()?;
+        }
         Ok(TrialOutcome {
             score,
             metabolism,
             shocked_ticks,
             non_finite,
             measures,
+            area_ticks,
         })
     }
 
@@ -230,6 +239,7 @@ mod tests {
             shocked_ticks: 42,
             non_finite: true,
             measures: [std::f64::consts::PI; MEASURE_COUNT],
+            area_ticks: [0.5, 7.0, -0.0],
         };
         let lives: Vec<JobLives> = vec![vec![vec![outcome; 2]; 3], vec![vec![outcome; 2]]];
         let bytes = Writer::new().genomes(&genomes).lives(&lives).finish();

@@ -1,33 +1,53 @@
 //! Behaviour descriptors: an individual's `[behaviour]` measures, as named by a search's
 //! `descriptors`, each scaled from its [min, max] to [0, 1], so that distances in behaviour
 //! space weigh every dimension alike (novelty search; MAP-Elites' grid archive bins the
-//! same vector).
+//! same vector). A descriptor that names an `area` reads that area's own ticks
+//! ([`Evaluation::area_ticks`]) instead.
 
 use crate::evo::evaluate::Evaluation;
 use crate::experiment::evolution::DescriptorSpec;
 use crate::experiment::tables::Measure;
 
-/// A behaviour space: where each descriptor's measure sits in an evaluation's `measures`
-/// and the range that maps to [0, 1].
+/// Where a dimension's value sits in an evaluation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Source {
+    /// An index into `Evaluation::measures`.
+    Measure(usize),
+    /// An index into `Evaluation::area_ticks`.
+    Area(usize),
+}
+
+/// A behaviour space: where each descriptor's value sits in an evaluation and the range that
+/// maps to [0, 1].
 #[derive(Debug, Clone, PartialEq)]
 pub struct Descriptors {
-    /// Per dimension: (index into `Evaluation::measures`, min, max).
-    dimensions: Vec<(usize, f64, f64)>,
+    /// Per dimension: (where its value is, min, max).
+    dimensions: Vec<(Source, f64, f64)>,
 }
 
 impl Descriptors {
     /// The space of `descriptors` over an experiment computing `measures` (its
     /// `[behaviour] measures`, in order). A descriptor whose measure is not computed reads 0
     /// (validation refuses such a file, so only a checkpoint of another experiment meets it).
+    /// The descriptors that name an area read the evaluation's area ticks in their order (the
+    /// order [`crate::experiment::EvolutionSpec::described_areas`] counts them in).
     pub fn new(descriptors: &[DescriptorSpec], measures: &[Measure]) -> Descriptors {
+        let mut areas = 0;
         Descriptors {
             dimensions: descriptors
                 .iter()
                 .map(|d| {
-                    let at = measures
-                        .iter()
-                        .position(|m| *m == d.measure)
-                        .unwrap_or(usize::MAX);
+                    let at = if d.area.is_some() {
+                        areas += 1;
+                        Source::Area(areas - 1)
+                    } else {
+                        Source::Measure(
+                            measures
+                                .iter()
+                                .position(|m| *m == d.measure)
+                                .unwrap_or(usize::MAX),
+                        )
+                    };
                     (at, d.min, d.max)
                 })
                 .collect(),
@@ -55,7 +75,14 @@ impl Descriptors {
     pub fn raw(&self, evaluation: &Evaluation) -> Vec<f64> {
         self.dimensions
             .iter()
-            .map(|&(at, min, _)| evaluation.measures.get(at).copied().unwrap_or(min))
+            .map(|&(at, min, _)| {
+                match at {
+                    Source::Measure(k) => evaluation.measures.get(k),
+                    Source::Area(k) => evaluation.area_ticks.get(k),
+                }
+                .copied()
+                .unwrap_or(min)
+            })
             .collect()
     }
 

@@ -126,7 +126,7 @@ impl GridArchive {
 /// One dimension of an archive, as outputs describe it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Dimension {
-    /// The measure's name (e.g. `distinct_food`).
+    /// The measure's name (e.g. `distinct_food`; `time_in_area:nest` for an area's own).
     pub measure: String,
     /// The low end of the first bin.
     pub min: f64,
@@ -139,7 +139,7 @@ pub struct Dimension {
 impl From<&GridDescriptorSpec> for Dimension {
     fn from(d: &GridDescriptorSpec) -> Dimension {
         Dimension {
-            measure: d.measure.name().to_string(),
+            measure: d.label(),
             min: d.min,
             max: d.max,
             bins: d.bins,
