@@ -1116,7 +1116,8 @@ impl From<MutationSpec> for RawMutation {
 #[serde(deny_unknown_fields, default)]
 pub struct NoveltySpec {
     /// `descriptors`: the behaviour space, one `{ measure, min, max }` per dimension
-    /// (required with novelty; each a `[behaviour]` measure, at most once).
+    /// (required with novelty; each a `[behaviour]` measure, or `time_in_area` with an `area`
+    /// of its own; at most once).
     pub descriptors: Vec<DescriptorSpec>,
     /// `k`: how many nearest neighbours novelty averages over (default: 15; at least 1, at
     /// most population − 1 + archive_size, the most neighbours an individual can have).
@@ -1322,7 +1323,8 @@ impl NoveltySpec {
 #[serde(deny_unknown_fields, default)]
 pub struct MapElitesSpec {
     /// `descriptors`: the grid, one `{ measure, min, max, bins }` per dimension (1 to 3,
-    /// required; each a `[behaviour]` measure, at most once; at most 100,000 cells in all).
+    /// required; each a `[behaviour]` measure, or `time_in_area` with an `area` of its own; at
+    /// most once; at most 100,000 cells in all).
     pub descriptors: Vec<GridDescriptorSpec>,
     /// `initial_random`: generations are random genomes (drawn as the GA's generation 0,
     /// uniform in ±`init_range`) while the archive holds fewer elites than this; generation 0
