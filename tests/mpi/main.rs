@@ -237,6 +237,17 @@ fn one_two_and_three_ranks_give_the_plain_bytes() {
             ),
             "5",
         ),
+        // ... with descriptors that count the time in named areas, which the ranks send back
+        // with each trial's outcome.
+        (
+            variant(
+                t,
+                "tests/fixtures/tiny-map-elites-areas.toml",
+                "tiny-map-elites-areas.toml",
+                |s| s,
+            ),
+            "4",
+        ),
     ];
     for (experiment, generations) in &cases {
         let name = experiment
