@@ -1,10 +1,12 @@
 //! A lockstep tick allocates nothing: a counting global allocator watches
-//! `Lockstep::tick` drive a chunk of foraging worlds with MLP brains while creatures die and
-//! worlds stop, so that the batches shrink from tick to tick. The job's buffers are sized
-//! once, when it starts.
+//! `Lockstep::tick` drive a chunk of foraging worlds with MLP brains (one shared brain per
+//! creature, or a plastic brain per world and creature) while creatures die and worlds stop,
+//! so that the batches shrink from tick to tick. The job's buffers are sized once, when it
+//! starts.
 
+use berry_evolve::brain::genome::Genome;
 use berry_evolve::brain::{Brain, BrainController};
-use berry_evolve::evo::lockstep::{Lockstep, CHUNK_TRIALS};
+use berry_evolve::evo::lockstep::{BatchController, Lockstep, WorldBrains, CHUNK_TRIALS};
 use berry_evolve::evo::search::ga::first_population;
 use berry_evolve::experiment::Experiment;
 use berry_evolve::seed::{stream, Generation, IndividualId, Purpose, TrialIndex};
@@ -13,23 +15,24 @@ use std::path::Path;
 
 use crate::alloc_common::allocations;
 
-#[test]
-fn lockstep_tick_does_not_allocate() {
+fn load(file: &str) -> Experiment {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let experiment = Experiment::load(&root.join("experiments/foraging.toml")).unwrap();
-    let topology = experiment.topology();
-    let creatures = 3;
-    let genomes = first_population(&experiment, &topology);
-    let mut controllers: Vec<BrainController> = genomes[..creatures]
-        .iter()
-        .map(|g| {
-            BrainController::new(
-                Brain::new(&topology, &g.parameters).unwrap(),
-                experiment.creature.max_rpt,
-                experiment.creature.eats_by_action(),
-            )
-        })
-        .collect();
+    Experiment::load(&root.join(file)).unwrap()
+}
+
+fn controller(experiment: &Experiment, genome: &Genome) -> BrainController {
+    BrainController::new(
+        Brain::new(&experiment.topology(), &genome.parameters).unwrap(),
+        experiment.creature.max_rpt,
+        experiment.creature.eats_by_action(),
+    )
+}
+
+/// Drives `CHUNK_TRIALS` worlds of `experiment`, one creature per controller, for 600 ticks
+/// (after one uncounted tick), killing creatures and stopping worlds on the way, and checks
+/// that no tick allocated and that somebody moved.
+fn ticks_do_not_allocate<B: BatchController>(experiment: &Experiment, controllers: &mut [B]) {
+    let creatures = controllers.len();
     let n = CHUNK_TRIALS as usize;
     let mut worlds: Vec<World> = (0..n as u64)
         .map(|w| {
@@ -48,10 +51,10 @@ fn lockstep_tick_does_not_allocate() {
     let mut running = vec![true; n];
     let mut invalid = vec![false; n * creatures];
     // One tick outside the count: the brains' batch buffers grow to the largest batch then.
-    lockstep.tick(&mut worlds, &running, &mut controllers, &mut invalid);
+    lockstep.tick(&mut worlds, &running, controllers, &mut invalid);
     let before = allocations();
     for tick in 0..600 {
-        lockstep.tick(&mut worlds, &running, &mut controllers, &mut invalid);
+        lockstep.tick(&mut worlds, &running, controllers, &mut invalid);
         // Deaths and stopped worlds shrink the batches.
         if tick % 50 == 0 {
             let k = tick / 50;
@@ -68,4 +71,33 @@ fn lockstep_tick_does_not_allocate() {
             .any(|c| c.travelled > 10.0),
         "nobody moved"
     );
+}
+
+#[test]
+fn lockstep_tick_does_not_allocate() {
+    let experiment = load("experiments/foraging.toml");
+    let genomes = first_population(&experiment, &experiment.topology());
+    let mut controllers: Vec<BrainController> = genomes[..3]
+        .iter()
+        .map(|g| controller(&experiment, g))
+        .collect();
+    ticks_do_not_allocate(&experiment, &mut controllers);
+}
+
+/// The same with plastic brains, one per world (`WorldBrains`): their weight updates and the
+/// per-world dispatch allocate nothing either.
+#[test]
+fn plastic_lockstep_tick_does_not_allocate() {
+    let experiment = load("experiments/bench/foraging-plastic.toml");
+    let genomes = first_population(&experiment, &experiment.topology());
+    let mut controllers: Vec<WorldBrains> = genomes[..3]
+        .iter()
+        .map(|g| {
+            let brains = (0..CHUNK_TRIALS)
+                .map(|_| controller(&experiment, g))
+                .collect();
+            WorldBrains::new(brains)
+        })
+        .collect();
+    ticks_do_not_allocate(&experiment, &mut controllers);
 }
