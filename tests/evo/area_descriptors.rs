@@ -184,6 +184,18 @@ fn an_evaluation_carries_the_described_areas_like_time_in_area() {
     for (ev, nest) in evaluations.iter().zip(&again) {
         assert_eq!(ev.area_ticks[1], nest.measures[0]);
     }
+    // Lives of two episodes: the mean over the episodes, as `time_in_area`'s.
+    let text = text(
+        FIELD_AND_NEST,
+        "[behaviour]\nmeasures = [\"time_in_area\"]\narea = \"field\"\n",
+    )
+    .replace("ticks = 60\n", "ticks = 30\nepisodes_per_life = 2\n");
+    let e = Experiment::from_toml(&text, Path::new("areas.toml")).unwrap();
+    let lives = evaluate_population(&e, &topology, &population, Generation(1)).unwrap();
+    for ev in &lives {
+        assert_eq!(ev.area_ticks[0], ev.measures[0]);
+    }
+    assert!(lives.iter().any(|ev| ev.area_ticks[0] > 0.0));
     // Without area descriptors the evaluation has none (and checkpoints stay as they were).
     let e = experiment(
         "",
