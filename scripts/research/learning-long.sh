@@ -3,8 +3,8 @@
 # longer runs"): evolves seeds 1-5 of FILE for GENERATIONS generations into
 # RUNS/<name>-g<GENERATIONS>/seed-<n>/ (reused when there), then compares each champion on that
 # seed's 20 held-out lives of the shipped t-maze-switch (as scripts/learning-table.sh does,
-# which must have run first: its seed folders give the worlds), frozen and ungated too, and
-# prints adapted_choice and fitness per seed and their medians.
+# which must have run first: its seed folders give the worlds), and prints adapted_choice and fitness per seed and their medians (frozen and ungated rows for a
+# plastic brain).
 #
 #   bash scripts/research/learning-long.sh experiments/learning/t-maze-switch-plastic-small-choice.toml 800
 set -euo pipefail
@@ -20,10 +20,13 @@ for seed in 1 2 3 4 5; do
   [ -f "$out/best.json" ] && continue
   "$BIN" run "$FILE" --seed "$seed" --generations "$GENERATIONS" --out "$out" --quiet --no-check --force
 done
+# Frozen and ungated rows only for a plastic brain (compare refuses --ablate otherwise).
+ablate=()
+grep -Eq '^plasticity *= *"(hebbian|neuromodulated)"' "$FILE" && ablate=(--ablate)
 for seed in 1 2 3 4 5; do
   "$BIN" compare "$RUNS/$name/seed-$seed/best.json" \
     --experiment "$RUNS/t-maze-switch/seed-$seed/experiment.toml" \
-    --trials 20 --ablate --measure adapted_choice --json 2>/dev/null
+    --trials 20 "${ablate[@]}" --measure adapted_choice --json 2>/dev/null
 done | python3 -c '
 import json, statistics, sys
 decoder, text, rows = json.JSONDecoder(), sys.stdin.read(), {}
