@@ -6,6 +6,9 @@
 #   bash scripts/search-share.sh                 # prints a Markdown table
 #   bash scripts/search-share.sh --generations 10   # default 6: generation 0's random draw
 #                                                 # counts once, as in a run it is amortised
+#   bash scripts/search-share.sh --draw-order 2     # `[evolution] draw_order = 2` in every
+#                                                 # case (offspring in parallel, mutation by
+#                                                 # gaps, one word a normal: for large brains)
 #
 # Each case is experiments/foraging.toml with the algorithm, the population and the hidden
 # layer (24 -> h -> 2: 27h + 2 parameters, h = 0 for 50) changed, written to a temporary
@@ -15,11 +18,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 GENERATIONS=6
+DRAW_ORDER=1
 BIN=target/release/berry-evolve
 while [ $# -gt 0 ]; do
   case "$1" in
     --generations) GENERATIONS=$2; shift 2 ;;
     --bin) BIN=$2; shift 2 ;;
+    --draw-order) DRAW_ORDER=$2; shift 2 ;;
     *) echo "search-share.sh: unknown argument $1 (see the comments at the top)" >&2; exit 2 ;;
   esac
 done
@@ -27,10 +32,11 @@ done
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 
-BIN=$BIN TMP=$TMP GENERATIONS=$GENERATIONS python3 - <<'PY'
+BIN=$BIN TMP=$TMP GENERATIONS=$GENERATIONS DRAW_ORDER=$DRAW_ORDER python3 - <<'PY'
 import json, os, re, subprocess
 
 binary, tmp, generations = os.environ["BIN"], os.environ["TMP"], os.environ["GENERATIONS"]
+draw_order = os.environ["DRAW_ORDER"]
 base = open("experiments/foraging.toml").read()
 base = base[base.index('name = "foraging"'):]
 base = re.sub(r"\[output\][^\[]*$", "", base)
@@ -67,6 +73,8 @@ def case(algorithm, population, hidden):
     text = text.replace("population = 64", f"population = {population}")
     text = text.replace("hidden = []", f"hidden = [{hidden}]" if hidden else "hidden = []")
     text = text.replace("[evolution]\n", f'[evolution]\nalgorithm = "{algorithm}"\n', 1)
+    if draw_order != "1":
+        text = text.replace("[evolution]\n", f"[evolution]\ndraw_order = {draw_order}\n", 1)
     text = text.replace("[evaluation]\n", TABLES[algorithm].lstrip("\n") + "\n[evaluation]\n", 1)
     path = os.path.join(tmp, f"{algorithm}-{population}-{hidden}.toml")
     open(path, "w").write(text)
@@ -81,7 +89,7 @@ def case(algorithm, population, hidden):
     return (two["search_share_percent"], 1000.0 * seconds * two["search_share_percent"] / 100), None
 
 
-print(f"| algorithm | population | parameters | search share (2 threads) | search ms a generation |")
+print(f"| algorithm | population | parameters | search share (2 threads, draw order {draw_order}) | search ms a generation |")
 print("|---|---|---|---|---|")
 cases = [(a, p, h) for a in ("ga", "pgpe", "novelty", "map-elites", "sep-cma-es")
          for p in (64, 256) for h in (0, 555)]

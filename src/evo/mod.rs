@@ -29,6 +29,7 @@ pub mod trial;
 pub mod trial_plan;
 pub mod validation;
 pub mod vary;
+pub mod vary_streams;
 pub mod worlds;
 
 pub use init::initial_population;

@@ -28,6 +28,9 @@
 //! `chance` and `unit` consume one 64-bit output, `gaussian` two, and `below` one or
 //! (rarely, on rejection) more.
 //!
+//! This is draw order 1, every file's unless it sets `[evolution] draw_order = 2`, whose
+//! offspring come from their own streams ([`crate::evo::vary_streams`]).
+//!
 //! # Drawing, then transforming
 //!
 //! The draws above are made one after another from the one stream, in that order; but a
@@ -45,10 +48,11 @@ use crate::brain::genome::Genome;
 use crate::evo::lineage::{Birth, Lineage};
 use crate::evo::search::draws::Words;
 use crate::evo::select::{ranking, truncation_count, Selector};
+use crate::evo::vary_streams;
 use crate::experiment::evolution::{
     CrossoverSpec, EvolutionSpec, MutationSpec, SelectionSpec, MAX_MAGNITUDE,
 };
-use crate::seed::{below, chance, gaussian, gaussian_from, unit, Rng};
+use crate::seed::{below, chance, gaussian_from, unit, Normals, Rng};
 use rand_chacha::rand_core::RngCore;
 use rayon::prelude::*;
 
@@ -118,6 +122,10 @@ pub(crate) fn vary(
     for &i in &selector.ranking()[..elites] {
         next.push(parents[i].clone());
         lineage.push(Lineage::of(Birth::Elite, &[i]));
+    }
+    if spec.offspring_streams() {
+        vary_streams::offspring(spec, parents, &mut selector, rng, &mut next, &mut lineage);
+        return (next, lineage);
     }
     // Each offspring's mutation, drawn in turn and applied to all of them at the end.
     let mut mutations = Vec::with_capacity(spec.population - elites);
@@ -311,7 +319,7 @@ fn draw_mutation_from_words(
     mutation: &MutationSpec,
     words: &mut Words,
 ) -> DrawnMutation {
-    let sigma = draw_step_size(genome, mutation, words);
+    let sigma = draw_step_size(genome, mutation, Normals::BoxMuller, words);
     let p = mutation.probability;
     let n = genome.parameters.len();
     let expected = (p.clamp(0.0, 1.0) * n as f64) as usize;
@@ -375,7 +383,7 @@ fn draw_mutation(
     mutation: &MutationSpec,
     rng: &mut impl RngCore,
 ) -> DrawnMutation {
-    let sigma = draw_step_size(genome, mutation, rng);
+    let sigma = draw_step_size(genome, mutation, Normals::BoxMuller, rng);
     // About probability × genes entries: reserved once rather than grown.
     let expected = (mutation.probability.clamp(0.0, 1.0) * genome.parameters.len() as f64) as usize;
     let mut genes = Vec::with_capacity(expected + expected / 8 + 16);
@@ -389,15 +397,20 @@ fn draw_mutation(
     DrawnMutation { sigma, genes }
 }
 
-/// Draws and sets `genome`'s step size (step 4's first draw, with self-adaptation) and says
-/// the σ' its genes mutate with.
-fn draw_step_size(genome: &mut Genome, mutation: &MutationSpec, rng: &mut impl RngCore) -> f64 {
+/// Draws and sets `genome`'s step size (step 4's first draw, with self-adaptation; its normal
+/// as `normals` says) and says the σ' its genes mutate with.
+pub(crate) fn draw_step_size(
+    genome: &mut Genome,
+    mutation: &MutationSpec,
+    normals: Normals,
+    rng: &mut impl RngCore,
+) -> f64 {
     match &mutation.self_adaptive {
         Some(adaptation) => {
             let tau = adaptation.tau_for(genome.parameters.len());
             let old = genome.step_size.unwrap_or(mutation.sigma);
             // The floor is applied last so that it wins over the ceiling.
-            let new = (old * libm::exp(tau * gaussian(rng)))
+            let new = (old * libm::exp(tau * normals.draw(rng)))
                 .min(MAX_MAGNITUDE)
                 .max(adaptation.min_sigma);
             genome.step_size = Some(new);

@@ -38,6 +38,7 @@
 //! that kind uses, defaults included.
 
 use crate::experiment::tables::{area_index, Measure};
+use crate::seed::Normals;
 use crate::sim::spec::WorldSpec;
 use crate::validate::{count_within, non_negative, within, InvalidValue, Valid};
 use schemars::JsonSchema;
@@ -108,6 +109,23 @@ pub struct EvolutionSpec {
     /// which needs its `descriptors`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub map_elites: Option<MapElitesSpec>,
+    /// `draw_order`: how the search draws its random numbers (default: 1; 1 or 2). 1 is the
+    /// order every shipped experiment was run with: the GA draws a chance for every gene from
+    /// one stream per generation, and normals by Box–Muller. 2 is for large brains (thousands
+    /// of parameters), where 1 makes the search a visible share of a generation: each GA
+    /// offspring draws from its own stream (so offspring are made in parallel), mutation
+    /// draws the gap to the next mutated gene instead of a chance per gene, uniform crossover
+    /// takes 64 genes' choices from one draw, and every search's normals come from one word
+    /// each (the inverse distribution function). Both are exact and reproducible; they give
+    /// different runs from the same seed. Not written back when 1, so existing files keep their
+    /// bytes and config hash.
+    #[serde(skip_serializing_if = "is_first_draw_order")]
+    pub draw_order: u32,
+}
+
+/// True for draw order 1 (the default, not written back).
+fn is_first_draw_order(order: &u32) -> bool {
+    *order == 1
 }
 
 /// The search algorithms `[evolution] algorithm` chooses from.
@@ -159,11 +177,27 @@ impl Default for EvolutionSpec {
             cma_es: None,
             novelty: None,
             map_elites: None,
+            draw_order: 1,
         }
     }
 }
 
 impl EvolutionSpec {
+    /// How this search turns words into normal draws (`draw_order`).
+    pub fn normals(&self) -> Normals {
+        if self.draw_order >= 2 {
+            Normals::InverseCdf
+        } else {
+            Normals::BoxMuller
+        }
+    }
+
+    /// Whether each GA offspring draws from its own stream, with mutation drawn by gaps
+    /// (`draw_order = 2`).
+    pub fn offspring_streams(&self) -> bool {
+        self.draw_order >= 2
+    }
+
     /// PGPE's settings when `algorithm = "pgpe"` (the table's, or every default).
     pub fn pgpe_settings(&self) -> Option<PgpeSpec> {
         match self.algorithm {
@@ -376,6 +410,17 @@ impl EvolutionSpec {
             ));
         }
         magnitude("evolution.init_range", self.init_range)?;
+        if !(1..=2).contains(&self.draw_order) {
+            return Err(InvalidValue::new(
+                "evolution.draw_order",
+                format!(
+                    "must be 1 (the order every shipped experiment uses) or 2 (for brains of \
+                     thousands of parameters: offspring in parallel, mutation drawn by gaps), \
+                     got {}",
+                    self.draw_order
+                ),
+            ));
+        }
         self.selection.validate(self.population)?;
         self.crossover.validate()?;
         self.mutation.validate()?;

@@ -157,3 +157,14 @@ fn an_absurd_retina_is_refused_naming_the_limit() {
         "{err}"
     );
 }
+
+#[test]
+fn an_unknown_draw_order_is_refused() {
+    for order in ["0", "3"] {
+        let m = refused(
+            "population = 12",
+            &format!("population = 12\ndraw_order = {order}"),
+        );
+        assert_names(&m, "evolution.draw_order", &["must be 1", "or 2"]);
+    }
+}

@@ -7,6 +7,7 @@ mod cli_common;
 mod area_descriptors;
 mod cma_es;
 mod door;
+mod draw_order;
 mod eating_and_choice_measures;
 mod episode_steps;
 mod episodes_and_switches;

@@ -11,8 +11,8 @@ use berry_evolve::experiment::evolution::{
     CrossoverSpec, EvolutionSpec, MutationSpec, PgpeSpec, SelectionSpec, SelfAdaptation,
 };
 use berry_evolve::seed::{
-    chance, gaussian, gaussian_from, stream, unit, Generation, IndividualId, Purpose, Rng, Seed,
-    TrialIndex,
+    chance, gaussian, gaussian_from, stream, unit, Generation, IndividualId, Normals, Purpose, Rng,
+    Seed, TrialIndex,
 };
 
 fn rng(seed: u64) -> Rng {
@@ -180,7 +180,7 @@ fn pgpe_and_cma_noises_are_the_sequential_ones() {
     let state = pgpe::PgpeState::initial(&PgpeSpec::default(), parameters);
     for threads in [1, 3] {
         let got = on(threads, || {
-            pgpe::noises(Seed(5), Generation(2), &state, 7 * 2)
+            pgpe::noises(Normals::BoxMuller, Seed(5), Generation(2), &state, 7 * 2)
         });
         let mut r = pgpe::noise_stream(Seed(5), Generation(2));
         let expected: Vec<Vec<u64>> = (0..7)
@@ -196,7 +196,7 @@ fn pgpe_and_cma_noises_are_the_sequential_ones() {
         assert_eq!(got, expected, "pgpe, {threads} threads");
 
         let got = on(threads, || {
-            cma_family::noises(Seed(5), Generation(2), parameters, 5)
+            cma_family::noises(Normals::BoxMuller, Seed(5), Generation(2), parameters, 5)
         });
         let mut r = stream(
             Seed(5),

@@ -7,7 +7,9 @@ use crate::cli_common::{fixture, read, run_ok};
 use berry_evolve::evo::pgpe::{self, PgpeState};
 use berry_evolve::experiment::evolution::{Algorithm, PgpeSpec};
 use berry_evolve::experiment::Experiment;
-use berry_evolve::seed::{gaussian, stream, Generation, IndividualId, Purpose, Seed, TrialIndex};
+use berry_evolve::seed::{
+    gaussian, stream, Generation, IndividualId, Normals, Purpose, Seed, TrialIndex,
+};
 use std::path::{Path, PathBuf};
 
 fn spec() -> PgpeSpec {
@@ -123,7 +125,7 @@ fn pgpe_first_samples_are_pinned() {
         ..PgpeSpec::default()
     };
     let state = PgpeState::initial(&pgpe_spec, 3);
-    let genomes = pgpe::sample(Seed(5), Generation(0), &state, 4);
+    let genomes = pgpe::sample(Normals::BoxMuller, Seed(5), Generation(0), &state, 4);
     assert_eq!(genomes.len(), 5, "4 samples and the centre");
     let mut rng = stream(
         Seed(5),
@@ -157,7 +159,14 @@ fn pgpe_first_samples_are_pinned() {
                 .sum::<f64>()
         })
         .collect();
-    let next = pgpe::step(Seed(5), &pgpe_spec, &state, Generation(0), &fitness);
+    let next = pgpe::step(
+        Normals::BoxMuller,
+        Seed(5),
+        &pgpe_spec,
+        &state,
+        Generation(0),
+        &fitness,
+    );
     // By hand: the scores rank pair members (s0, s1, s2, s3) as 2, 0, 3, 1, so
     // u = (1/6, −1/2, 1/2, −1/6), d = (2/3, 2/3), g_c = (ε0 + ε1)/6 and the first ClipUp step
     // is α (ε0 + ε1)/‖ε0 + ε1‖ with α = 0.15.

@@ -41,13 +41,18 @@ fn same_files(a: &Path, b: &Path, also: &[&str], what: &str) {
 /// fitness.csv, best.json, champions.jsonl and the last checkpoint). Returns the folder holding
 /// the runs and the 1-thread run, whose checkpoint the caller inspects.
 pub fn same_bytes_on_any_thread_count_and_resumed(name: &str, also: &[&str]) -> (TempDir, PathBuf) {
+    same_bytes_for(&fixture(name), name, also)
+}
+
+/// [`same_bytes_on_any_thread_count_and_resumed`] for any experiment file (`what` names it
+/// in a failure).
+pub fn same_bytes_for(file: &Path, what: &str, also: &[&str]) -> (TempDir, PathBuf) {
     let dir = tempfile::tempdir().unwrap();
-    let file = fixture(name);
     let [one, two, resumed] = ["one", "two", "resumed"].map(|d| dir.path().join(d));
-    run(&file, &one, "6", "1");
-    run(&file, &two, "6", "2");
-    same_files(&one, &two, also, &format!("{name}: --jobs 1 vs 2"));
-    run(&file, &resumed, "3", "2");
+    run(file, &one, "6", "1");
+    run(file, &two, "6", "2");
+    same_files(&one, &two, also, &format!("{what}: --jobs 1 vs 2"));
+    run(file, &resumed, "3", "2");
     run_ok(&[
         "resume",
         resumed.to_str().unwrap(),
@@ -59,7 +64,7 @@ pub fn same_bytes_on_any_thread_count_and_resumed(name: &str, also: &[&str]) -> 
         &one,
         &resumed,
         also,
-        &format!("{name}: resumed vs uninterrupted"),
+        &format!("{what}: resumed vs uninterrupted"),
     );
     (dir, one)
 }

@@ -13,7 +13,7 @@ use crate::evo::state::{Champion, EvaluatedGeneration, GenerationSummary};
 use crate::evo::validation::Candidate;
 use crate::experiment::evolution::CmaEsSpec;
 use crate::experiment::Experiment;
-use crate::seed::{stream, Generation, IndividualId, Purpose, Seed, TrialIndex};
+use crate::seed::{stream, Generation, IndividualId, Normals, Purpose, Seed, TrialIndex};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 use std::fmt::Debug;
@@ -57,6 +57,7 @@ pub trait Distribution: Debug + Clone + Send + Sync + 'static {
 /// (`Purpose::Search`, the generation, individual 0, trial 0), vector after vector, parameter
 /// after parameter, so a smaller sample is the first of a larger one (both CMA-ES variants).
 pub fn noises(
+    normals: Normals,
     seed: Seed,
     generation: Generation,
     parameters: usize,
@@ -69,7 +70,7 @@ pub fn noises(
         IndividualId(0),
         TrialIndex(0),
     );
-    draws::gaussian_rows(&mut rng, lambda, parameters)
+    draws::gaussian_rows(normals, &mut rng, lambda, parameters)
 }
 
 /// A CMA-ES search as a [`Search`]: θ_g, the generation it samples, where its mean came from.
@@ -88,6 +89,8 @@ pub struct CmaSearch<D: Distribution> {
     mean_parent: Option<usize>,
     /// The noises the last `ask` drew, for `tell`.
     noises: draws::NoiseCache,
+    /// How the noises are drawn (`[evolution] draw_order`).
+    normals: Normals,
 }
 
 impl<D: Distribution> CmaSearch<D> {
@@ -104,6 +107,7 @@ impl<D: Distribution> CmaSearch<D> {
             state: Some(D::initial(&spec, parameters)),
             mean_parent: None,
             noises: draws::NoiseCache::default(),
+            normals: experiment.evolution.normals(),
         }
     }
 
@@ -122,6 +126,7 @@ impl<D: Distribution> CmaSearch<D> {
             }
         };
         let z = noises(
+            self.normals,
             self.seed,
             Generation(self.generation),
             self.parameters,
@@ -168,6 +173,7 @@ impl<D: Distribution> Search for CmaSearch<D> {
             .noises
             .get_or_draw((self.generation, lambda, Vec::new()), || {
                 noises(
+                    self.normals,
                     self.seed,
                     Generation(self.generation),
                     self.parameters,
@@ -192,6 +198,7 @@ impl<D: Distribution> Search for CmaSearch<D> {
                 let key = (evaluated.generation, lambda, Vec::new());
                 let z = self.noises.take_or_draw(key, || {
                     noises(
+                        self.normals,
                         self.seed,
                         Generation(evaluated.generation),
                         self.parameters,

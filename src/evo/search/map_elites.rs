@@ -15,7 +15,8 @@
 //!   elite i, then one per gene ([`gaussian`]). The picks and the line are drawn in that
 //!   order first, noting where each offspring's per-gene draws start in the stream; then all
 //!   offspring's per-gene draws are made in one parallel pass ([`draws::gaussians_from`]),
-//!   the same values as drawing them offspring after offspring.
+//!   the same values as drawing them offspring after offspring. With `[evolution] draw_order
+//!   = 2` every `gaussian` here is [`crate::seed::gaussian_icdf`] (one word, not two).
 //! - **Tell g.** Each individual with a finite fitness, in index order, enters the cell of its
 //!   descriptors when it is empty or when its fitness is strictly greater
 //!   ([`super::grid::enters`]).
@@ -39,7 +40,7 @@ use crate::evo::state::EvaluatedGeneration;
 use crate::experiment::evolution::{Emitter, EvolutionSpec, MapElitesSpec};
 use crate::experiment::Experiment;
 use crate::seed::{
-    below, gaussian, stream, Generation, IndividualId, Purpose, Rng, Seed, TrialIndex,
+    below, gaussian, stream, Generation, IndividualId, Normals, Purpose, Rng, Seed, TrialIndex,
 };
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -71,7 +72,7 @@ pub fn iso_line_with(
 }
 
 /// The iso-line offspring of `xi` and `xj` (Vassiliades & Mouret 2018), drawing one
-/// `gaussian` for the line, then one per gene, from `rng`.
+/// `gaussian` for the line, then one per gene, from `rng` (draw order 1).
 pub fn iso_line(
     xi: &[f64],
     xj: &[f64],
@@ -80,13 +81,18 @@ pub fn iso_line(
     rng: &mut Rng,
 ) -> Vec<f64> {
     let line = gaussian(rng);
-    let isotropic = draws::gaussians(rng, xi.len());
+    let isotropic = draws::gaussians(Normals::BoxMuller, rng, xi.len());
     iso_line_with(xi, xj, iso_sigma, line_sigma, line, &isotropic)
 }
 
-/// The Gaussian offspring of `x`: x + σ · N(0, I), one `gaussian` per gene from `rng`.
+/// The Gaussian offspring of `x`: x + σ · N(0, I), one `gaussian` per gene from `rng` (draw
+/// order 1).
 pub fn gaussian_offspring(x: &[f64], sigma: f64, rng: &mut Rng) -> Vec<f64> {
-    gaussian_offspring_with(x, sigma, &draws::gaussians(rng, x.len()))
+    gaussian_offspring_with(
+        x,
+        sigma,
+        &draws::gaussians(Normals::BoxMuller, rng, x.len()),
+    )
 }
 
 /// x + σ · z, given the draws z.
@@ -248,6 +254,7 @@ impl Search for MapElites {
             IndividualId(0),
             TrialIndex(0),
         );
+        let normals = self.spec.normals();
         let pick = |rng: &mut Rng| elites[below(rng, elites.len() as u64) as usize];
         let mut planned = Vec::with_capacity(n);
         let mut lineage = Vec::with_capacity(n);
@@ -257,14 +264,14 @@ impl Search for MapElites {
                 Emitter::IsoLine => {
                     let b = pick(&mut rng);
                     lineage.push(Lineage::of_elites(Birth::IsoLine, &[first.id, b.id]));
-                    Some((b, gaussian(&mut rng)))
+                    Some((b, normals.draw(&mut rng)))
                 }
                 Emitter::Gaussian => {
                     lineage.push(Lineage::of_elites(Birth::Gaussian, &[first.id]));
                     None
                 }
             };
-            let draws_at = draws::skip_gaussians(&mut rng, first.genome.parameters.len());
+            let draws_at = draws::skip_gaussians(normals, &mut rng, first.genome.parameters.len());
             planned.push(Planned {
                 first,
                 second,
@@ -277,7 +284,7 @@ impl Search for MapElites {
             .par_iter()
             .map(|p| {
                 let x = &p.first.genome.parameters;
-                let z = draws::gaussians_from(&rng, p.draws_at, x.len());
+                let z = draws::gaussians_from(normals, &rng, p.draws_at, x.len());
                 let parameters = match p.second {
                     Some((b, line)) => {
                         iso_line_with(x, &b.genome.parameters, iso, line_sigma, line, &z)

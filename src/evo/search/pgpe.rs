@@ -43,7 +43,8 @@
 //! # Draw order (part of the reproducibility contract)
 //!
 //! Generation g's noise comes from `stream(seed, Purpose::Search, g, 0, 0)`: for k = 0 .. K − 1
-//! and each parameter j in order, one `gaussian()` z and ε_kj = σ_j · z. The update of step 4
+//! and each parameter j in order, one `gaussian()` z (`gaussian_icdf()` with `[evolution]
+//! draw_order = 2`) and ε_kj = σ_j · z. The update of step 4
 //! draws nothing: it regenerates ε from the same stream, so a checkpoint needs only θ_g and the
 //! evaluated generation, and a resumed run continues with the same bits.
 //!
@@ -62,7 +63,7 @@ use crate::evo::state::{Champion, EvaluatedGeneration, GenerationSummary};
 use crate::evo::validation::Candidate;
 use crate::experiment::evolution::{PgpeSpec, MAX_MAGNITUDE};
 use crate::experiment::Experiment;
-use crate::seed::{stream, Generation, IndividualId, Purpose, Rng, Seed, TrialIndex};
+use crate::seed::{stream, Generation, IndividualId, Normals, Purpose, Rng, Seed, TrialIndex};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -140,6 +141,7 @@ pub fn noise_stream(seed: Seed, generation: Generation) -> Rng {
 /// The K = `population / 2` scaled noises ε_k = σ ⊙ z_k of generation `generation`, drawn as
 /// the module documentation says.
 pub fn noises(
+    normals: Normals,
     seed: Seed,
     generation: Generation,
     state: &PgpeState,
@@ -147,7 +149,7 @@ pub fn noises(
 ) -> Vec<Vec<f64>> {
     let mut rng = noise_stream(seed, generation);
     // The draws in parallel, then ε = σ ⊙ z as `s * gaussian()` would make it.
-    let mut noises = draws::gaussian_rows(&mut rng, population / 2, state.stdev.len());
+    let mut noises = draws::gaussian_rows(normals, &mut rng, population / 2, state.stdev.len());
     noises.par_iter_mut().for_each(|z| {
         for (x, &s) in z.iter_mut().zip(&state.stdev) {
             // x · s is s · x to the bit (IEEE multiplication commutes).
@@ -179,12 +181,13 @@ pub fn individuals(state: &PgpeState, noises: &[Vec<f64>]) -> Vec<Genome> {
 
 /// Generation `generation` sampled from `state`: `population` samples, then the centre.
 pub fn sample(
+    normals: Normals,
     seed: Seed,
     generation: Generation,
     state: &PgpeState,
     population: usize,
 ) -> Vec<Genome> {
-    individuals(state, &noises(seed, generation, state, population))
+    individuals(state, &noises(normals, seed, generation, state, population))
 }
 
 /// The value a fitness is ranked by: NaN with −∞, −0.0 equal to +0.0.
@@ -339,13 +342,14 @@ pub fn update(
 
 /// θ_{g+1}: [`update`] with generation `generation`'s noises regenerated from the seed.
 pub fn step(
+    normals: Normals,
     seed: Seed,
     spec: &PgpeSpec,
     state: &PgpeState,
     generation: Generation,
     fitness: &[f64],
 ) -> PgpeState {
-    let noises = noises(seed, generation, state, fitness.len());
+    let noises = noises(normals, seed, generation, state, fitness.len());
     update(spec, state, &noises, fitness)
 }
 
@@ -368,6 +372,8 @@ pub struct Pgpe {
     centre_parent: Option<usize>,
     /// The noises the last `ask` drew, for `tell`.
     noises: draws::NoiseCache,
+    /// How the noises are drawn (`[evolution] draw_order`).
+    normals: Normals,
 }
 
 /// What generation `generation`'s `pairs` noises drawn for `state` are looked up by.
@@ -393,6 +399,7 @@ impl Pgpe {
             state: Some(PgpeState::initial(&spec, parameters)),
             centre_parent: None,
             noises: draws::NoiseCache::default(),
+            normals: experiment.evolution.normals(),
         }
     }
 
@@ -439,6 +446,7 @@ impl Search for Pgpe {
                 let key = noise_key(self.generation, self.population / 2, state);
                 let noises = self.noises.get_or_draw(key, || {
                     noises(
+                        self.normals,
                         self.seed,
                         Generation(self.generation),
                         state,
@@ -448,6 +456,7 @@ impl Search for Pgpe {
                 individuals(state, &noises)
             }
             None => sample(
+                self.normals,
                 self.seed,
                 Generation(self.generation),
                 &self.current(),
@@ -472,9 +481,9 @@ impl Search for Pgpe {
                 // [`step`]'s.
                 let generation = Generation(evaluated.generation);
                 let key = noise_key(generation.0, population / 2, state);
-                let noises = self
-                    .noises
-                    .take_or_draw(key, || noises(self.seed, generation, state, population));
+                let noises = self.noises.take_or_draw(key, || {
+                    noises(self.normals, self.seed, generation, state, population)
+                });
                 (
                     update(&self.spec, state, &noises, &fitness[..population]),
                     population,
@@ -523,7 +532,13 @@ impl Search for Pgpe {
         } else {
             // The samples come in mirrored pairs from one noise stream, then the centre: the
             // pairs of a smaller sample are the first pairs of the full one.
-            sample(self.seed, Generation(0), &self.current(), n + 1)
+            sample(
+                self.normals,
+                self.seed,
+                Generation(0),
+                &self.current(),
+                n + 1,
+            )
         };
         genomes.truncate(n);
         genomes

@@ -356,6 +356,7 @@ pub fn keys() -> Vec<KeyMeta> {
         k("EvolutionSpec.crossover", "", any(), GA),
         k("EvolutionSpec.mutation", "", any(), GA),
         k("EvolutionSpec.pgpe", "", any().note("only with algorithm = \"pgpe\""), GA),
+        kd("EvolutionSpec.draw_order", "", Range::between(1.0, 2.0).note("1 or 2"), GA, 1u32),
         k("SelectionSpec.kind", "", any(), GA),
         k("SelectionSpec.tournament_size", "individuals", Range::ge(1.0).note("at most the population"), GA),
         k("SelectionSpec.truncation_fraction", "", Range::gt(0.0).le(1.0), GA),

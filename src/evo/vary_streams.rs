@@ -1,0 +1,259 @@
+//! Variation in draw order 2 (`[evolution] draw_order = 2`): every offspring drawn from its
+//! own stream, and mutation drawn by the gaps between mutated genes, so that making a
+//! generation of brains with thousands of parameters costs little and runs on every thread.
+//!
+//! # Draw order 2 (part of the reproducibility contract)
+//!
+//! The elites are copied first, as in draw order 1 ([`crate::evo::vary`]). Then, from the
+//! generation's variation stream, offspring after offspring: parent x (one pick), and unless
+//! crossover is `none` parent y (a second pick) and one `chance(probability)` to recombine.
+//! Only the picks come from that stream. Offspring k of the population (counting the elites)
+//! then draws everything else from its own stream: the generation stream's key with ChaCha
+//! stream number k + 1, from its first word (the generation's own draws are stream 0):
+//!
+//! 1. Recombination, when chosen: uniform takes one 64-bit draw per 64 genes, gene i taking
+//!    y's gene when bit i mod 64 (from the least significant) of draw ⌊i / 64⌋ is set;
+//!    one-point and arithmetic draw as in draw order 1. With self-adaptation the step size
+//!    is the geometric mean √σx · √σy, no draw.
+//! 2. Mutation: with self-adaptation first one normal g0 and σ' = σ · exp(τ g0), kept within
+//!    [min_sigma, 10^6]. Then the genes that mutate, in gene order: from the last mutated gene
+//!    (or before the first gene) one draw u in (0, 1] gives the gap ⌊ln u / ln(1 − p)⌋ of
+//!    genes left as they are (a geometric number: each gene still mutates with probability
+//!    p, independently); the gene after the gap gets σ' · g, g one normal; drawing stops when
+//!    the gap reaches past the last gene. With p ≥ 1 every gene mutates and no gap is drawn;
+//!    with p ≤ 0 none does.
+//!
+//! Normals are [`gaussian_icdf`] (one word each). Each offspring is a function of its picks
+//! and its own stream, so offspring are made in parallel with the same bits on any number of
+//! threads.
+
+use crate::brain::genome::Genome;
+use crate::evo::lineage::{Birth, Lineage};
+use crate::evo::select::Selector;
+use crate::evo::vary::{draw_step_size, recombine};
+use crate::experiment::evolution::{CrossoverSpec, EvolutionSpec, MutationSpec};
+use crate::seed::{chance, gaussian_icdf, Normals, Rng};
+use rand_chacha::rand_core::RngCore;
+use rayon::prelude::*;
+
+/// One offspring's parents, as drawn from the generation's stream: y only when it is
+/// recombined.
+struct Parents {
+    x: usize,
+    y: Option<usize>,
+}
+
+/// Appends the offspring to `next` (which holds the elites) until the population is full,
+/// and their lineage to `lineage`, drawing as the module documentation says.
+pub(crate) fn offspring(
+    spec: &EvolutionSpec,
+    parents: &[Genome],
+    selector: &mut Selector,
+    rng: &mut Rng,
+    next: &mut Vec<Genome>,
+    lineage: &mut Vec<Lineage>,
+) {
+    let first = next.len();
+    let mut chosen = Vec::with_capacity(spec.population - first);
+    while first + chosen.len() < spec.population {
+        let x = selector.pick(rng);
+        let y = match spec.crossover {
+            CrossoverSpec::None => None,
+            crossover => {
+                let y = selector.pick(rng);
+                chance(rng, crossover.probability()).then_some(y)
+            }
+        };
+        lineage.push(match y {
+            Some(y) => Lineage::of(Birth::Crossover, &[x, y]),
+            None => Lineage::of(Birth::Mutated, &[x]),
+        });
+        chosen.push(Parents { x, y });
+    }
+    let key: &Rng = rng;
+    let made: Vec<Genome> = chosen
+        .par_iter()
+        .enumerate()
+        .map(|(k, p)| {
+            let mut own = key.clone();
+            own.set_stream(1 + (first + k) as u64);
+            own.set_word_pos(0);
+            make(spec, &parents[p.x], p.y.map(|y| &parents[y]), &mut own)
+        })
+        .collect();
+    next.extend(made);
+}
+
+/// One offspring of `x` (and `y` when recombined) drawn from its own stream `own`.
+fn make(spec: &EvolutionSpec, x: &Genome, y: Option<&Genome>, own: &mut Rng) -> Genome {
+    let mut child = match y {
+        Some(y) => {
+            let mut child = match spec.crossover {
+                CrossoverSpec::Uniform { .. } => uniform_by_bits(x, y, own),
+                crossover => recombine(&crossover, x, y, own),
+            };
+            if spec.mutation.self_adaptive.is_some() {
+                let sx = x.step_size.unwrap_or(spec.mutation.sigma);
+                let sy = y.step_size.unwrap_or(spec.mutation.sigma);
+                child.step_size = Some(sx.sqrt() * sy.sqrt());
+            }
+            child
+        }
+        None => x.clone(),
+    };
+    mutate_by_gaps(&mut child, &spec.mutation, own);
+    child
+}
+
+/// Uniform crossover with one 64-bit draw per 64 genes (step 1).
+fn uniform_by_bits(x: &Genome, y: &Genome, own: &mut Rng) -> Genome {
+    assert_eq!(
+        x.parameters.len(),
+        y.parameters.len(),
+        "crossover parents must have the same number of parameters"
+    );
+    let mut parameters = x.parameters.clone();
+    for (genes, other) in parameters.chunks_mut(64).zip(y.parameters.chunks(64)) {
+        let bits = own.next_u64();
+        for (j, (gene, &theirs)) in genes.iter_mut().zip(other).enumerate() {
+            if bits >> j & 1 == 1 {
+                *gene = theirs;
+            }
+        }
+    }
+    Genome {
+        parameters,
+        step_size: x.step_size,
+    }
+}
+
+/// Mutation by gaps (step 2).
+fn mutate_by_gaps(genome: &mut Genome, mutation: &MutationSpec, own: &mut Rng) {
+    let sigma = draw_step_size(genome, mutation, Normals::InverseCdf, own);
+    let p = mutation.probability;
+    let genes = &mut genome.parameters;
+    if p >= 1.0 {
+        for gene in genes.iter_mut() {
+            *gene += sigma * gaussian_icdf(own);
+        }
+        return;
+    }
+    if p <= 0.0 || p.is_nan() {
+        return;
+    }
+    let log_keep = libm::log1p(-p);
+    let mut i = 0usize;
+    loop {
+        // (k + 1) / 2^53: in (0, 1], so the logarithm is finite and the gap never negative.
+        let u = ((own.next_u64() >> 11) as f64 + 1.0) * (1.0 / (1u64 << 53) as f64);
+        let gap = libm::log(u) / log_keep;
+        if gap >= (genes.len() - i) as f64 {
+            return;
+        }
+        i += gap as usize;
+        genes[i] += sigma * gaussian_icdf(own);
+        i += 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::seed::{stream, Generation, IndividualId, Purpose, Seed, TrialIndex};
+
+    fn own() -> Rng {
+        stream(
+            Seed(4),
+            Purpose::Variation,
+            Generation(1),
+            IndividualId(0),
+            TrialIndex(0),
+        )
+    }
+
+    #[test]
+    fn uniform_crossover_takes_each_gene_by_its_bit() {
+        let n = 150;
+        let x = Genome::new(vec![0.0; n]);
+        let y = Genome::new(vec![1.0; n]);
+        let child = uniform_by_bits(&x, &y, &mut own());
+        let mut words = own();
+        let bits: Vec<u64> = (0..3).map(|_| words.next_u64()).collect();
+        for (i, &gene) in child.parameters.iter().enumerate() {
+            let expected = (bits[i / 64] >> (i % 64)) & 1;
+            assert_eq!(gene, expected as f64, "gene {i}");
+        }
+    }
+
+    #[test]
+    fn mutation_by_gaps_follows_the_drawn_gaps() {
+        // p = 0.5: ln(1 - p) = -ln 2, so a draw u gives the gap ⌊-log2 u⌋, worked out here
+        // from the same words as the mutation reads them.
+        let mutation = MutationSpec {
+            probability: 0.5,
+            sigma: 2.0,
+            ..MutationSpec::default()
+        };
+        let n = 40;
+        let mut genome = Genome::new(vec![0.0; n]);
+        mutate_by_gaps(&mut genome, &mutation, &mut own());
+        let mut words = own();
+        let mut expected = vec![0.0; n];
+        let mut i = 0usize;
+        loop {
+            let u = ((words.next_u64() >> 11) as f64 + 1.0) / (1u64 << 53) as f64;
+            let gap = (-u.log2()).floor() as usize;
+            if i + gap >= n {
+                break;
+            }
+            i += gap;
+            expected[i] = 2.0 * gaussian_icdf(&mut words);
+            i += 1;
+        }
+        let changed = expected.iter().filter(|&&g| g != 0.0).count();
+        assert!((10..=30).contains(&changed), "{changed} of {n} mutated");
+        assert_eq!(genome.parameters, expected);
+    }
+
+    #[test]
+    fn each_gene_mutates_with_the_probability() {
+        for p in [0.01, 0.1, 0.3, 0.9] {
+            let mutation = MutationSpec {
+                probability: p,
+                sigma: 1.0,
+                ..MutationSpec::default()
+            };
+            let n = 20_000;
+            let mut rng = own();
+            let mut hits = vec![0u32; 4];
+            for _ in 0..25 {
+                let mut genome = Genome::new(vec![0.0; n]);
+                mutate_by_gaps(&mut genome, &mutation, &mut rng);
+                // Four stretches of the genome: each gene alike, the last ones too.
+                for (q, part) in genome.parameters.chunks(n / 4).enumerate() {
+                    hits[q] += part.iter().filter(|&&g| g != 0.0).count() as u32;
+                }
+            }
+            for h in hits {
+                let share = f64::from(h) / (25.0 * (n / 4) as f64);
+                let sd = (p * (1.0 - p) / (25.0 * (n / 4) as f64)).sqrt();
+                assert!((share - p).abs() < 5.0 * sd, "p {p}: share {share}");
+            }
+        }
+        // The ends: every gene, and none, with no draw for the gaps.
+        for (p, changed) in [(1.0, 30), (0.0, 0)] {
+            let mutation = MutationSpec {
+                probability: p,
+                ..MutationSpec::default()
+            };
+            let mut genome = Genome::new(vec![0.0; 30]);
+            let mut rng = own();
+            mutate_by_gaps(&mut genome, &mutation, &mut rng);
+            assert_eq!(
+                genome.parameters.iter().filter(|&&g| g != 0.0).count(),
+                changed
+            );
+            assert_eq!(rng.get_word_pos(), 2 * changed as u128);
+        }
+    }
+}
