@@ -7,8 +7,8 @@
 #   bash scripts/search-share.sh --generations 10   # default 6: generation 0's random draw
 #                                                 # counts once, as in a run it is amortised
 #   bash scripts/search-share.sh --draw-order 2     # `[evolution] draw_order = 2` in every
-#                                                 # case (offspring in parallel, mutation by
-#                                                 # gaps, one word a normal: for large brains)
+#                                                 # case (offspring in parallel, two chances a
+#                                                 # draw, one word a normal: for large brains)
 #
 # Each case is experiments/foraging.toml with the algorithm, the population and the hidden
 # layer (24 -> h -> 2: 27h + 2 parameters, h = 0 for 50) changed, written to a temporary

@@ -179,10 +179,15 @@ fn text(
     writeln!(out, "champion: {}", champion_words(experiment))?;
     writeln!(
         out,
-        "evolution: {}, {} generations of {} individuals",
+        "evolution: {}, {} generations of {} individuals{}",
         algorithm(experiment),
         count(experiment.evolution.generations),
-        count(experiment.evolution.population as u64)
+        count(experiment.evolution.population as u64),
+        if experiment.evolution.draw_order == 1 {
+            ""
+        } else {
+            ", draw order 2 (offspring in parallel, fewer draws per gene)"
+        }
     )?;
     for line in estimate::workload_lines(workload) {
         writeln!(out, "{line}")?;

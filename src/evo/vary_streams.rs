@@ -1,6 +1,6 @@
 //! Variation in draw order 2 (`[evolution] draw_order = 2`): every offspring drawn from its
-//! own stream, and mutation drawn by the gaps between mutated genes, so that making a
-//! generation of brains with thousands of parameters costs little and runs on every thread.
+//! own stream, two genes' chances a draw and one word a normal, so that making a generation
+//! of brains with thousands of parameters costs little and runs on every thread.
 //!
 //! # Draw order 2 (part of the reproducibility contract)
 //!
@@ -16,12 +16,11 @@
 //!    one-point and arithmetic draw as in draw order 1. With self-adaptation the step size
 //!    is the geometric mean √σx · √σy, no draw.
 //! 2. Mutation: with self-adaptation first one normal g0 and σ' = σ · exp(τ g0), kept within
-//!    [min_sigma, 10^6]. Then the genes that mutate, in gene order: from the last mutated gene
-//!    (or before the first gene) one draw u in (0, 1] gives the gap ⌊ln u / ln(1 − p)⌋ of
-//!    genes left as they are (a geometric number: each gene still mutates with probability
-//!    p, independently); the gene after the gap gets σ' · g, g one normal; drawing stops when
-//!    the gap reaches past the last gene. With p ≥ 1 every gene mutates and no gap is drawn;
-//!    with p ≤ 0 none does.
+//!    [min_sigma, 10^6]. Then one 64-bit draw per two genes, in gene order: gene 2i mutates
+//!    when the draw's low 32 bits are below ⌊p · 2^32⌋ (every gene when p ≥ 1), gene 2i + 1
+//!    when its high 32 bits are; then, for each mutated gene in gene order, one normal g and
+//!    gene += σ' · g. The chances are drawn whatever p is, so the stream's use depends on p
+//!    only through the number of normals.
 //!
 //! Normals are [`gaussian_icdf`] (one word each). Each offspring is a function of its picks
 //! and its own stream, so offspring are made in parallel with the same bits on any number of
@@ -101,7 +100,7 @@ fn make(spec: &EvolutionSpec, x: &Genome, y: Option<&Genome>, own: &mut Rng) -> 
         }
         None => x.clone(),
     };
-    mutate_by_gaps(&mut child, &spec.mutation, own);
+    mutate_by_chances(&mut child, &spec.mutation, own);
     child
 }
 
@@ -112,14 +111,15 @@ fn uniform_by_bits(x: &Genome, y: &Genome, own: &mut Rng) -> Genome {
         y.parameters.len(),
         "crossover parents must have the same number of parameters"
     );
-    let mut parameters = x.parameters.clone();
-    for (genes, other) in parameters.chunks_mut(64).zip(y.parameters.chunks(64)) {
+    let mut parameters = Vec::with_capacity(x.parameters.len());
+    for (mine, theirs) in x.parameters.chunks(64).zip(y.parameters.chunks(64)) {
         let bits = own.next_u64();
-        for (j, (gene, &theirs)) in genes.iter_mut().zip(other).enumerate() {
-            if bits >> j & 1 == 1 {
-                *gene = theirs;
-            }
-        }
+        // A mask per gene rather than a branch: the bits are random, so a branch would be
+        // mispredicted half the time, which cost more than drawing them.
+        parameters.extend(mine.iter().zip(theirs).enumerate().map(|(j, (&a, &b))| {
+            let take = 0u64.wrapping_sub(bits >> j & 1);
+            f64::from_bits(a.to_bits() & !take | b.to_bits() & take)
+        }));
     }
     Genome {
         parameters,
@@ -127,32 +127,37 @@ fn uniform_by_bits(x: &Genome, y: &Genome, own: &mut Rng) -> Genome {
     }
 }
 
-/// Mutation by gaps (step 2).
-fn mutate_by_gaps(genome: &mut Genome, mutation: &MutationSpec, own: &mut Rng) {
+/// Mutation by chances drawn two genes a draw, then the normals (step 2).
+fn mutate_by_chances(genome: &mut Genome, mutation: &MutationSpec, own: &mut Rng) {
     let sigma = draw_step_size(genome, mutation, Normals::InverseCdf, own);
-    let p = mutation.probability;
+    let threshold = chance_threshold(mutation.probability);
     let genes = &mut genome.parameters;
+    // Every gene's index is written, and the count moves on only for those that mutate: no
+    // branch on a random bit, which would be mispredicted at every probability but the ends.
+    let mut mutated = vec![0u32; genes.len() + 1];
+    let mut count = 0;
+    for pair in (0..genes.len()).step_by(2) {
+        let draw = own.next_u64();
+        mutated[count] = pair as u32;
+        count += usize::from(draw & 0xFFFF_FFFF < threshold);
+        if pair + 1 < genes.len() {
+            mutated[count] = pair as u32 + 1;
+            count += usize::from(draw >> 32 < threshold);
+        }
+    }
+    for &i in &mutated[..count] {
+        genes[i as usize] += sigma * gaussian_icdf(own);
+    }
+}
+
+/// A gene mutates when its 32-bit chance is below this: ⌊p · 2^32⌋, all of them from p = 1.
+fn chance_threshold(p: f64) -> u64 {
     if p >= 1.0 {
-        for gene in genes.iter_mut() {
-            *gene += sigma * gaussian_icdf(own);
-        }
-        return;
-    }
-    if p <= 0.0 || p.is_nan() {
-        return;
-    }
-    let log_keep = libm::log1p(-p);
-    let mut i = 0usize;
-    loop {
-        // (k + 1) / 2^53: in (0, 1], so the logarithm is finite and the gap never negative.
-        let u = ((own.next_u64() >> 11) as f64 + 1.0) * (1.0 / (1u64 << 53) as f64);
-        let gap = libm::log(u) / log_keep;
-        if gap >= (genes.len() - i) as f64 {
-            return;
-        }
-        i += gap as usize;
-        genes[i] += sigma * gaussian_icdf(own);
-        i += 1;
+        1 << 32
+    } else if p > 0.0 {
+        (p * 4_294_967_296.0) as u64
+    } else {
+        0
     }
 }
 
@@ -186,32 +191,32 @@ mod tests {
     }
 
     #[test]
-    fn mutation_by_gaps_follows_the_drawn_gaps() {
-        // p = 0.5: ln(1 - p) = -ln 2, so a draw u gives the gap ⌊-log2 u⌋, worked out here
-        // from the same words as the mutation reads them.
+    fn mutation_reads_two_chances_a_draw_then_the_normals() {
+        // p = 0.5: a gene mutates when its half of the draw is below 2^31, i.e. when that
+        // half's top bit is clear; worked out here from the same words.
         let mutation = MutationSpec {
             probability: 0.5,
             sigma: 2.0,
             ..MutationSpec::default()
         };
-        let n = 40;
+        let n = 41;
         let mut genome = Genome::new(vec![0.0; n]);
-        mutate_by_gaps(&mut genome, &mutation, &mut own());
+        mutate_by_chances(&mut genome, &mutation, &mut own());
         let mut words = own();
+        let draws: Vec<u64> = (0..21).map(|_| words.next_u64()).collect();
         let mut expected = vec![0.0; n];
-        let mut i = 0usize;
-        loop {
-            let u = ((words.next_u64() >> 11) as f64 + 1.0) / (1u64 << 53) as f64;
-            let gap = (-u.log2()).floor() as usize;
-            if i + gap >= n {
-                break;
+        for i in 0..n {
+            let half = if i % 2 == 0 {
+                draws[i / 2] as u32
+            } else {
+                (draws[i / 2] >> 32) as u32
+            };
+            if half >> 31 == 0 {
+                expected[i] = 2.0 * gaussian_icdf(&mut words);
             }
-            i += gap;
-            expected[i] = 2.0 * gaussian_icdf(&mut words);
-            i += 1;
         }
         let changed = expected.iter().filter(|&&g| g != 0.0).count();
-        assert!((10..=30).contains(&changed), "{changed} of {n} mutated");
+        assert!((10..=31).contains(&changed), "{changed} of {n} mutated");
         assert_eq!(genome.parameters, expected);
     }
 
@@ -228,7 +233,7 @@ mod tests {
             let mut hits = vec![0u32; 4];
             for _ in 0..25 {
                 let mut genome = Genome::new(vec![0.0; n]);
-                mutate_by_gaps(&mut genome, &mutation, &mut rng);
+                mutate_by_chances(&mut genome, &mutation, &mut rng);
                 // Four stretches of the genome: each gene alike, the last ones too.
                 for (q, part) in genome.parameters.chunks(n / 4).enumerate() {
                     hits[q] += part.iter().filter(|&&g| g != 0.0).count() as u32;
@@ -240,7 +245,7 @@ mod tests {
                 assert!((share - p).abs() < 5.0 * sd, "p {p}: share {share}");
             }
         }
-        // The ends: every gene, and none, with no draw for the gaps.
+        // The ends: every gene, and none; the chances drawn either way.
         for (p, changed) in [(1.0, 30), (0.0, 0)] {
             let mutation = MutationSpec {
                 probability: p,
@@ -248,12 +253,12 @@ mod tests {
             };
             let mut genome = Genome::new(vec![0.0; 30]);
             let mut rng = own();
-            mutate_by_gaps(&mut genome, &mutation, &mut rng);
+            mutate_by_chances(&mut genome, &mutation, &mut rng);
             assert_eq!(
                 genome.parameters.iter().filter(|&&g| g != 0.0).count(),
                 changed
             );
-            assert_eq!(rng.get_word_pos(), 2 * changed as u128);
+            assert_eq!(rng.get_word_pos(), 2 * (15 + changed) as u128);
         }
     }
 }

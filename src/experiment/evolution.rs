@@ -114,9 +114,8 @@ pub struct EvolutionSpec {
     /// one stream per generation, and normals by Box–Muller. 2 is for large brains (thousands
     /// of parameters), where 1 makes the search a visible share of a generation: each GA
     /// offspring draws from its own stream (so offspring are made in parallel), mutation
-    /// draws the gap to the next mutated gene instead of a chance per gene, uniform crossover
-    /// takes 64 genes' choices from one draw, and every search's normals come from one word
-    /// each (the inverse distribution function). Both are exact and reproducible; they give
+    /// takes two genes' chances from one draw, uniform crossover 64 genes' choices, and
+    /// every search's normals come from one word each (the inverse distribution function). Both are exact and reproducible; they give
     /// different runs from the same seed. Not written back when 1, so existing files keep their
     /// bytes and config hash.
     #[serde(skip_serializing_if = "is_first_draw_order")]
@@ -192,7 +191,7 @@ impl EvolutionSpec {
         }
     }
 
-    /// Whether each GA offspring draws from its own stream, with mutation drawn by gaps
+    /// Whether each GA offspring draws from its own stream, two genes' chances a draw
     /// (`draw_order = 2`).
     pub fn offspring_streams(&self) -> bool {
         self.draw_order >= 2
@@ -415,7 +414,7 @@ impl EvolutionSpec {
                 "evolution.draw_order",
                 format!(
                     "must be 1 (the order every shipped experiment uses) or 2 (for brains of \
-                     thousands of parameters: offspring in parallel, mutation drawn by gaps), \
+                     thousands of parameters: offspring in parallel, fewer draws per gene), \
                      got {}",
                     self.draw_order
                 ),

@@ -1,4 +1,4 @@
-//! `[evolution] draw_order = 2` (offspring from their own streams, mutation by gaps, one word
+//! `[evolution] draw_order = 2` (offspring from their own streams, two chances a draw, one word
 //! per normal): each search that draws keeps the run guarantees under it (1 and 2 threads,
 //! resumed), the key changes the run (a file without it keeps draw order 1), and the GA's
 //! offspring do not depend on the number of threads.
