@@ -18,6 +18,7 @@ pub mod init;
 pub mod life;
 pub mod lineage;
 pub mod lockstep;
+pub mod operators;
 #[cfg(feature = "mpi")]
 pub mod ranks;
 pub mod search;

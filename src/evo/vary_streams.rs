@@ -28,8 +28,8 @@
 
 use crate::brain::genome::Genome;
 use crate::evo::lineage::{Birth, Lineage};
+use crate::evo::operators::{draw_step_size, recombine};
 use crate::evo::select::Selector;
-use crate::evo::vary::{draw_step_size, recombine};
 use crate::experiment::evolution::{CrossoverSpec, EvolutionSpec, MutationSpec};
 use crate::seed::{chance, gaussian_icdf, Normals, Rng};
 use rand_chacha::rand_core::RngCore;
