@@ -190,145 +190,103 @@ pub fn gaussian_from(a: f64, b: f64) -> f64 {
     libm::sqrt(-2.0 * libm::log(u1)) * libm::cos(std::f64::consts::TAU * u2)
 }
 
-/// A standard normal draw from one 64-bit word, by the inverse of the normal distribution
-/// function: `[evolution] draw_order = 2`'s normal (see [`Normals`]). The word's top 53 bits
-/// make p = (k + ½) / 2^53, strictly inside (0, 1), and the draw is [`inverse_normal_cdf`]
-/// of p: one word per draw, always, so runs of draws can still be split over threads by
-/// word position, and about a fifth of Box–Muller's cost (a `log` and a `sqrt` for the 15%
-/// of draws in the tails, two short polynomials otherwise).
+/// A standard normal draw by the ziggurat method (Marsaglia & Tsang 2000, with Doornik's
+/// 256 layers and 52-bit uniforms, as `rand_distr` draws it): draw order 2's normal (see
+/// [`Normals`]). One 64-bit word almost always (98.8%): its low 8 bits choose a layer, its top
+/// 52 a point in it; a point outside the layer's inner rectangle draws a `unit()` to test it
+/// against the density (`libm::exp`), and the bottom layer's tail draws by Marsaglia's
+/// method (`libm::log`). So the number of words varies: runs of these draws cannot be split
+/// over threads by word position, and draw order 2 gives each individual its own stream.
 #[inline]
-pub fn gaussian_icdf(rng: &mut impl RngCore) -> f64 {
-    let p = ((rng.next_u64() >> 11) as f64 + 0.5) * (1.0 / (1u64 << 53) as f64);
-    inverse_normal_cdf(p)
-}
-
-/// The standard normal quantile of `p` in (0, 1): Wichura's algorithm AS241 (PPND16, 1988;
-/// relative error about 1e-16), the same rational approximations and coefficients as
-/// Python's `statistics.NormalDist().inv_cdf`, evaluated in the same order with `libm`.
-// The published coefficients digit for digit (as Python's `statistics` writes them), so that
-// anyone can check them against AS241; some have more digits than an f64 holds.
-#[allow(clippy::excessive_precision)]
-pub fn inverse_normal_cdf(p: f64) -> f64 {
-    let q = p - 0.5;
-    if q.abs() <= 0.425 {
-        let r = 0.180625 - q * q;
-        let num = (((((((2.50908_09287_30122_6727e+3 * r + 3.34305_75583_58812_8105e+4) * r
-            + 6.72657_70927_00870_0853e+4)
-            * r
-            + 4.59219_53931_54987_1457e+4)
-            * r
-            + 1.37316_93765_50946_1125e+4)
-            * r
-            + 1.97159_09503_06551_4427e+3)
-            * r
-            + 1.33141_66789_17843_7745e+2)
-            * r
-            + 3.38713_28727_96366_6080e+0)
-            * q;
-        let den = ((((((5.22649_52788_52854_5610e+3 * r + 2.87290_85735_72194_2674e+4) * r
-            + 3.93078_95800_09271_0610e+4)
-            * r
-            + 2.12137_94301_58659_5867e+4)
-            * r
-            + 5.39419_60214_24751_1077e+3)
-            * r
-            + 6.87187_00749_20579_0830e+2)
-            * r
-            + 4.23133_30701_60091_1252e+1)
-            * r
-            + 1.0;
-        return num / den;
-    }
-    let tail = if q <= 0.0 { p } else { 1.0 - p };
-    let r = libm::sqrt(-libm::log(tail));
-    let x = if r <= 5.0 {
-        let r = r - 1.6;
-        let num = ((((((7.74545_01427_83414_07640e-4 * r + 2.27238_44989_26918_45833e-2) * r
-            + 2.41780_72517_74506_11770e-1)
-            * r
-            + 1.27045_82524_52368_38258e+0)
-            * r
-            + 3.64784_83247_63204_60504e+0)
-            * r
-            + 5.76949_72214_60691_40550e+0)
-            * r
-            + 4.63033_78461_56545_29590e+0)
-            * r
-            + 1.42343_71107_49683_57734e+0;
-        let den = ((((((1.05075_00716_44416_84324e-9 * r + 5.47593_80849_95344_94600e-4) * r
-            + 1.51986_66563_61645_71966e-2)
-            * r
-            + 1.48103_97642_74800_74590e-1)
-            * r
-            + 6.89767_33498_51000_04550e-1)
-            * r
-            + 1.67638_48301_83803_84940e+0)
-            * r
-            + 2.05319_16266_37758_82187e+0)
-            * r
-            + 1.0;
-        num / den
-    } else {
-        let r = r - 5.0;
-        let num = ((((((2.01033_43992_92288_13265e-7 * r + 2.71155_55687_43487_57815e-5) * r
-            + 1.24266_09473_88078_43860e-3)
-            * r
-            + 2.65321_89526_57612_30930e-2)
-            * r
-            + 2.96560_57182_85048_91230e-1)
-            * r
-            + 1.78482_65399_17291_33580e+0)
-            * r
-            + 5.46378_49111_64114_36990e+0)
-            * r
-            + 6.65790_46435_01103_77720e+0;
-        let den = ((((((2.04426_31033_89939_78564e-15 * r + 1.42151_17583_16445_88870e-7) * r
-            + 1.84631_83175_10054_68180e-5)
-            * r
-            + 7.86869_13114_56132_59100e-4)
-            * r
-            + 1.48753_61290_85061_48525e-2)
-            * r
-            + 1.36929_88092_27358_05310e-1)
-            * r
-            + 5.99832_20655_58879_37690e-1)
-            * r
-            + 1.0;
-        num / den
-    };
-    if q < 0.0 {
-        -x
-    } else {
-        x
+pub fn gaussian_ziggurat(rng: &mut impl RngCore) -> f64 {
+    let z = ziggurat();
+    loop {
+        let bits = rng.next_u64();
+        let i = (bits & 0xFF) as usize;
+        // 2 · [1, 2) − 3: in [−1, 1), from the 52 bits the layer index does not use.
+        let u = 2.0 * f64::from_bits(bits >> 12 | 0x3FF0_0000_0000_0000) - 3.0;
+        let x = u * z.x[i];
+        if x.abs() < z.x[i + 1] {
+            return x;
+        }
+        if i == 0 {
+            return ziggurat_tail(rng, u);
+        }
+        if z.f[i + 1] + (z.f[i] - z.f[i + 1]) * unit(rng) < libm::exp(-0.5 * x * x) {
+            return x;
+        }
     }
 }
 
-/// How a search turns its stream's words into normal draws, set by `[evolution] draw_order`
-/// (part of the reproducibility contract: the same words give other numbers under the
-/// other).
+/// The normal's tail beyond the ziggurat's R, on the side of `u`'s sign (Marsaglia 1964).
+#[cold]
+fn ziggurat_tail(rng: &mut impl RngCore, u: f64) -> f64 {
+    loop {
+        // 1 − unit() is in (0, 1], so both logarithms are finite.
+        let x = -libm::log(1.0 - unit(rng)) / ZIGGURAT_R;
+        let y = -libm::log(1.0 - unit(rng));
+        if 2.0 * y > x * x {
+            return if u < 0.0 {
+                -(ZIGGURAT_R + x)
+            } else {
+                ZIGGURAT_R + x
+            };
+        }
+    }
+}
+
+/// The 256-layer normal ziggurat's right edge of the bottom layer's rectangle part, R, and
+/// the area V of every layer (under the unnormalised density exp(−x²/2)).
+const ZIGGURAT_R: f64 = 3.654_152_885_361_009;
+const ZIGGURAT_V: f64 = 0.004_928_673_233_99;
+
+/// The ziggurat's layers: `x[i]` the right edge of layer i (x[0] = V / f(R) for the bottom
+/// layer with its tail, x[1] = R, down to x[256] = 0), `f[i]` = exp(−x[i]²/2).
+struct Ziggurat {
+    x: [f64; 257],
+    f: [f64; 257],
+}
+
+/// The tables, computed once with `libm` (so the same on every platform) by the recurrence
+/// x[i + 1] = f⁻¹(V / x[i] + f(x[i])).
+fn ziggurat() -> &'static Ziggurat {
+    static TABLES: std::sync::OnceLock<Ziggurat> = std::sync::OnceLock::new();
+    TABLES.get_or_init(|| {
+        let f = |x: f64| libm::exp(-0.5 * x * x);
+        let mut x = [0.0; 257];
+        x[0] = ZIGGURAT_V / f(ZIGGURAT_R);
+        x[1] = ZIGGURAT_R;
+        for i in 1..255 {
+            x[i + 1] = libm::sqrt(-2.0 * libm::log(ZIGGURAT_V / x[i] + f(x[i])));
+        }
+        x[256] = 0.0;
+        let mut fx = [0.0; 257];
+        for (fi, &xi) in fx.iter_mut().zip(&x) {
+            *fi = f(xi);
+        }
+        Ziggurat { x, f: fx }
+    })
+}
+
+/// How a search draws its normals, set by `[evolution] draw_order` (part of the
+/// reproducibility contract: the same stream gives other numbers under the other).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Normals {
-    /// [`gaussian`]: Box–Muller from two 64-bit words (draw order 1, every shipped file).
+    /// [`gaussian`]: Box–Muller from exactly two 64-bit words (draw order 1, every shipped
+    /// file), so a run of draws can be split over threads by word position.
     BoxMuller,
-    /// [`gaussian_icdf`]: the inverse distribution function of one 64-bit word (draw order 2).
-    InverseCdf,
+    /// [`gaussian_ziggurat`]: a varying number of words, about a sixth of Box–Muller's cost
+    /// (draw order 2, where each individual draws from its own stream).
+    Ziggurat,
 }
 
 impl Normals {
-    /// The stream's 32-bit words one draw uses, always.
-    pub const fn words_per_draw(self) -> u128 {
-        match self {
-            Normals::BoxMuller => 4,
-            Normals::InverseCdf => 2,
-        }
-    }
-
     /// One normal draw from `rng`.
     #[inline]
     pub fn draw(self, rng: &mut impl RngCore) -> f64 {
         match self {
             Normals::BoxMuller => gaussian(rng),
-            Normals::InverseCdf => gaussian_icdf(rng),
+            Normals::Ziggurat => gaussian_ziggurat(rng),
         }
     }
 }
@@ -426,58 +384,55 @@ mod tests {
         assert!(xs.iter().all(|x| x.is_finite()));
     }
 
-    #[test]
-    fn inverse_normal_cdf_agrees_with_published_as241_values() {
-        // Python's statistics.NormalDist().inv_cdf (AS241) at each region's points and edges:
-        // the centre (|p - 0.5| <= 0.425), the near tail (r <= 5) and the far tail.
-        let cases = [
-            (1e-300, -37.0470962993612),
-            (1e-20, -9.262340089798405),
-            (5.551115123125783e-17, -8.292361075813595),
-            (1e-06, -4.753424308822899),
-            (0.01, -2.3263478740408408),
-            (0.07, -1.4757910281791702),
-            (0.075, -1.4395314709384557),
-            (0.3, -0.5244005127080407),
-            (0.5, 0.0),
-            (0.500000001, 2.506628203738712e-09),
-            (0.8, 0.8416212335729144),
-            (0.925, 1.439531470938456),
-            (0.99, 2.3263478740408408),
-            (0.9999999999999999, 8.209536151601386),
-        ];
-        for (p, want) in cases {
-            let got = inverse_normal_cdf(p);
-            assert!(
-                (got - want).abs() <= 4.0 * f64::EPSILON * want.abs(),
-                "p {p}: got {got}, AS241 gives {want}"
-            );
-        }
+    /// The standard normal distribution function, Φ(x) = erfc(−x/√2) / 2.
+    fn phi(x: f64) -> f64 {
+        0.5 * libm::erfc(-x / std::f64::consts::SQRT_2)
     }
 
     #[test]
-    fn gaussian_icdf_uses_one_word_and_has_unit_moments() {
+    fn ziggurat_tables_close_at_zero() {
+        // The recurrence from R and V must come down to the top layer: V / x[255] + f(x[255])
+        // is 1 (x[256] = 0), which holds only for a consistent (R, V).
+        let z = ziggurat();
+        let top = ZIGGURAT_V / z.x[255] + libm::exp(-0.5 * z.x[255] * z.x[255]);
+        assert!((top - 1.0).abs() < 1e-9, "{top}");
+        assert!(z.x.windows(2).all(|w| w[0] > w[1]), "edges decrease");
+        assert_eq!((z.x[1], z.f[256]), (ZIGGURAT_R, 1.0));
+    }
+
+    #[test]
+    fn gaussian_ziggurat_is_standard_normal() {
         let mut r = s(11, Purpose::Demo, 0, 0, 0);
-        let n = 100_000;
-        let xs: Vec<f64> = (0..n).map(|_| gaussian_icdf(&mut r)).collect();
-        assert_eq!(r.get_word_pos(), 2 * n as u128, "one 64-bit word a draw");
+        let n = 400_000;
+        let mut xs: Vec<f64> = (0..n).map(|_| gaussian_ziggurat(&mut r)).collect();
         let mean = xs.iter().sum::<f64>() / n as f64;
         let var = xs.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / n as f64;
-        assert!(mean.abs() < 0.01, "mean {mean}");
-        assert!((var - 1.0).abs() < 0.02, "variance {var}");
-        // The tails: P(|z| > 2) = 0.0455.
-        let beyond = xs.iter().filter(|x| x.abs() > 2.0).count() as f64 / n as f64;
-        assert!((beyond - 0.0455).abs() < 0.003, "share beyond 2: {beyond}");
+        assert!(mean.abs() < 0.006, "mean {mean}");
+        assert!((var - 1.0).abs() < 0.01, "variance {var}");
+        // The tail beyond R (drawn by its own method): P(|z| > 3.654) = 2.58e-4, about 103.
+        let tail = xs.iter().filter(|x| x.abs() > ZIGGURAT_R).count();
+        assert!((60..=150).contains(&tail), "{tail} draws beyond R");
+        // Kolmogorov–Smirnov against Φ: D = 0.0031 is the 0.1% critical value at this n.
+        xs.sort_by(f64::total_cmp);
+        let d = xs
+            .iter()
+            .enumerate()
+            .map(|(i, &x)| {
+                let p = phi(x);
+                (p - i as f64 / n as f64)
+                    .abs()
+                    .max((i + 1) as f64 / n as f64 - p)
+            })
+            .fold(0.0, f64::max);
+        assert!(d < 0.0031, "KS distance {d}");
         // Pinned: draw order 2's normals are part of the contract.
         let mut r = s(7, Purpose::Demo, 0, 0, 0);
-        let first = gaussian_icdf(&mut r);
-        assert_eq!(
-            first.to_bits(),
-            GOLDEN_ICDF,
-            "gaussian_icdf output changed: {first}"
-        );
+        let first: Vec<u64> = (0..3)
+            .map(|_| gaussian_ziggurat(&mut r).to_bits())
+            .collect();
+        assert_eq!(first, GOLDEN_ZIGGURAT, "gaussian_ziggurat output changed");
         let mut r = s(7, Purpose::Demo, 0, 0, 0);
-        assert_eq!(Normals::InverseCdf.draw(&mut r).to_bits(), GOLDEN_ICDF);
+        assert_eq!(Normals::Ziggurat.draw(&mut r).to_bits(), GOLDEN_ZIGGURAT[0]);
         let mut r = s(7, Purpose::Demo, 0, 0, 0);
         let _ = unit(&mut r);
         let _ = below(&mut r, 10);
@@ -488,6 +443,9 @@ mod tests {
         );
     }
 
-    // 1.5755097383456373: AS241 of the first word, which unit() reads as 0.9424305837936606.
-    const GOLDEN_ICDF: u64 = 4_609_774_284_243_178_912;
+    const GOLDEN_ZIGGURAT: [u64; 3] = [
+        4_609_638_919_596_108_256,
+        13_811_047_066_491_985_322,
+        4_605_415_330_405_330_905,
+    ];
 }

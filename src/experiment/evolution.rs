@@ -115,7 +115,8 @@ pub struct EvolutionSpec {
     /// of parameters), where 1 makes the search a visible share of a generation: each GA
     /// offspring draws from its own stream (so offspring are made in parallel), mutation
     /// takes two genes' chances from one draw, uniform crossover 64 genes' choices, and
-    /// every search's normals come from one word each (the inverse distribution function). Both are exact and reproducible; they give
+    /// every search's normals are drawn by the ziggurat method, each individual's from its
+    /// own stream. Both are exact and reproducible; they give
     /// different runs from the same seed. Not written back when 1, so existing files keep their
     /// bytes and config hash.
     #[serde(skip_serializing_if = "is_first_draw_order")]
@@ -185,7 +186,7 @@ impl EvolutionSpec {
     /// How this search turns words into normal draws (`draw_order`).
     pub fn normals(&self) -> Normals {
         if self.draw_order >= 2 {
-            Normals::InverseCdf
+            Normals::Ziggurat
         } else {
             Normals::BoxMuller
         }

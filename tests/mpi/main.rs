@@ -248,6 +248,16 @@ fn one_two_and_three_ranks_give_the_plain_bytes() {
             ),
             "4",
         ),
+        // ... and in draw order 2, where each offspring draws from its own stream.
+        (
+            variant(
+                t,
+                "tests/fixtures/tiny.toml",
+                "tiny-draw-order-2.toml",
+                |s| s.replacen("\n[evolution]\n", "\n[evolution]\ndraw_order = 2\n", 1),
+            ),
+            "4",
+        ),
     ];
     for (experiment, generations) in &cases {
         let name = experiment

@@ -58,7 +58,7 @@
 //!
 //! Generation g's noise comes from `stream(seed, Purpose::Search, g, 0, 0)`: for k = 0..λ − 1
 //! and each parameter j in order, one `gaussian()` z_kj, as sep-CMA-ES draws it (draw order 2:
-//! `gaussian_icdf()`). The update
+//! `gaussian_ziggurat()`, vector k from its own stream). The update
 //! regenerates z from the same stream, so a checkpoint needs only θ_g
 //! (`"search": {"cma_es": {...}}`) and the evaluated generation, and a resumed run continues
 //! with the same bits. The mean starts at 0, σ at `[evolution.cma_es] sigma_init`, C, b_j

@@ -2,8 +2,7 @@
 //!
 //! A search's generation can need millions of [`gaussian`] draws (one per gene per
 //! individual), and drawn one after another from one stream they were 6–17% of a generation
-//! at 15,000 parameters. Every `gaussian` uses exactly two 64-bit words of its ChaCha stream
-//! (every [`gaussian_icdf`] of draw order 2 exactly one),
+//! at 15,000 parameters. Every `gaussian` uses exactly two 64-bit words of its ChaCha stream,
 //! so the k-th of a run of draws starts at a known word: chunks of the run are drawn on
 //! rayon's threads from copies of the stream moved there (`set_word_pos`), each chunk in
 //! order, and the results land by index. The values therefore do not depend on the number of
@@ -13,87 +12,117 @@
 //! takes two more words than one that is not), [`Words`] reads the stream's words from a
 //! buffer that is filled ahead, batch by batch, in parallel in the same way: the words, and
 //! so every draw made from them, are the stream's own.
+//!
+//! Draw order 2's ziggurat normals take a varying number of words, so there each individual
+//! draws from its own stream instead ([`own_stream`]), and individuals are drawn in parallel.
 
-use crate::seed::{gaussian, gaussian_icdf, Normals, Rng};
+use crate::seed::{gaussian, gaussian_ziggurat, Normals, Rng};
 use rand_chacha::rand_core::{impls, Error, RngCore};
 use rayon::prelude::*;
 use std::cell::Cell;
 use std::sync::{Arc, Mutex};
 
+/// The stream's 32-bit words one [`gaussian`] uses: two `next_u64`.
+const WORDS_PER_GAUSSIAN: u128 = 4;
+
 /// Draws per parallel task: large enough that moving a stream copy (one ChaCha block) is
 /// negligible, small enough that 15,000 genes spread over the threads.
 const CHUNK: usize = 1024;
 
-/// Fills `out` with normal draws from `rng`, exactly as `for x in out { *x =
-/// normals.draw(rng) }` would, and leaves `rng` where that loop would.
-pub fn fill_gaussians(normals: Normals, rng: &mut Rng, out: &mut [f64]) {
+/// Fills `out` with normal draws from `rng`, exactly as `for x in out { *x = gaussian(rng) }`
+/// would, and leaves `rng` where that loop would.
+pub fn fill_gaussians(rng: &mut Rng, out: &mut [f64]) {
     let start = rng.get_word_pos();
-    fill_gaussians_at(normals, rng, start, out);
-    rng.set_word_pos(start + normals.words_per_draw() * out.len() as u128);
+    fill_gaussians_at(rng, start, out);
+    rng.set_word_pos(start + WORDS_PER_GAUSSIAN * out.len() as u128);
 }
 
 /// `count` normal draws from `rng`, as [`fill_gaussians`].
-pub fn gaussians(normals: Normals, rng: &mut Rng, count: usize) -> Vec<f64> {
+pub fn gaussians(rng: &mut Rng, count: usize) -> Vec<f64> {
     let mut out = vec![0.0; count];
-    fill_gaussians(normals, rng, &mut out);
+    fill_gaussians(rng, &mut out);
     out
 }
 
 /// Moves `rng` past the `count` normal draws it would make next and returns the 32-bit word
 /// they start at, so that a caller can hand them out to be drawn later, in parallel, with
 /// [`gaussians_from`] (the draws after them then come from the same words as before).
-pub fn skip_gaussians(normals: Normals, rng: &mut Rng, count: usize) -> u128 {
+pub fn skip_gaussians(rng: &mut Rng, count: usize) -> u128 {
     let start = rng.get_word_pos();
-    rng.set_word_pos(start + normals.words_per_draw() * count as u128);
+    rng.set_word_pos(start + WORDS_PER_GAUSSIAN * count as u128);
     start
 }
 
 /// The `count` normal draws of `base`'s stream from 32-bit word `start` on (a position
 /// [`skip_gaussians`] gave); `base` itself does not move.
-pub fn gaussians_from(normals: Normals, base: &Rng, start: u128, count: usize) -> Vec<f64> {
+pub fn gaussians_from(base: &Rng, start: u128, count: usize) -> Vec<f64> {
     let mut out = vec![0.0; count];
-    fill_gaussians_at(normals, base, start, &mut out);
+    fill_gaussians_at(base, start, &mut out);
     out
 }
 
-/// The `rows` vectors of `columns` normal draws each that `rows` times `columns` calls of
-/// `normals.draw` on `rng` make, vector after vector (each vector itself drawn in parallel
-/// when long); `rng` is left where those calls would leave it.
+/// The `rows` vectors of `columns` normal draws each, as `normals` says:
+///
+/// - Box–Muller (draw order 1): what `rows` times `columns` calls of [`gaussian`] on `rng`
+///   make, vector after vector (each vector itself drawn in parallel when long); `rng` is
+///   left where those calls would leave it.
+/// - the ziggurat (draw order 2): vector k from its own stream ([`own_gaussians`]), the
+///   vectors in parallel; `rng` does not move.
 pub fn gaussian_rows(
     normals: Normals,
     rng: &mut Rng,
     rows: usize,
     columns: usize,
 ) -> Vec<Vec<f64>> {
+    if normals == Normals::Ziggurat {
+        let base: &Rng = rng;
+        return (0..rows)
+            .into_par_iter()
+            .map(|k| own_gaussians(base, k, columns))
+            .collect();
+    }
     let start = rng.get_word_pos();
-    let words = normals.words_per_draw();
     let base: &Rng = rng;
     let out = (0..rows)
         .into_par_iter()
         .map(|k| {
             let mut row = vec![0.0; columns];
-            let at = start + words * (k as u128) * (columns as u128);
-            fill_gaussians_at(normals, base, at, &mut row);
+            let at = start + WORDS_PER_GAUSSIAN * (k as u128) * (columns as u128);
+            fill_gaussians_at(base, at, &mut row);
             row
         })
         .collect();
-    rng.set_word_pos(start + words * (rows as u128) * (columns as u128));
+    rng.set_word_pos(start + WORDS_PER_GAUSSIAN * (rows as u128) * (columns as u128));
     out
 }
 
+/// Individual k's own stream in draw order 2: `base`'s key with ChaCha stream number k + 1,
+/// from its first word (stream 0 is the generation's own, as [`crate::seed::stream`] makes
+/// it). Each individual's draws then depend on nothing else, so individuals are drawn in
+/// parallel with the same bits on any number of threads.
+pub fn own_stream(base: &Rng, k: usize) -> Rng {
+    let mut own = base.clone();
+    own.set_stream(1 + k as u64);
+    own.set_word_pos(0);
+    own
+}
+
+/// `count` ziggurat normals from individual k's own stream ([`own_stream`]), in order.
+pub fn own_gaussians(base: &Rng, k: usize, count: usize) -> Vec<f64> {
+    let mut own = own_stream(base, k);
+    (0..count).map(|_| gaussian_ziggurat(&mut own)).collect()
+}
+
 /// Fills `out` with the normal draws of `base`'s stream starting at 32-bit word `start`,
-/// chunk by chunk in parallel (`base` itself does not move). Each draw uses
-/// `normals.words_per_draw()` words, always, which is what lets a chunk start anywhere.
-fn fill_gaussians_at(normals: Normals, base: &Rng, start: u128, out: &mut [f64]) {
-    let words = normals.words_per_draw();
+/// chunk by chunk in parallel (`base` itself does not move).
+fn fill_gaussians_at(base: &Rng, start: u128, out: &mut [f64]) {
     out.par_chunks_mut(CHUNK)
         .enumerate()
         .for_each(|(k, chunk)| {
             let mut rng = base.clone();
-            rng.set_word_pos(start + words * (k * CHUNK) as u128);
-            match normals {
-                Normals::BoxMuller => chunk.iter_mut().for_each(|x| *x = gaussian(&mut rng)),
-                Normals::InverseCdf => chunk.iter_mut().for_each(|x| *x = gaussian_icdf(&mut rng)),
+            rng.set_word_pos(start + WORDS_PER_GAUSSIAN * (k * CHUNK) as u128);
+            for x in chunk {
+                *x = gaussian(&mut rng);
             }
         });
 }
@@ -336,53 +365,70 @@ mod tests {
         )
     }
 
-    const BOTH: [Normals; 2] = [Normals::BoxMuller, Normals::InverseCdf];
-
     #[test]
     fn parallel_draws_are_the_sequential_ones_and_leave_the_stream_in_place() {
         // Odd lengths and a start inside a ChaCha block (after one `unit`).
-        for (normals, count) in BOTH
-            .into_iter()
-            .flat_map(|n| [0, 1, 7, CHUNK - 1, CHUNK, 3 * CHUNK + 5].map(|c| (n, c)))
-        {
+        for count in [0, 1, 7, CHUNK - 1, CHUNK, 3 * CHUNK + 5] {
             let mut one = rng();
             let mut many = rng();
             unit(&mut one);
             unit(&mut many);
-            let expected: Vec<u64> = (0..count)
-                .map(|_| normals.draw(&mut one).to_bits())
-                .collect();
-            let got: Vec<u64> = gaussians(normals, &mut many, count)
+            let expected: Vec<u64> = (0..count).map(|_| gaussian(&mut one).to_bits()).collect();
+            let got: Vec<u64> = gaussians(&mut many, count)
                 .iter()
                 .map(|x| x.to_bits())
                 .collect();
-            assert_eq!(got, expected, "{normals:?}: {count} draws");
+            assert_eq!(got, expected, "{count} draws");
             assert_eq!(unit(&mut many).to_bits(), unit(&mut one).to_bits());
         }
     }
 
     #[test]
     fn rows_are_the_sequential_draws_vector_after_vector() {
-        for (normals, (rows, columns)) in BOTH
-            .into_iter()
-            .flat_map(|n| [(0, 5), (3, 0), (4, 3), (3, CHUNK + 17)].map(|c| (n, c)))
-        {
+        for (rows, columns) in [(0, 5), (3, 0), (4, 3), (3, CHUNK + 17)] {
             let mut one = rng();
             let mut many = rng();
             let expected: Vec<Vec<u64>> = (0..rows)
-                .map(|_| {
-                    (0..columns)
-                        .map(|_| normals.draw(&mut one).to_bits())
-                        .collect()
-                })
+                .map(|_| (0..columns).map(|_| gaussian(&mut one).to_bits()).collect())
                 .collect();
-            let got: Vec<Vec<u64>> = gaussian_rows(normals, &mut many, rows, columns)
+            let got: Vec<Vec<u64>> = gaussian_rows(Normals::BoxMuller, &mut many, rows, columns)
                 .iter()
                 .map(|r| r.iter().map(|x| x.to_bits()).collect())
                 .collect();
-            assert_eq!(got, expected, "{normals:?}: {rows} x {columns}");
+            assert_eq!(got, expected, "{rows} x {columns}");
             assert_eq!(unit(&mut many).to_bits(), unit(&mut one).to_bits());
         }
+    }
+
+    #[test]
+    fn ziggurat_rows_come_from_each_rows_own_stream_on_any_thread_count() {
+        let (rows, columns) = (5, 2 * CHUNK + 3);
+        let expected: Vec<Vec<u64>> = (0..rows)
+            .map(|k| {
+                let mut own = rng();
+                own.set_stream(1 + k as u64);
+                own.set_word_pos(0);
+                (0..columns)
+                    .map(|_| gaussian_ziggurat(&mut own).to_bits())
+                    .collect()
+            })
+            .collect();
+        for threads in [1, 3] {
+            let mut r = rng();
+            let got = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| gaussian_rows(Normals::Ziggurat, &mut r, rows, columns));
+            let got: Vec<Vec<u64>> = got
+                .iter()
+                .map(|r| r.iter().map(|x| x.to_bits()).collect())
+                .collect();
+            assert_eq!(got, expected, "{threads} threads");
+            assert_eq!(r.get_word_pos(), 0, "the generation's stream is not used");
+        }
+        // Another row's stream is another stream.
+        assert_ne!(expected[0], expected[1]);
     }
 
     #[test]
@@ -420,7 +466,7 @@ mod tests {
                 .num_threads(threads)
                 .build()
                 .unwrap()
-                .install(|| gaussians(Normals::BoxMuller, &mut rng(), 5 * CHUNK + 3))
+                .install(|| gaussians(&mut rng(), 5 * CHUNK + 3))
         };
         let one: Vec<u64> = draw(1).iter().map(|x| x.to_bits()).collect();
         let three: Vec<u64> = draw(3).iter().map(|x| x.to_bits()).collect();

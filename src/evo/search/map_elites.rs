@@ -16,7 +16,8 @@
 //!   order first, noting where each offspring's per-gene draws start in the stream; then all
 //!   offspring's per-gene draws are made in one parallel pass ([`draws::gaussians_from`]),
 //!   the same values as drawing them offspring after offspring. With `[evolution] draw_order
-//!   = 2` every `gaussian` here is [`crate::seed::gaussian_icdf`] (one word, not two).
+//!   = 2` every `gaussian` is [`crate::seed::gaussian_ziggurat`], and offspring k's per-gene
+//!   draws come from its own stream ([`draws::own_stream`]), not the generation's.
 //! - **Tell g.** Each individual with a finite fitness, in index order, enters the cell of its
 //!   descriptors when it is empty or when its fitness is strictly greater
 //!   ([`super::grid::enters`]).
@@ -81,18 +82,14 @@ pub fn iso_line(
     rng: &mut Rng,
 ) -> Vec<f64> {
     let line = gaussian(rng);
-    let isotropic = draws::gaussians(Normals::BoxMuller, rng, xi.len());
+    let isotropic = draws::gaussians(rng, xi.len());
     iso_line_with(xi, xj, iso_sigma, line_sigma, line, &isotropic)
 }
 
 /// The Gaussian offspring of `x`: x + σ · N(0, I), one `gaussian` per gene from `rng` (draw
 /// order 1).
 pub fn gaussian_offspring(x: &[f64], sigma: f64, rng: &mut Rng) -> Vec<f64> {
-    gaussian_offspring_with(
-        x,
-        sigma,
-        &draws::gaussians(Normals::BoxMuller, rng, x.len()),
-    )
+    gaussian_offspring_with(x, sigma, &draws::gaussians(rng, x.len()))
 }
 
 /// x + σ · z, given the draws z.
@@ -107,7 +104,8 @@ struct Planned<'a> {
     first: &'a Elite,
     /// The iso-line emitter's second elite and its line draw.
     second: Option<(&'a Elite, f64)>,
-    /// The stream word the per-gene draws start at.
+    /// Where the per-gene draws come from: the stream word they start at (draw order 1), or
+    /// the offspring's index, whose own stream they are (draw order 2).
     draws_at: u128,
 }
 
@@ -258,7 +256,7 @@ impl Search for MapElites {
         let pick = |rng: &mut Rng| elites[below(rng, elites.len() as u64) as usize];
         let mut planned = Vec::with_capacity(n);
         let mut lineage = Vec::with_capacity(n);
-        for _ in 0..n {
+        for k in 0..n {
             let first = pick(&mut rng);
             let second = match self.settings.emitter {
                 Emitter::IsoLine => {
@@ -271,7 +269,12 @@ impl Search for MapElites {
                     None
                 }
             };
-            let draws_at = draws::skip_gaussians(normals, &mut rng, first.genome.parameters.len());
+            let draws_at = match normals {
+                Normals::BoxMuller => {
+                    draws::skip_gaussians(&mut rng, first.genome.parameters.len())
+                }
+                Normals::Ziggurat => k as u128,
+            };
             planned.push(Planned {
                 first,
                 second,
@@ -284,7 +287,10 @@ impl Search for MapElites {
             .par_iter()
             .map(|p| {
                 let x = &p.first.genome.parameters;
-                let z = draws::gaussians_from(normals, &rng, p.draws_at, x.len());
+                let z = match normals {
+                    Normals::BoxMuller => draws::gaussians_from(&rng, p.draws_at, x.len()),
+                    Normals::Ziggurat => draws::own_gaussians(&rng, p.draws_at as usize, x.len()),
+                };
                 let parameters = match p.second {
                     Some((b, line)) => {
                         iso_line_with(x, &b.genome.parameters, iso, line_sigma, line, &z)

@@ -43,8 +43,8 @@
 //! # Draw order (part of the reproducibility contract)
 //!
 //! Generation g's noise comes from `stream(seed, Purpose::Search, g, 0, 0)`: for k = 0 .. K − 1
-//! and each parameter j in order, one `gaussian()` z (`gaussian_icdf()` with `[evolution]
-//! draw_order = 2`) and ε_kj = σ_j · z. The update of step 4
+//! and each parameter j in order, one `gaussian()` z (draw order 2: `gaussian_ziggurat()`, pair k's
+//! from its own stream, `draws::own_stream`) and ε_kj = σ_j · z. The update of step 4
 //! draws nothing: it regenerates ε from the same stream, so a checkpoint needs only θ_g and the
 //! evaluated generation, and a resumed run continues with the same bits.
 //!

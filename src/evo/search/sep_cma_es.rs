@@ -38,8 +38,8 @@
 //! # Draw order (part of the reproducibility contract)
 //!
 //! Generation g's noise comes from `stream(seed, Purpose::Search, g, 0, 0)`: for k = 0..λ − 1
-//! and each parameter j in order, one `gaussian()` z_kj (`gaussian_icdf()` with `[evolution]
-//! draw_order = 2`). The update regenerates z from the same
+//! and each parameter j in order, one `gaussian()` z_kj (draw order 2: `gaussian_ziggurat()`,
+//! vector k from its own stream, `draws::own_stream`). The update regenerates z from the same
 //! stream, so a checkpoint needs only θ_g (`"search": {"sep_cma_es": {...}}`) and the evaluated
 //! generation, and a resumed run continues with the same bits. The mean starts at 0, σ at
 //! `[evolution.cma_es] sigma_init`, c at 1, the paths at 0.
