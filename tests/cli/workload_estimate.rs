@@ -340,3 +340,38 @@ fn the_workload_counts_every_episode_of_a_life() {
         "{json}"
     );
 }
+
+#[test]
+fn inspect_points_a_large_brain_in_draw_order_1_to_draw_order_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let tiny = String::from_utf8(read(&fixture("tiny.toml"))).unwrap();
+    // 24 inputs (tiny's senses) → 100 → 2 is about 2,700 parameters, over the 2,000 noted.
+    let large = tiny.replace("hidden = [4]", "hidden = [100]");
+    assert_ne!(large, tiny);
+    for (name, text, noted) in [
+        ("small.toml", tiny.clone(), false),
+        ("large.toml", large.clone(), true),
+        (
+            "large-order-2.toml",
+            large.replacen("\n[evolution]\n", "\n[evolution]\ndraw_order = 2\n", 1),
+            false,
+        ),
+    ] {
+        let file = dir.path().join(name);
+        std::fs::write(&file, text).unwrap();
+        let out = stdout_of(&["inspect", file.to_str().unwrap(), "--no-estimate"]);
+        assert_eq!(
+            out.contains("`[evolution] draw_order = 2`"),
+            noted,
+            "{name}:\n{out}"
+        );
+        let json = stdout_of(&["inspect", file.to_str().unwrap(), "--no-estimate", "--json"]);
+        assert_eq!(json.contains("draw_order = 2"), noted, "{name} (JSON)");
+        if name == "large-order-2.toml" {
+            assert!(
+                out.contains(", draw order 2 (offspring in parallel"),
+                "{out}"
+            );
+        }
+    }
+}
