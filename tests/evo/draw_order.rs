@@ -3,6 +3,7 @@
 //! resumed), the key changes the run (a file without it keeps draw order 1), and the GA's
 //! offspring do not depend on the number of threads.
 use crate::cli_common::{fixture, read};
+use crate::parallel_draws::on;
 use crate::run_guarantees::{last_checkpoint, run, same_bytes_for};
 use berry_evolve::brain::genome::Genome;
 use berry_evolve::evo::lineage::Birth;
@@ -63,14 +64,6 @@ fn bits(genomes: &[Genome]) -> Vec<Vec<u64>> {
         .iter()
         .map(|g| g.parameters.iter().map(|x| x.to_bits()).collect())
         .collect()
-}
-
-fn on<T: Send>(threads: usize, work: impl FnOnce() -> T + Send) -> T {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap()
-        .install(work)
 }
 
 fn rng() -> Rng {

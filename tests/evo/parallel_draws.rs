@@ -30,7 +30,7 @@ fn bits(values: &[f64]) -> Vec<u64> {
 }
 
 /// Runs `f` on a pool of `threads` threads.
-fn on<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+pub fn on<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
     rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
