@@ -90,3 +90,11 @@ pub(crate) fn draw_step_size(
         }
     }
 }
+
+/// A recombined offspring's step size with self-adaptation: the geometric mean √σx · √σy of
+/// its parents' (a parent without one counts as having `sigma`); no draw.
+pub(crate) fn mean_step_size(mutation: &MutationSpec, x: &Genome, y: &Genome) -> f64 {
+    let sx = x.step_size.unwrap_or(mutation.sigma);
+    let sy = y.step_size.unwrap_or(mutation.sigma);
+    sx.sqrt() * sy.sqrt()
+}

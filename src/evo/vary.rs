@@ -47,7 +47,7 @@
 use crate::brain::genome::Genome;
 use crate::evo::lineage::{Birth, Lineage};
 pub use crate::evo::operators::recombine;
-use crate::evo::operators::{draw_step_size, recombine_from};
+use crate::evo::operators::{draw_step_size, mean_step_size, recombine_from};
 use crate::evo::search::draws::Words;
 use crate::evo::select::{ranking, truncation_count, Selector};
 use crate::evo::vary_streams;
@@ -150,9 +150,7 @@ pub(crate) fn vary(
                         _ => recombine_from(&crossover, x, y, &mut words),
                     };
                     if spec.mutation.self_adaptive.is_some() {
-                        let sx = x.step_size.unwrap_or(spec.mutation.sigma);
-                        let sy = y.step_size.unwrap_or(spec.mutation.sigma);
-                        child.step_size = Some(sx.sqrt() * sy.sqrt());
+                        child.step_size = Some(mean_step_size(&spec.mutation, x, y));
                     }
                     (child, Lineage::of(Birth::Crossover, &[xi, yi]))
                 } else {

@@ -28,7 +28,7 @@
 
 use crate::brain::genome::Genome;
 use crate::evo::lineage::{Birth, Lineage};
-use crate::evo::operators::{draw_step_size, recombine};
+use crate::evo::operators::{draw_step_size, mean_step_size, recombine};
 use crate::evo::search::draws::own_stream;
 use crate::evo::select::Selector;
 use crate::experiment::evolution::{CrossoverSpec, EvolutionSpec, MutationSpec};
@@ -91,9 +91,7 @@ fn make(spec: &EvolutionSpec, x: &Genome, y: Option<&Genome>, own: &mut Rng) -> 
                 crossover => recombine(&crossover, x, y, own),
             };
             if spec.mutation.self_adaptive.is_some() {
-                let sx = x.step_size.unwrap_or(spec.mutation.sigma);
-                let sy = y.step_size.unwrap_or(spec.mutation.sigma);
-                child.step_size = Some(sx.sqrt() * sy.sqrt());
+                child.step_size = Some(mean_step_size(&spec.mutation, x, y));
             }
             child
         }
